@@ -1,0 +1,17 @@
+#pragma once
+// The human-readable campaign report (Markdown) and its provenance (JSON), written to the
+// output directory.
+#include <filesystem>
+#include <vector>
+
+#include "campaign_file.hpp"
+#include "campaign_runner.hpp"
+
+namespace dtwire::app {
+
+// Returns the path of report.md.
+std::filesystem::path write_campaign_report(const Campaign& campaign,
+                                            const std::vector<StepOutcome>& outcomes,
+                                            const std::filesystem::path& out);
+
+}  // namespace dtwire::app

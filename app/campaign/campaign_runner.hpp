@@ -1,0 +1,34 @@
+#pragma once
+// Runs a campaign's steps in order, in-process, with progress on stderr. State is saved after
+// every step (out/campaign_state.json), so an interrupted campaign resumes where it stopped:
+// a step is skipped when it finished before with the same command, inputs and tool version
+// and its outputs still exist.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "campaign_file.hpp"
+
+namespace dtwire::app {
+
+enum class StepStatus { Done, Skipped, Failed, Unavailable };
+
+struct StepOutcome {
+  std::string name;
+  StepStatus status;
+  double seconds = 0.0;
+  int exit_code = 0;
+  std::string message;
+};
+
+struct CampaignOptions {
+  std::filesystem::path out;
+  bool force = false;  // re-run every step
+  std::vector<std::string> only;  // run just these steps (empty: all)
+};
+
+std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOptions& options);
+
+std::string status_name(StepStatus status);
+
+}  // namespace dtwire::app

@@ -1,0 +1,57 @@
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "../campaign/campaign_file.hpp"
+#include "../campaign/campaign_report.hpp"
+#include "../campaign/campaign_runner.hpp"
+#include "../cli.hpp"
+#include "../commands.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/version.hpp"
+
+namespace dtwire::app {
+
+void add_campaign_command(CLI::App& root, CommandSet& commands) {
+  struct Options {
+    std::string file;
+    std::string out;
+    bool force = false;
+    std::vector<std::string> only;
+  };
+  auto options = std::make_shared<Options>();
+  options->file = std::string(kSourceDir) + "/experiments/default/campaign.toml";
+  CLI::App* command = root.add_subcommand(
+      "campaign", "Run a whole study (mesh, FE, fits, export, gap) and write a report");
+  command->add_option("file", options->file, "Campaign file (.toml)")->capture_default_str();
+  command->add_option("-o,--out", options->out,
+                      "Output directory (default: campaign-out/<campaign name>)");
+  command->add_flag("--force", options->force, "Re-run every step, even up-to-date ones");
+  command->add_option("--only", options->only, "Run only these steps (names)");
+  commands.add(command, [options] {
+    const Campaign campaign = read_campaign(options->file);
+    CampaignOptions run_options;
+    run_options.out = options->out.empty() ? std::filesystem::path("campaign-out") / campaign.name
+                                           : std::filesystem::path(options->out);
+    run_options.force = options->force;
+    run_options.only = options->only;
+    for (const auto& name : options->only) {
+      const bool known = std::any_of(campaign.steps.begin(), campaign.steps.end(),
+                                     [&](const CampaignStep& s) { return s.name == name; });
+      if (!known) throw InputError(options->file, "--only names unknown step '" + name + "'");
+    }
+    const auto outcomes = run_campaign(campaign, run_options);
+    const auto report = write_campaign_report(campaign, outcomes, run_options.out);
+    std::size_t failed = 0, unavailable = 0;
+    for (const auto& o : outcomes) {
+      failed += o.status == StepStatus::Failed;
+      unavailable += o.status == StepStatus::Unavailable;
+    }
+    std::cout << "campaign " << campaign.name << ": " << outcomes.size() << " step(s), " << failed
+              << " failed, " << unavailable << " not available yet; report: " << report.string()
+              << "\n";
+    return failed ? kExitFailure : 0;
+  });
+}
+
+}  // namespace dtwire::app

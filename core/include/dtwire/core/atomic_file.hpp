@@ -1,0 +1,31 @@
+#pragma once
+// Result files are written to a temporary name beside the target and renamed into place, so a
+// crash or an error never leaves a half-written result behind.
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+
+namespace dtwire {
+
+class PendingFile {
+ public:
+  explicit PendingFile(std::filesystem::path target);
+  ~PendingFile();  // removes the temporary file unless commit() succeeded
+  PendingFile(const PendingFile&) = delete;
+  PendingFile& operator=(const PendingFile&) = delete;
+
+  const std::filesystem::path& temporary() const { return temporary_; }
+  const std::filesystem::path& target() const { return target_; }
+  void commit();  // rename temporary -> target; throws std::runtime_error on failure
+
+ private:
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  bool committed_ = false;
+};
+
+// Runs `write` on a stream to a temporary file, checks the stream, then renames.
+void write_file_atomically(const std::filesystem::path& target,
+                           const std::function<void(std::ostream&)>& write);
+
+}  // namespace dtwire

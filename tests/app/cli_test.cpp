@@ -1,0 +1,91 @@
+// Smoke tests of the dtwire executable: --help on every command, --version, exit codes.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+namespace {
+
+struct CommandResult {
+  int exit_code;
+  std::string output;  // stdout and stderr together
+};
+
+CommandResult run(const std::string& arguments) {
+  const std::string command = std::string(DTWIRE_EXECUTABLE) + " " + arguments + " 2>&1";
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe.get())) output += buffer.data();
+  const int status = pclose(pipe.release());
+  return {WEXITSTATUS(status), output};
+}
+
+std::size_t line_count(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+TEST(Cli, TopLevelHelpListsEveryCommand) {
+  const CommandResult r = run("--help");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* command : {"mesh", "run", "fit", "export", "dem", "gap", "campaign"})
+    EXPECT_NE(r.output.find(command), std::string::npos) << command;
+}
+
+class CommandHelp : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CommandHelp, ExitsZeroAndNamesTheCommand) {
+  const CommandResult r = run(std::string(GetParam()) + " --help");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(GetParam()), std::string::npos) << r.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryCommand, CommandHelp,
+                         ::testing::Values("mesh", "run", "fit", "export", "dem", "gap",
+                                           "campaign"));
+
+TEST(Cli, VersionPrintsVersionAndGitHash) {
+  const CommandResult r = run("--version");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.output.find("dtwire 0."), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(git "), std::string::npos) << r.output;
+}
+
+TEST(Cli, UnknownOptionExitsTwoWithOneLine) {
+  const CommandResult r = run("--frobnicate");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(line_count(r.output), 1u) << r.output;
+  EXPECT_NE(r.output.find("frobnicate"), std::string::npos) << r.output;
+}
+
+TEST(Cli, UnknownCommandExitsTwo) {
+  const CommandResult r = run("frobnicate");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(line_count(r.output), 1u) << r.output;
+}
+
+TEST(Cli, MissingCommandExitsTwo) {
+  const CommandResult r = run("");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(line_count(r.output), 1u) << r.output;
+}
+
+TEST(Cli, UnknownOptionOfASubcommandExitsTwo) {
+  const CommandResult r = run("campaign --no-such-option");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(line_count(r.output), 1u) << r.output;
+}
+
+TEST(Cli, BadCampaignFileExitsTwoNamingTheFile) {
+  const CommandResult r = run("campaign /nonexistent/campaign.toml");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("/nonexistent/campaign.toml: no such file"), std::string::npos)
+      << r.output;
+}
+
+}  // namespace
