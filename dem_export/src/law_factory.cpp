@@ -1,0 +1,21 @@
+#include <stdexcept>
+
+#include "dtwire/dem/contact_law.hpp"
+
+namespace dtwire::dem {
+
+double require_parameter(const ParameterMap& parameters, const std::string& law,
+                         const std::string& field) {
+  const auto found = parameters.find(field);
+  if (found == parameters.end())
+    throw std::invalid_argument(law + ": missing parameter '" + field + "'");
+  return found->second;
+}
+
+std::unique_ptr<ContactLaw> make_contact_law(const std::string& name, const ParameterMap& parameters) {
+  // Each law adds one line here when it lands.
+  throw std::invalid_argument("unknown contact law '" + name +
+                              "', expected one of: thesis, macro3d, wirepm, parallel_bond");
+}
+
+}  // namespace dtwire::dem
