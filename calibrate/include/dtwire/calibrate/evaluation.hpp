@@ -1,0 +1,98 @@
+#pragma once
+// Evaluation of all experiments at parameter points: results cache keyed by SHA-256 of the
+// inputs, parallel runs, and forward/central finite-difference Jacobians whose step suits
+// solver noise. Works on the scaled parameters z = value / scale the optimiser sees.
+#include <atomic>
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dtwire/calibrate/experiment.hpp"
+#include "dtwire/calibrate/parameter.hpp"
+
+namespace dtwire::calibrate {
+
+// SHA-256 of the simulator identity and the exact parameter values (shortest round-trip text).
+std::string evaluation_key(const Simulator& simulator, const ParameterValues& parameters);
+
+// Simulated curves by key, in memory and optionally as CSV files in a directory (so a resumed
+// fit does not re-run FE simulations). Failures are remembered in memory only. Thread safe.
+class ResultsCache {
+ public:
+  explicit ResultsCache(std::filesystem::path directory = {});
+
+  struct Entry {
+    std::optional<Curve> curve;
+    std::string failure;  // non-empty if the simulation threw ComputationError
+  };
+  std::optional<Entry> find(const std::string& key);
+  void store(const std::string& key, const Entry& entry);
+
+ private:
+  std::filesystem::path directory_;
+  std::mutex mutex_;
+  std::map<std::string, Entry> entries_;
+};
+
+struct EvaluationOptions {
+  unsigned threads = 0;          // 0: std::thread::hardware_concurrency()
+  double relative_step = 1e-4;   // finite-difference step h = relative_step * max(|z|, 1)
+  bool central_differences = false;
+  std::filesystem::path cache_directory;  // empty: memory only
+};
+
+struct EvaluationStatistics {
+  std::size_t simulations = 0;  // simulator runs
+  std::size_t cache_hits = 0;
+  std::size_t failures = 0;     // runs that threw ComputationError
+};
+
+class ProblemEvaluator {
+ public:
+  ProblemEvaluator(std::vector<Experiment> experiments, std::vector<ParameterDefinition> parameters,
+                   EvaluationOptions options);
+
+  const std::vector<Experiment>& experiments() const { return experiments_; }
+  const std::vector<ParameterDefinition>& parameters() const { return parameters_; }
+  std::size_t residual_count() const { return residual_count_; }
+
+  std::vector<double> to_scaled(const std::vector<double>& values) const;
+  std::vector<double> from_scaled(const std::vector<double>& z) const;
+
+  // Residuals at z. Throws ComputationError if a simulation fails.
+  std::vector<double> residuals(const std::vector<double>& z);
+  // Residuals and the Jacobian d r / d z (row-major, residual_count x n). A perturbed run that
+  // fails is retried with the opposite step, then with a tenth of the step; throws
+  // ComputationError if all fail.
+  void residuals_and_jacobian(const std::vector<double>& z, std::vector<double>& residuals,
+                              std::vector<double>& jacobian);
+
+  // Simulated curves (one per experiment) at parameter values (SI).
+  std::vector<Curve> simulate(const std::vector<double>& values);
+
+  EvaluationStatistics statistics() const;
+
+ private:
+  struct Outcome {
+    std::vector<double> residuals;
+    std::string failure;
+  };
+  // Residual vectors at several points, computed in parallel (one task per point and experiment).
+  std::vector<Outcome> evaluate_points(const std::vector<std::vector<double>>& z_points);
+  Curve run(std::size_t experiment, const ParameterValues& values);
+
+  std::vector<Experiment> experiments_;
+  std::vector<ParameterDefinition> parameters_;
+  EvaluationOptions options_;
+  std::size_t residual_count_ = 0;
+  ResultsCache cache_;
+  std::map<const Simulator*, std::unique_ptr<std::mutex>> serial_locks_;
+  std::atomic<std::size_t> simulations_{0}, cache_hits_{0}, failures_{0};
+};
+
+}  // namespace dtwire::calibrate

@@ -1,0 +1,75 @@
+#pragma once
+// Bounded nonlinear least squares with Ceres (Levenberg-Marquardt) on the scaled parameters,
+// robust losses, multi-start from a Latin hypercube, a checkpoint after every iteration that a
+// later run resumes from (ending where an uninterrupted fit ends), and the covariance of the
+// estimate (ceres::Covariance, dense SVD) scaled by the residual variance.
+#include <Eigen/Core>
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dtwire/calibrate/evaluation.hpp"
+
+namespace dtwire::calibrate {
+
+enum class LossKind { Squared, Huber, Cauchy };
+
+struct FitOptions {
+  int max_iterations = 50;
+  LossKind loss = LossKind::Squared;
+  double loss_scale = 1.0;  // residual size where the robust loss starts to bend
+  int starts = 1;           // 1: the initial values only; k: plus k-1 Latin hypercube points
+  std::uint64_t seed = 1;
+  double function_tolerance = 1e-10;
+  double parameter_tolerance = 1e-10;
+  double gradient_tolerance = 1e-12;
+  std::filesystem::path checkpoint;  // empty: no checkpoint
+  bool resume = false;               // continue from `checkpoint` if it exists
+  // Stop as if interrupted once this process has completed this many iterations (tests).
+  int stop_after_iterations = -1;
+  const std::atomic<bool>* stop_requested = nullptr;  // e.g. set by a SIGINT handler
+  std::ostream* progress = nullptr;
+};
+
+struct StartSummary {
+  std::vector<double> start;  // parameter values (SI)
+  std::vector<double> end;
+  double cost = 0.0;  // Ceres cost 1/2 sum rho(r^2) at the end
+  int iterations = 0;
+  std::string state;  // "pending", "running", "done", "failed"
+  std::string message;
+};
+
+struct FitResult {
+  bool completed = false;  // false: interrupted, resume from the checkpoint
+  std::vector<ParameterDefinition> parameters;
+  std::vector<double> values;                 // SI
+  std::optional<Eigen::MatrixXd> covariance;  // SI, scaled by the residual variance
+  std::optional<Eigen::MatrixXd> correlation;
+  std::vector<double> sigma;                  // sqrt(diag covariance); empty without covariance
+  std::vector<double> singular_values;        // of the column-normalised Jacobian, descending
+  double cost = 0.0;
+  double residual_variance = 0.0;  // 2 cost / (m - n)
+  std::size_t residual_count = 0;
+  std::size_t best_start = 0;
+  std::vector<StartSummary> starts;
+  std::vector<std::string> warnings;
+  std::vector<ChannelQuality> quality;
+  std::vector<Curve> fitted;  // simulated channels at the targets' points, one per experiment
+  EvaluationStatistics statistics;
+  double wall_seconds = 0.0;
+};
+
+// Runs the fit. Throws ComputationError if every start fails, InputError if a checkpoint to
+// resume from belongs to a different fit definition.
+FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options);
+
+// Identity of the fit definition (experiments, targets, parameters, options that change the
+// trajectory): a checkpoint only resumes the fit it was written for.
+std::string fit_identity(const ProblemEvaluator& evaluator, const FitOptions& options);
+
+}  // namespace dtwire::calibrate

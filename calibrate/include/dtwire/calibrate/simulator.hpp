@@ -1,0 +1,30 @@
+#pragma once
+// A simulator turns parameter values into a curve: an FE virtual experiment, a DEM contact law
+// replaying a load path, or an analytic model. No deal.II types here, so every module can
+// implement it.
+#include <string>
+
+#include "dtwire/calibrate/parameter.hpp"
+#include "dtwire/core/curve.hpp"
+
+namespace dtwire::calibrate {
+
+class Simulator {
+ public:
+  virtual ~Simulator() = default;
+
+  // The curve for these parameter values (SI, by name; the fit passes every fitted parameter).
+  // Throws ComputationError when the simulation fails (non-convergence, invalid state): the
+  // fit then rejects the step instead of stopping.
+  virtual Curve simulate(const ParameterValues& parameters) const = 0;
+
+  // Everything besides the parameters that determines the result (model, load path,
+  // settings), as text; its SHA-256 keys the results cache.
+  virtual std::string identity() const = 0;
+
+  // True if simulate() may run concurrently on one object. Perturbed runs of a simulator
+  // that is not thread safe run one after another.
+  virtual bool thread_safe() const { return true; }
+};
+
+}  // namespace dtwire::calibrate

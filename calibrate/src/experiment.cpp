@@ -1,0 +1,175 @@
+#include "dtwire/calibrate/experiment.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "dtwire/core/curve_ops.hpp"
+#include "dtwire/core/error.hpp"
+
+namespace dtwire::calibrate {
+namespace {
+
+double range_of(const std::vector<double>& v) {
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  return *hi - *lo;
+}
+
+std::vector<Branch> branches_of(const std::vector<double>& x, double relative_tolerance) {
+  return split_monotone_branches(x, relative_tolerance * range_of(x));
+}
+
+// Indices of a branch whose abscissa strictly advances (points that stall or step back within
+// the branch tolerance are skipped), so that interpolation is well defined.
+std::vector<std::size_t> strictly_monotone(const std::vector<double>& x, const Branch& b) {
+  std::vector<std::size_t> kept{b.begin};
+  const bool up = b.direction == BranchDirection::Loading;
+  for (std::size_t i = b.begin + 1; i < b.end; ++i) {
+    const double last = x[kept.back()];
+    if (up ? x[i] > last : x[i] < last) kept.push_back(i);
+  }
+  return kept;
+}
+
+std::vector<double> pick(const std::vector<double>& v, const std::vector<std::size_t>& idx) {
+  std::vector<double> out;
+  out.reserve(idx.size());
+  for (std::size_t i : idx) out.push_back(v[i]);
+  return out;
+}
+
+// Simulated values of channel `quantity` at every target point, branch by branch.
+std::vector<double> simulated_values(const Experiment& e, const Curve& simulated,
+                                     const std::string& quantity) {
+  if (!simulated.has(e.abscissa) || !simulated.has(quantity))
+    throw ComputationError("experiment '" + e.name + "': the simulated curve lacks channel '" +
+                           (simulated.has(e.abscissa) ? quantity : e.abscissa) + "'");
+  if (simulated.size() < 2)
+    throw ComputationError("experiment '" + e.name + "': the simulated curve has < 2 points");
+  const std::vector<double> tx = e.target.si(e.abscissa);
+  const std::vector<double> ty = e.target.si(quantity);
+  const std::vector<double> sx = simulated.si(e.abscissa);
+  const std::vector<double> sy = simulated.si(quantity);
+  for (double v : sy)
+    if (!std::isfinite(v))
+      throw ComputationError("experiment '" + e.name + "': the simulated " + quantity +
+                             " is not finite");
+  const auto target_branches = branches_of(tx, e.branch_tolerance);
+  const auto sim_branches = branches_of(sx, e.branch_tolerance);
+  if (sim_branches.size() != target_branches.size())
+    throw ComputationError("experiment '" + e.name + "': the simulated curve has " +
+                           std::to_string(sim_branches.size()) + " monotone branch(es), the target " +
+                           std::to_string(target_branches.size()));
+  std::vector<double> out(tx.size(), 0.0);
+  for (std::size_t b = 0; b < target_branches.size(); ++b) {
+    const Branch& tb = target_branches[b];
+    const auto sidx = strictly_monotone(sx, sim_branches[b]);
+    if (sidx.size() < 2)
+      throw ComputationError("experiment '" + e.name + "': simulated branch " +
+                             std::to_string(b + 1) + " has < 2 distinct points");
+    std::vector<double> query, values;
+    if (e.kind == AbscissaKind::Channel) {
+      query.assign(tx.begin() + tb.begin, tx.begin() + tb.end);
+      values = interpolate(pick(sx, sidx), pick(sy, sidx), query);
+    } else {
+      // Both branches parametrised by their own normalised arc length in the (x, y) plane.
+      const std::vector<double> tbx(tx.begin() + tb.begin, tx.begin() + tb.end);
+      const std::vector<double> tby(ty.begin() + tb.begin, ty.begin() + tb.end);
+      query = normalized_arc_length(tbx, tby);
+      std::vector<double> s = normalized_arc_length(pick(sx, sidx), pick(sy, sidx));
+      // Arc length is non-decreasing; drop repeated values for interpolation.
+      std::vector<std::size_t> keep{0};
+      for (std::size_t i = 1; i < s.size(); ++i)
+        if (s[i] > s[keep.back()]) keep.push_back(i);
+      values = interpolate(pick(s, keep), pick(pick(sy, sidx), keep), query);
+    }
+    for (std::size_t i = tb.begin; i < tb.end; ++i) out[i] = values[i - tb.begin];
+  }
+  return out;
+}
+
+double channel_scale(const Experiment& e, const ChannelWeight& c) {
+  if (c.scale > 0) return c.scale;
+  const double r = range_of(e.target.si(c.quantity));
+  return r > 0 ? r : 1.0;
+}
+
+}  // namespace
+
+void validate(const Experiment& e) {
+  const std::string where = "experiment '" + e.name + "': ";
+  if (!e.simulator) throw std::invalid_argument(where + "no simulator");
+  if (!(e.weight > 0)) throw std::invalid_argument(where + "weight must be > 0");
+  if (e.channels.empty()) throw std::invalid_argument(where + "no channel to compare");
+  if (!e.target.has(e.abscissa))
+    throw std::invalid_argument(where + "the target has no abscissa channel '" + e.abscissa + "'");
+  for (const auto& c : e.channels) {
+    if (!e.target.has(c.quantity))
+      throw std::invalid_argument(where + "the target has no channel '" + c.quantity + "'");
+    if (!(c.weight > 0)) throw std::invalid_argument(where + "channel weights must be > 0");
+  }
+  const auto x = e.target.si(e.abscissa);
+  if (!(range_of(x) > 0)) throw std::invalid_argument(where + "the target abscissa is constant");
+  for (const Branch& b : branches_of(x, e.branch_tolerance))
+    if (strictly_monotone(x, b).size() < 2)
+      throw std::invalid_argument(where + "a target branch has < 2 distinct abscissa values");
+}
+
+std::size_t residual_count(const Experiment& e) { return e.channels.size() * e.target.size(); }
+
+std::vector<double> residuals(const Experiment& e, const Curve& simulated) {
+  std::vector<double> r;
+  r.reserve(residual_count(e));
+  const double n = static_cast<double>(e.target.size());
+  for (const auto& c : e.channels) {
+    const auto sim = simulated_values(e, simulated, c.quantity);
+    const auto target = e.target.si(c.quantity);
+    const double factor = std::sqrt(e.weight * c.weight / n) / channel_scale(e, c);
+    for (std::size_t i = 0; i < sim.size(); ++i) r.push_back(factor * (sim[i] - target[i]));
+  }
+  return r;
+}
+
+Curve simulated_at_target(const Experiment& e, const Curve& simulated) {
+  Curve out;
+  const Channel& x = e.target.channel(e.abscissa);
+  out.add_channel(x.quantity, x.unit, x.values);
+  for (const auto& c : e.channels) {
+    const Unit unit = e.target.channel(c.quantity).unit;
+    std::vector<double> values = simulated_values(e, simulated, c.quantity);
+    for (double& v : values) v /= unit.to_si;
+    out.add_channel(c.quantity, unit, std::move(values));
+  }
+  out.set_metadata("experiment", e.name);
+  return out;
+}
+
+std::vector<ChannelQuality> fit_quality(const Experiment& e, const Curve& simulated) {
+  std::vector<ChannelQuality> out;
+  for (const auto& c : e.channels) {
+    const Channel& target = e.target.channel(c.quantity);
+    std::vector<double> sim = simulated_values(e, simulated, c.quantity);
+    const std::vector<double> t = target.si();
+    double mean = 0;
+    for (double v : t) mean += v;
+    mean /= static_cast<double>(t.size());
+    double ss_res = 0, ss_tot = 0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      ss_res += (sim[i] - t[i]) * (sim[i] - t[i]);
+      ss_tot += (t[i] - mean) * (t[i] - mean);
+    }
+    ChannelQuality q;
+    q.experiment = e.name;
+    q.quantity = c.quantity;
+    q.unit = target.unit.symbol;
+    q.points = t.size();
+    q.rmse = std::sqrt(ss_res / static_cast<double>(t.size())) / target.unit.to_si;
+    const double r = range_of(t);
+    q.nrmse = r > 0 ? q.rmse * target.unit.to_si / r : 0.0;
+    q.r_squared = ss_tot > 0 ? 1.0 - ss_res / ss_tot : 0.0;
+    out.push_back(q);
+  }
+  return out;
+}
+
+}  // namespace dtwire::calibrate

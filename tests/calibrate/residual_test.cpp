@@ -1,0 +1,117 @@
+// Residuals on a common abscissa, per monotone branch; fit quality; Latin hypercube.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "dtwire/calibrate/experiment.hpp"
+#include "dtwire/calibrate/sampling.hpp"
+#include "dtwire/core/error.hpp"
+
+namespace dtwire::calibrate {
+namespace {
+
+class FixedCurve final : public Simulator {
+ public:
+  explicit FixedCurve(Curve c) : curve_(std::move(c)) {}
+  Curve simulate(const ParameterValues&) const override { return curve_; }
+  std::string identity() const override { return "fixed"; }
+
+ private:
+  Curve curve_;
+};
+
+Curve curve(const std::vector<double>& x_mm, const std::vector<double>& f_kN) {
+  Curve c;
+  c.add_channel("displacement", *find_unit("mm"), x_mm);
+  c.add_channel("force", *find_unit("kN"), f_kN);
+  return c;
+}
+
+Experiment experiment(const Curve& target) {
+  Experiment e;
+  e.name = "e";
+  e.target = target;
+  e.simulator = std::make_shared<FixedCurve>(target);
+  e.channels = {{"force", 1.0, 0.0}};
+  return e;
+}
+
+// A load-unload-reload target compared with a simulation on a finer grid and in other units:
+// the unloading branch is matched to the simulated unloading branch (not the loading one at
+// the same displacement), so the residual is zero up to interpolation of straight segments.
+TEST(Residuals, MatchBranchByBranch) {
+  const Curve target = curve({0, 1, 2, 1.5, 1, 2, 3}, {0, 1, 2, 1.5, 1, 2, 2.5});
+  Curve fine;
+  std::vector<double> x_m, f_N;
+  const std::vector<double> xs{0, 1, 2, 1.5, 1, 2, 3}, fs{0, 1, 2, 1.5, 1, 2, 2.5};
+  for (std::size_t k = 1; k < xs.size(); ++k)
+    for (int i = (k == 1 ? 0 : 1); i <= 10; ++i) {
+      x_m.push_back(1e-3 * (xs[k - 1] + (xs[k] - xs[k - 1]) * i / 10.0));
+      f_N.push_back(1e3 * (fs[k - 1] + (fs[k] - fs[k - 1]) * i / 10.0));
+    }
+  fine.add_channel("displacement", *find_unit("m"), x_m);
+  fine.add_channel("force", *find_unit("N"), f_N);
+  const auto r = residuals(experiment(target), fine);
+  ASSERT_EQ(r.size(), target.size());
+  for (double v : r) EXPECT_NEAR(v, 0.0, 1e-12);
+}
+
+// Offsetting the simulated force by 0.1 kN gives residuals sqrt(1/n) * 0.1 / range (range 2.5 kN)
+// and RMSE 0.1 kN, R^2 = 1 - n 0.01 / SS_tot.
+TEST(Residuals, OffsetGivesClosedFormValuesAndQuality) {
+  const Curve target = curve({0, 1, 2, 3}, {0, 1, 2, 2.5});
+  const Curve shifted = curve({0, 1, 2, 3}, {0.1, 1.1, 2.1, 2.6});
+  const auto e = experiment(target);
+  const auto r = residuals(e, shifted);
+  for (double v : r) EXPECT_NEAR(v, std::sqrt(1.0 / 4.0) * 0.1 / 2.5, 1e-12);
+  const auto q = fit_quality(e, shifted);
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_NEAR(q[0].rmse, 0.1, 1e-12);  // in kN, the target's unit
+  EXPECT_EQ(q[0].unit, "kN");
+  EXPECT_NEAR(q[0].nrmse, 0.1 / 2.5, 1e-12);
+  const double mean = 5.5 / 4, ss_tot = mean * mean + (1 - mean) * (1 - mean) + (2 - mean) * (2 - mean) +
+                                        (2.5 - mean) * (2.5 - mean);
+  EXPECT_NEAR(q[0].r_squared, 1.0 - 4 * 0.01 / ss_tot, 1e-12);
+}
+
+TEST(Residuals, BranchCountMismatchIsAComputationError) {
+  const Curve target = curve({0, 2, 1}, {0, 2, 1});
+  const Curve monotone = curve({0, 1, 2}, {0, 1, 2});
+  EXPECT_THROW(residuals(experiment(target), monotone), ComputationError);
+}
+
+TEST(Residuals, NormalizedArcLengthOfIdenticalShapeIsZero) {
+  const Curve target = curve({0, 1, 2, 3}, {0, 2, 3, 3.5});
+  auto e = experiment(target);
+  e.kind = AbscissaKind::NormalizedArcLength;
+  for (double v : residuals(e, target)) EXPECT_NEAR(v, 0.0, 1e-12);
+}
+
+TEST(Residuals, MissingTargetChannelIsRejected) {
+  auto e = experiment(curve({0, 1, 2}, {0, 1, 2}));
+  e.channels = {{"moment", 1.0, 0.0}};
+  EXPECT_THROW(validate(e), std::invalid_argument);
+}
+
+// Every stratum of every dimension holds exactly one point; same seed -> same design.
+TEST(LatinHypercube, OnePointPerStratumAndDeterministic) {
+  const std::vector<double> lo{0.0, -1.0}, hi{1.0, 3.0};
+  const auto a = latin_hypercube(8, lo, hi, 42);
+  const auto b = latin_hypercube(8, lo, hi, 42);
+  EXPECT_EQ(a, b);
+  for (std::size_t d = 0; d < 2; ++d) {
+    std::set<int> strata;
+    for (const auto& p : a) {
+      const double u = (p[d] - lo[d]) / (hi[d] - lo[d]);
+      ASSERT_GE(u, 0.0);
+      ASSERT_LT(u, 1.0);
+      strata.insert(static_cast<int>(u * 8));
+    }
+    EXPECT_EQ(strata.size(), 8u);
+  }
+  EXPECT_NE(latin_hypercube(8, lo, hi, 43), a);
+}
+
+}  // namespace
+}  // namespace dtwire::calibrate

@@ -1,0 +1,213 @@
+// Fits of the analytic Voce bar: recovery of known parameters from noisy synthetic curves,
+// bounds, failure handling, cache, checkpoint/resume.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "dtwire/calibrate/fitter.hpp"
+#include "dtwire/calibrate/voce_bar.hpp"
+#include "dtwire/core/error.hpp"
+#include "synthetic.hpp"
+
+namespace dtwire::calibrate {
+namespace {
+
+const ParameterValues kTruth{{"E_Pa", 200e9}, {"sigma_y0_Pa", 300e6}, {"Q_Pa", 150e6}, {"b_1", 20.0}};
+constexpr double kNoisePa = 2e6;  // standard deviation of the synthetic stress noise
+
+std::vector<ParameterDefinition> voce_parameters() {
+  return {{"E_Pa", "Pa", 150e9, 50e9, 400e9, 0.0, std::nullopt},
+          {"sigma_y0_Pa", "Pa", 250e6, 50e6, 800e6, 0.0, std::nullopt},
+          {"Q_Pa", "Pa", 100e6, 0.0, 500e6, 0.0, std::nullopt},
+          {"b_1", "1", 10.0, 0.5, 200.0, 0.0, std::nullopt}};
+}
+
+std::vector<Experiment> voce_experiments(std::shared_ptr<const Simulator> override_simulator = nullptr) {
+  std::vector<Experiment> out;
+  const std::vector<std::vector<double>> paths{{0.0, 0.04}, {0.0, 0.01, 0.004, 0.03}, {0.0, 0.005, -0.005}};
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    auto simulator = std::make_shared<VoceBarSimulator>(paths[i], 60);
+    Experiment e;
+    e.name = "path" + std::to_string(i);
+    e.simulator = override_simulator ? override_simulator : simulator;
+    e.target = test::noisy(simulator->simulate(kTruth), "stress", kNoisePa, 100 + i);
+    e.abscissa = "strain";
+    e.channels = {{"stress", 1.0, 0.0}};
+    out.push_back(e);
+  }
+  return out;
+}
+
+EvaluationOptions serial_evaluation() {
+  EvaluationOptions o;
+  o.threads = 1;
+  o.relative_step = 1e-6;
+  return o;
+}
+
+// Known parameters recovered within 2 sigma of the reported covariance; the sigmas are small
+// enough that this is a real check (relative sigma < 10 %), and the per-curve RMSE matches the
+// injected noise (within 25 %: the RMSE of n >= 60 points scatters by about 1/sqrt(2n) = 9 %).
+TEST(VoceFit, RecoversKnownParametersWithinTwoSigma) {
+  ProblemEvaluator evaluator(voce_experiments(), voce_parameters(), serial_evaluation());
+  const FitResult result = run_fit(evaluator, FitOptions{});
+  ASSERT_TRUE(result.completed);
+  ASSERT_TRUE(result.covariance.has_value());
+  for (std::size_t i = 0; i < result.values.size(); ++i) {
+    const std::string& name = result.parameters[i].name;
+    const double truth = kTruth.at(name);
+    EXPECT_LT(std::abs(result.values[i] - truth), 2.0 * result.sigma[i]) << name;
+    EXPECT_LT(result.sigma[i], 0.1 * truth) << name;
+  }
+  ASSERT_EQ(result.quality.size(), 3u);
+  for (const auto& q : result.quality) {
+    EXPECT_NEAR(q.rmse, kNoisePa, 0.25 * kNoisePa) << q.experiment;
+    EXPECT_GT(q.r_squared, 0.99) << q.experiment;
+  }
+}
+
+// With an upper bound on sigma_y0 below the truth, the estimate stays inside the bounds and
+// the fit says the parameter ended at a bound.
+TEST(VoceFit, BoundsAreRespected) {
+  auto parameters = voce_parameters();
+  parameters[1].upper = 280e6;
+  ProblemEvaluator evaluator(voce_experiments(), parameters, serial_evaluation());
+  const FitResult result = run_fit(evaluator, FitOptions{});
+  ASSERT_TRUE(result.completed);
+  for (std::size_t i = 0; i < parameters.size(); ++i) {
+    EXPECT_GE(result.values[i], parameters[i].lower);
+    EXPECT_LE(result.values[i], parameters[i].upper);
+  }
+  EXPECT_NEAR(result.values[1], 280e6, 1.0);  // active bound
+  const bool warned = std::any_of(result.warnings.begin(), result.warnings.end(), [](const std::string& w) {
+    return w.find("sigma_y0_Pa' ended at a bound") != std::string::npos;
+  });
+  EXPECT_TRUE(warned);
+}
+
+// A simulator that throws ComputationError on chosen calls (serial evaluation: call order is
+// deterministic), standing in for an FE run that does not converge.
+class FailingSimulator final : public Simulator {
+ public:
+  FailingSimulator(std::shared_ptr<const Simulator> inner, std::vector<int> failing_calls)
+      : inner_(std::move(inner)), failing_(std::move(failing_calls)) {}
+  Curve simulate(const ParameterValues& p) const override {
+    const int call = ++calls_;
+    if (std::find(failing_.begin(), failing_.end(), call) != failing_.end()) {
+      ++thrown_;
+      throw ComputationError("injected failure on call " + std::to_string(call));
+    }
+    return inner_->simulate(p);
+  }
+  std::string identity() const override { return "failing " + inner_->identity(); }
+  int thrown() const { return thrown_; }
+
+ private:
+  std::shared_ptr<const Simulator> inner_;
+  std::vector<int> failing_;
+  mutable std::atomic<int> calls_{0}, thrown_{0};
+};
+
+// Calls 3 (a finite-difference run) and 6 (the first trial step: 1 base + 4 perturbed before
+// it) fail: the Jacobian retries the opposite step, the trial step is rejected, and the fit
+// still reaches the same optimum as without failures.
+TEST(VoceFit, FailingEvaluationIsSurvived) {
+  auto experiments = voce_experiments();
+  experiments.resize(1);
+  ProblemEvaluator reference(experiments, voce_parameters(), serial_evaluation());
+  const FitResult expected = run_fit(reference, FitOptions{});
+
+  auto failing = std::make_shared<FailingSimulator>(experiments[0].simulator, std::vector<int>{3, 6});
+  experiments[0].simulator = failing;
+  ProblemEvaluator evaluator(experiments, voce_parameters(), serial_evaluation());
+  const FitResult result = run_fit(evaluator, FitOptions{});
+  EXPECT_EQ(failing->thrown(), 2);
+  EXPECT_EQ(result.statistics.failures, 2u);
+  ASSERT_TRUE(result.completed);
+  for (std::size_t i = 0; i < result.values.size(); ++i)  // same optimum to 1e-6 relative
+    EXPECT_NEAR(result.values[i], expected.values[i], 1e-6 * std::abs(expected.values[i]));
+}
+
+// A start whose very first evaluation fails is recorded as failed; the other starts carry on.
+TEST(VoceFit, FailedStartDoesNotStopMultiStart) {
+  auto experiments = voce_experiments();
+  experiments.resize(1);
+  experiments[0].simulator = std::make_shared<FailingSimulator>(experiments[0].simulator, std::vector<int>{1});
+  ProblemEvaluator evaluator(experiments, voce_parameters(), serial_evaluation());
+  FitOptions options;
+  options.starts = 3;
+  const FitResult result = run_fit(evaluator, options);
+  ASSERT_TRUE(result.completed);
+  EXPECT_EQ(result.starts[0].state, "failed");
+  EXPECT_NE(result.best_start, 0u);
+  EXPECT_NEAR(result.values[0], kTruth.at("E_Pa"), 0.02 * kTruth.at("E_Pa"));
+}
+
+// Identical evaluations are served by the cache: the same fit run twice on one evaluator
+// runs no new simulation the second time.
+TEST(VoceFit, CacheAvoidsRepeatedRuns) {
+  ProblemEvaluator evaluator(voce_experiments(), voce_parameters(), serial_evaluation());
+  run_fit(evaluator, FitOptions{});
+  const auto first = evaluator.statistics();
+  run_fit(evaluator, FitOptions{});
+  const auto second = evaluator.statistics();
+  EXPECT_GT(first.simulations, 0u);
+  EXPECT_EQ(second.simulations, first.simulations);
+  EXPECT_GT(second.cache_hits, first.cache_hits);
+}
+
+// Interrupted after k iterations (checkpoint written), resumed by a fresh evaluator (empty
+// cache, as after a restart): ends bit-for-bit where the uninterrupted fit ends, for several k
+// and with multi-start.
+TEST(VoceFit, InterruptedAndResumedFitEndsWhereUninterruptedEnds) {
+  const auto dir = std::filesystem::temp_directory_path() / "dtwire_calibrate_resume_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  FitOptions base;
+  base.starts = 2;
+  ProblemEvaluator reference(voce_experiments(), voce_parameters(), serial_evaluation());
+  const FitResult expected = run_fit(reference, base);
+  ASSERT_TRUE(expected.completed);
+
+  for (int stop_after : {1, 3, 8}) {
+    FitOptions options = base;
+    options.checkpoint = dir / ("checkpoint_" + std::to_string(stop_after) + ".json");
+    options.stop_after_iterations = stop_after;
+    {
+      ProblemEvaluator evaluator(voce_experiments(), voce_parameters(), serial_evaluation());
+      const FitResult partial = run_fit(evaluator, options);
+      EXPECT_FALSE(partial.completed) << stop_after;
+    }
+    options.stop_after_iterations = -1;
+    options.resume = true;
+    ProblemEvaluator evaluator(voce_experiments(), voce_parameters(), serial_evaluation());
+    const FitResult resumed = run_fit(evaluator, options);
+    ASSERT_TRUE(resumed.completed);
+    for (std::size_t i = 0; i < expected.values.size(); ++i)
+      EXPECT_EQ(resumed.values[i], expected.values[i]) << "stop after " << stop_after << ", " << i;
+    EXPECT_EQ(resumed.cost, expected.cost);
+    for (std::size_t s = 0; s < expected.starts.size(); ++s)
+      EXPECT_EQ(resumed.starts[s].iterations, expected.starts[s].iterations);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// Parallel perturbed runs give the same Jacobian as serial ones.
+TEST(VoceFit, ParallelJacobianEqualsSerial) {
+  auto parallel_options = serial_evaluation();
+  parallel_options.threads = 4;
+  ProblemEvaluator serial(voce_experiments(), voce_parameters(), serial_evaluation());
+  ProblemEvaluator parallel(voce_experiments(), voce_parameters(), parallel_options);
+  const auto z = serial.to_scaled({170e9, 280e6, 120e6, 15.0});
+  std::vector<double> r1, j1, r2, j2;
+  serial.residuals_and_jacobian(z, r1, j1);
+  parallel.residuals_and_jacobian(z, r2, j2);
+  EXPECT_EQ(r1, r2);
+  EXPECT_EQ(j1, j2);
+}
+
+}  // namespace
+}  // namespace dtwire::calibrate
