@@ -1,0 +1,67 @@
+#pragma once
+// Multiplicative J2 plasticity with logarithmic (Hencky) elastic strains and the exponential-map
+// return mapping: Simo (1992) CMAME 99; Eterovic & Bathe (1990) IJNME 30; de Souza Neto, Peric &
+// Owen (2008) "Computational Methods for Plasticity", ch. 14 (Box 14.3).
+// Only deal.II's tensor classes are used here, so this compiles fast and is testable alone.
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include "hardening.hpp"
+
+namespace dtwire::fem {
+
+using Tensor2 = dealii::Tensor<2, 3>;
+using Tensor4 = dealii::Tensor<4, 3>;
+using SymTensor2 = dealii::SymmetricTensor<2, 3>;
+
+struct ElasticParameters {
+  double young = 0.0;    // Pa
+  double poisson = 0.0;
+  double bulk() const { return young / (3.0 * (1.0 - 2.0 * poisson)); }
+  double shear() const { return young / (2.0 * (1.0 + poisson)); }
+};
+
+// History at a quadrature point. Cp^-1 = Fp^-1 Fp^-T (Simo's plastic metric); det = 1 / Jp^2.
+struct PlasticState {
+  SymTensor2 plastic_metric_inverse = dealii::unit_symmetric_tensor<3>();
+  double equivalent_plastic_strain = 0.0;
+  double plastic_dissipation = 0.0;  // J per reference volume, accumulated
+};
+
+struct StressUpdate {
+  Tensor2 first_piola;      // P = tau F^-T
+  Tensor4 tangent;          // dP/dF: tangent[i][j][k][l] = dP_ij / dF_kl (algorithmic)
+  SymTensor2 kirchhoff;     // tau
+  double plastic_increment = 0.0;  // Delta alpha of this step
+  double elastic_energy = 0.0;     // Hencky energy per reference volume
+  PlasticState state;              // updated history (commit only on convergence)
+};
+
+class J2LogPlasticity {
+ public:
+  J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening);
+
+  // Stress at deformation gradient F from the committed history. Throws std::domain_error if
+  // det F <= 0 (the caller cuts the load step back).
+  StressUpdate update(const Tensor2& F, const PlasticState& committed, bool with_tangent) const;
+
+  const ElasticParameters& elastic() const { return elastic_; }
+  const IsotropicHardening& hardening() const { return hardening_; }
+
+ private:
+  double solve_plastic_increment(double trial_equivalent_stress, double alpha_n) const;
+
+  ElasticParameters elastic_;
+  IsotropicHardening hardening_;
+};
+
+// Stress invariants for output: von Mises, triaxiality (mean / von Mises), Lode parameter
+// (normalised third invariant, xi = 27/2 J3 / q^3 in [-1, 1]).
+struct StressInvariants {
+  double von_mises = 0.0;
+  double triaxiality = 0.0;
+  double lode_parameter = 0.0;
+};
+StressInvariants stress_invariants(const SymTensor2& cauchy);
+
+}  // namespace dtwire::fem

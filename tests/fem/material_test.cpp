@@ -1,0 +1,176 @@
+// Material-point verification of the J2 log-strain plasticity (label verification):
+// homogeneous uniaxial bar past yield vs the closed form for every hardening law, plastic
+// incompressibility (J_p = 1), unloading, and the algorithmic tangent vs finite differences.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "j2_log_plasticity.hpp"
+
+namespace dtwire::fem {
+namespace {
+
+constexpr double kE = 206.9e9, kNu = 0.29;
+
+HardeningParameters law(HardeningLaw which) {
+  HardeningParameters p;
+  p.law = which;
+  switch (which) {
+    case HardeningLaw::linear:
+      p.yield_stress = 450e6;
+      p.linear_modulus = 1.2e9;
+      break;
+    case HardeningLaw::voce:  // Simo (1992) necking benchmark
+      p.yield_stress = 450e6;
+      p.saturation_stress = 715e6;
+      p.saturation_rate = 16.93;
+      p.linear_modulus = 129.24e6;
+      break;
+    case HardeningLaw::swift:
+      p.swift_coefficient = 900e6;
+      p.swift_offset = 0.01;
+      p.swift_exponent = 0.2;
+      break;
+    case HardeningLaw::table:
+      p.table_plastic_strain = {0.0, 0.02, 0.05, 0.2};
+      p.table_stress = {400e6, 480e6, 530e6, 600e6};
+      break;
+  }
+  return p;
+}
+
+J2LogPlasticity model(HardeningLaw which) {
+  return J2LogPlasticity(ElasticParameters{kE, kNu}, IsotropicHardening(law(which)));
+}
+
+// Uniaxial stress: F = diag(lambda, mu, mu), mu from tau_22 = 0 by Newton with the tangent.
+StressUpdate uniaxial(const J2LogPlasticity& m, double lambda, const PlasticState& state, double& mu) {
+  for (int it = 0; it < 50; ++it) {
+    Tensor2 F;
+    F[0][0] = lambda;
+    F[1][1] = F[2][2] = mu;
+    const StressUpdate r = m.update(F, state, true);
+    const double residual = r.first_piola[1][1];
+    if (std::abs(residual) < 1e-2) return r;  // Pa: round-off of K * eps (1.6e11 * 1e-16) ~ 1e-5
+    mu -= residual / (r.tangent[1][1][1][1] + r.tangent[1][1][2][2]);
+  }
+  ADD_FAILURE() << "lateral stress iteration did not converge";
+  return {};
+}
+
+// Closed form of the homogeneous bar in Hencky plasticity: the axial log strain is
+// ln(lambda) = alpha + sigma_y(alpha)/E and the axial Kirchhoff stress tau = sigma_y(alpha).
+double closed_form_alpha(const IsotropicHardening& h, double log_stretch) {
+  double lo = 0.0, hi = log_stretch;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (mid + h.flow_stress(mid) / kE > log_stretch ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+class HomogeneousBar : public ::testing::TestWithParam<HardeningLaw> {};
+
+TEST_P(HomogeneousBar, TensionPastYieldMatchesClosedFormThenUnloadsElastically) {
+  const J2LogPlasticity m = model(GetParam());
+  PlasticState state;
+  double mu = 1.0;
+  const int steps = 40;
+  const double max_log_strain = 0.25;
+  for (int n = 1; n <= steps; ++n) {
+    const double log_stretch = max_log_strain * n / steps;
+    const StressUpdate r = uniaxial(m, std::exp(log_stretch), state, mu);
+    state = r.state;
+    if (log_stretch < m.hardening().flow_stress(0.0) / kE) continue;  // still elastic
+    const double alpha = closed_form_alpha(m.hardening(), log_stretch);
+    // Tolerances: the closed form is exact, so only round-off and the 1e-6 Pa lateral
+    // equilibrium tolerance remain.
+    EXPECT_NEAR(state.equivalent_plastic_strain, alpha, 1e-10) << "step " << n;
+    EXPECT_NEAR(r.kirchhoff[0][0], m.hardening().flow_stress(alpha), 1e-8 * r.kirchhoff[0][0]) << "step " << n;
+    // Plastic volume preservation: J_p = det(Cp^-1)^(-1/2) = 1.
+    const double Jp = 1.0 / std::sqrt(dealii::determinant(state.plastic_metric_inverse));
+    EXPECT_NEAR(Jp, 1.0, 1e-12) << "step " << n;
+  }
+  // Unloading by 0.1 % axial log strain: elastic, tau drops by E * 0.001, alpha frozen.
+  const double alpha_max = state.equivalent_plastic_strain;
+  const StressUpdate r = uniaxial(m, std::exp(max_log_strain - 1e-3), state, mu);
+  EXPECT_EQ(r.plastic_increment, 0.0);
+  EXPECT_NEAR(r.kirchhoff[0][0], m.hardening().flow_stress(alpha_max) - kE * 1e-3, 1e-6 * kE * 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryHardeningLaw, HomogeneousBar,
+                         ::testing::Values(HardeningLaw::linear, HardeningLaw::voce, HardeningLaw::swift,
+                                           HardeningLaw::table));
+
+double relative_tangent_error(const J2LogPlasticity& m, const Tensor2& F, const PlasticState& state) {
+  const StressUpdate r = m.update(F, state, true);
+  const double h = 1e-6;
+  double err2 = 0.0, ref2 = 0.0;
+  for (unsigned k = 0; k < 3; ++k)
+    for (unsigned l = 0; l < 3; ++l) {
+      Tensor2 Fp = F, Fm = F;
+      Fp[k][l] += h;
+      Fm[k][l] -= h;
+      const Tensor2 dP = (m.update(Fp, state, false).first_piola - m.update(Fm, state, false).first_piola) / (2 * h);
+      for (unsigned i = 0; i < 3; ++i)
+        for (unsigned j = 0; j < 3; ++j) {
+          err2 += std::pow(dP[i][j] - r.tangent[i][j][k][l], 2);
+          ref2 += std::pow(r.tangent[i][j][k][l], 2);
+        }
+    }
+  return std::sqrt(err2 / ref2);
+}
+
+class ConsistentTangent : public ::testing::TestWithParam<HardeningLaw> {};
+
+TEST_P(ConsistentTangent, MatchesCentralFiniteDifferences) {
+  const J2LogPlasticity m = model(GetParam());
+  // A non-proportional history: stretch and shear, then a general F in a plastic step.
+  PlasticState state;
+  Tensor2 F1 = dealii::unit_symmetric_tensor<3>();
+  F1[0][0] = 1.03;
+  F1[1][1] = F1[2][2] = 0.985;
+  F1[0][1] = 0.02;
+  state = m.update(F1, state, false).state;
+  ASSERT_GT(state.equivalent_plastic_strain, 0.0);
+  Tensor2 F2 = F1;
+  F2[1][2] = 0.03;
+  F2[2][0] = -0.015;
+  F2[0][0] = 1.05;
+  const StressUpdate plastic = m.update(F2, state, false);
+  ASSERT_GT(plastic.plastic_increment, 0.0);
+  // Relative error of the algorithmic tangent; tolerance 1e-6 (central differences, h = 1e-6).
+  EXPECT_LT(relative_tangent_error(m, F2, state), 1e-6);
+  // Elastic step (unloading toward F1 from the plastic state) and the undeformed state.
+  Tensor2 F3 = F1;
+  F3[0][0] = 1.045;
+  const PlasticState after = plastic.state;
+  Tensor2 F_unload = F2;
+  F_unload[0][0] -= 0.002;
+  ASSERT_EQ(m.update(F_unload, after, false).plastic_increment, 0.0);
+  EXPECT_LT(relative_tangent_error(m, F_unload, after), 1e-6);
+  EXPECT_LT(relative_tangent_error(m, dealii::unit_symmetric_tensor<3>(), PlasticState{}), 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryHardeningLaw, ConsistentTangent,
+                         ::testing::Values(HardeningLaw::linear, HardeningLaw::voce, HardeningLaw::swift,
+                                           HardeningLaw::table));
+
+TEST(StressInvariants, UniaxialTensionHasTriaxialityOneThirdAndLodeOne) {
+  SymTensor2 sigma;
+  sigma[0][0] = 100.0;
+  const StressInvariants inv = stress_invariants(sigma);
+  EXPECT_NEAR(inv.von_mises, 100.0, 1e-12);
+  EXPECT_NEAR(inv.triaxiality, 1.0 / 3.0, 1e-14);
+  EXPECT_NEAR(inv.lode_parameter, 1.0, 1e-12);
+}
+
+TEST(Hardening, RejectsNonIncreasingTable) {
+  HardeningParameters p = law(HardeningLaw::table);
+  p.table_plastic_strain[2] = p.table_plastic_strain[1];
+  EXPECT_THROW(IsotropicHardening{p}, std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace dtwire::fem
