@@ -1,12 +1,102 @@
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+#include <stdexcept>
+
 #include "../cli.hpp"
 #include "../commands.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/provenance.hpp"
+#include "dtwire/dem/driver.hpp"
+#include "dtwire/dem/export_params.hpp"
 
 namespace dtwire::app {
+namespace {
+
+struct DriverOptions {
+  std::string law;
+  std::string params;
+  std::string wire_type;
+  std::string backbone;
+  std::string path = "all";
+  std::size_t steps = 2000;
+  double max_strain = 0.4;
+  double max_rotation = 0.5;
+  std::string out;
+};
+
+int run_driver_command(const DriverOptions& o, const std::string& command_line) {
+  dem::ParameterSet set = dem::select_wire_type(dem::read_parameter_file(o.params), o.wire_type, o.params);
+  if (!o.backbone.empty()) dem::add_backbone(set, dem::read_backbone_csv(o.backbone));
+  if (!o.law.empty() && !set.law.empty() && o.law != set.law)
+    throw InputError(o.params, "field 'law': the file says '" + set.law + "' but --law is '" + o.law + "'");
+  const std::string law = o.law.empty() ? set.law : o.law;
+  if (law.empty()) throw InputError("--law", "no law given and the parameter file has no 'law' field");
+  const dem::ParameterMap parameters = set.map();
+
+  dem::PathOptions path_options;
+  if (const auto found = parameters.find("reference_length_m"); found != parameters.end())
+    path_options.reference_length = found->second;
+  path_options.steps = o.steps;
+  path_options.max_axial_strain = o.max_strain;
+  path_options.max_rotation = o.max_rotation;
+  dem::FreeOscillationOptions oscillation;
+  oscillation.steps = o.steps;
+
+  std::vector<dem::DriverRun> runs;
+  try {
+    runs = dem::run_driver(law, parameters, o.path, path_options, oscillation);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::invalid_argument& e) {
+    // Unknown law, bad law parameters or an unknown path name.
+    const std::string message = e.what();
+    throw InputError(message.rfind("unknown path", 0) == 0 ? "--path" : o.params, message);
+  }
+  std::vector<std::filesystem::path> inputs{o.params};
+  if (!o.backbone.empty()) inputs.emplace_back(o.backbone);
+  if (std::filesystem::path(o.path).extension() == ".csv") inputs.emplace_back(o.path);
+  dem::write_driver_results(runs, law, parameters, o.out, make_provenance(command_line, inputs));
+  for (const dem::DriverRun& run : runs) {
+    const auto& broken = run.history.channel("broken").values;
+    std::cout << run.path_name << ": " << run.history.size() << " samples"
+              << (broken.back() > 0.5 ? ", bond broken" : "") << " -> "
+              << (std::filesystem::path(o.out) / (run.path_name + ".csv")).string() << "\n";
+  }
+  std::cout << "all histories: " << (std::filesystem::path(o.out) / "driver.h5").string() << "\n";
+  return 0;
+}
+
+}  // namespace
 
 void add_dem_command(CLI::App& root, CommandSet& commands) {
-  commands.add_unavailable(root, "dem", "DEM contact laws", " two-node driver:the dem_export module (issue #6)");
+  CLI::App* dem = root.add_subcommand("dem", "DEM contact laws: the two-node driver");
+  dem->require_subcommand(1);
+  commands.add(dem, [] { return kExitBadInput; });  // never runs: a subcommand is required
+
+  auto options = std::make_shared<DriverOptions>();
+  CLI::App* driver = dem->add_subcommand(
+      "driver", "Replay load paths on a contact law between two nodes; write force, moment and energy histories");
+  driver->add_option("--law", options->law, "Contact law: thesis, macro3d, wirepm, parallel_bond (default: the file's 'law')");
+  driver->add_option("--params", options->params, "Parameter file (.json; thesis, flat or calibrate format)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  driver->add_option("--wire-type", options->wire_type, "Which set of a multi-set file (e.g. single_wire, double_twist)");
+  driver->add_option("--backbone", options->backbone, "WirePM backbone CSV (strain_1,stress_Pa)")->check(CLI::ExistingFile);
+  driver->add_option("--path", options->path,
+                     "axial_pull, compression, bending_spin, pull_spin, cycles, free_oscillation, all, or FILE.csv")
+      ->capture_default_str();
+  driver->add_option("--steps", options->steps, "Increments per path")->capture_default_str()->check(CLI::Range(1, 100000000));
+  driver->add_option("--max-strain", options->max_strain, "Peak elongation / reference length of the pulls")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  driver->add_option("--max-rotation", options->max_rotation, "Peak bending rotation theta_y [rad]")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+  driver->add_option("--out", options->out, "Output directory")->required();
+  commands.add(driver, [options] {
+    return run_driver_command(*options, "dtwire dem driver --path " + options->path + " --params " + options->params);
+  });
 }
 
 }  // namespace dtwire::app

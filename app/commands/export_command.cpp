@@ -1,12 +1,82 @@
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+#include <stdexcept>
+
 #include "../cli.hpp"
 #include "../commands.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/provenance.hpp"
+#include "dtwire/dem/export.hpp"
 
 namespace dtwire::app {
+namespace {
+
+struct ExportOptions {
+  std::string params;
+  std::string backbone;
+  std::string wire_type;
+  std::size_t steps = 2000;
+  std::string out;
+};
+
+bool is_wirepm_set(const dem::ParameterSet& set) {
+  return set.law == "wirepm" ||
+         (set.has("diameter_m") && set.has("reference_length_m") && set.has("backbone_0_strain_1"));
+}
+
+int run_export_command(const ExportOptions& o) {
+  std::vector<dem::ParameterSet> sets = dem::read_parameter_file(o.params);
+  if (!o.wire_type.empty()) sets = {dem::select_wire_type(sets, o.wire_type, o.params)};
+  if (!o.backbone.empty()) {
+    const Curve backbone = dem::read_backbone_csv(o.backbone);
+    for (dem::ParameterSet& set : sets) dem::add_backbone(set, backbone);
+  }
+  std::vector<std::filesystem::path> inputs{o.params};
+  if (!o.backbone.empty()) inputs.emplace_back(o.backbone);
+  const Provenance provenance = make_provenance("dtwire export --params " + o.params, inputs);
+  const std::filesystem::path out(o.out);
+
+  std::vector<std::filesystem::path> written = dem::export_parameter_tables(sets, out, provenance);
+  for (const dem::ParameterSet& set : sets) {
+    if (!is_wirepm_set(set)) {
+      std::cout << set.wire_type << ": no YADE script (needs diameter_m, reference_length_m and a backbone)\n";
+      continue;
+    }
+    const dem::ParameterMap parameters = set.map();
+    dem::PathOptions path;
+    path.reference_length = parameters.count("reference_length_m") ? parameters.at("reference_length_m") : 0.06;
+    path.steps = o.steps;
+    const std::filesystem::path script = out / (set.wire_type + "_wirepm_yade.py");
+    try {
+      dem::write_yade_script(parameters, path, script);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(o.params, std::string("wire type '") + set.wire_type + "': " + e.what());
+    }
+    written.push_back(script);
+  }
+  for (const auto& file : dem::export_c_abi(out / "c_abi")) written.push_back(file);
+  for (const auto& file : written) std::cout << "wrote " << file.string() << "\n";
+  return 0;
+}
+
+}  // namespace
 
 void add_export_command(CLI::App& root, CommandSet& commands) {
-  commands.add_unavailable(root, "export", "Export calibrated parameter sets for DEM codes", "the dem_export module (issue #6)");
+  auto options = std::make_shared<ExportOptions>();
+  CLI::App* command = root.add_subcommand(
+      "export", "Export calibrated parameter sets for DEM codes (tables, YADE WirePM script, C ABI)");
+  command->add_option("--params", options->params, "Parameter file (.json; thesis, flat or calibrate format)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--backbone", options->backbone, "WirePM backbone CSV (strain_1,stress_Pa) added to every set")
+      ->check(CLI::ExistingFile);
+  command->add_option("--wire-type", options->wire_type, "Export only this set (e.g. single_wire)");
+  command->add_option("--steps", options->steps, "Increments of the YADE script's path")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000000));
+  command->add_option("--out", options->out, "Output directory")->required();
+  commands.add(command, [options] { return run_export_command(*options); });
 }
 
 }  // namespace dtwire::app

@@ -1,6 +1,7 @@
 #include <stdexcept>
 
 #include "dtwire/dem/contact_law.hpp"
+#include "dtwire/dem/wirepm.hpp"
 
 namespace dtwire::dem {
 
@@ -14,6 +15,7 @@ double require_parameter(const ParameterMap& parameters, const std::string& law,
 
 std::unique_ptr<ContactLaw> make_contact_law(const std::string& name, const ParameterMap& parameters) {
   // Each law adds one line here when it lands.
+  if (name == "wirepm") return std::make_unique<WirePmLaw>(make_wirepm_backbone(parameters));
   throw std::invalid_argument("unknown contact law '" + name +
                               "', expected one of: thesis, macro3d, wirepm, parallel_bond");
 }

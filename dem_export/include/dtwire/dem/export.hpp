@@ -1,0 +1,36 @@
+#pragma once
+// `dtwire export`: what a DEM user takes home (formats in docs/dem_driver_export.md).
+//   <wire_type>_parameters.{h5,json,csv}  parameter tables, SI, names carry their unit
+//   <wire_type>_wirepm_yade.py           a YADE script (yade -n -x) building the WirePM material
+//                                        and running the two-node pull-unload-reload-break path
+//   c_abi/                               the contact-law shared library, its C header, README
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dtwire/core/provenance.hpp"
+#include "dtwire/dem/export_params.hpp"
+#include "dtwire/dem/paths.hpp"
+
+namespace dtwire::dem {
+
+// Writes the three tables of every set; returns the files written.
+std::vector<std::filesystem::path> export_parameter_tables(const std::vector<ParameterSet>& sets,
+                                                           const std::filesystem::path& out,
+                                                           const Provenance& provenance);
+
+// The path the YADE script runs: the "cycles" path (pull-unload-reload, then pull to break).
+LoadPath yade_script_path(const PathOptions& options);
+// Python source for `yade -n -x SCRIPT [OUT.csv]`; writes time_s, axial_displacement_mm,
+// axial_force_N (default output: `default_csv` beside the working directory). Throws
+// std::invalid_argument if the WirePM parameters are bad or have no YADE equivalent.
+std::string yade_wirepm_script(const ParameterMap& wirepm_parameters, const PathOptions& options,
+                               const std::string& default_csv);
+void write_yade_script(const ParameterMap& wirepm_parameters, const PathOptions& options,
+                       const std::filesystem::path& script);
+
+// Copies the contact-law library and header (if built) to `out` and writes README.md with
+// compile and link instructions. Returns the files written.
+std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out);
+
+}  // namespace dtwire::dem

@@ -1,0 +1,56 @@
+// The C ABI bundle: the contact-law shared library and its header (built by dtwire_contact),
+// copied next to a README with compile and link instructions.
+#include <ostream>
+#include <system_error>
+
+#include "dtwire/core/atomic_file.hpp"
+#include "dtwire/dem/export.hpp"
+
+namespace dtwire::dem {
+namespace {
+
+std::filesystem::path find_header(const std::filesystem::path& include_dir) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(include_dir, error)) return {};
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(include_dir, error))
+    if (entry.path().filename() == "dtwire_contact.h") return entry.path();
+  return {};
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out) {
+  const std::filesystem::path library(DTWIRE_CONTACT_LIBRARY_FILE);
+  const std::filesystem::path header = find_header(DTWIRE_CONTACT_INCLUDE_DIR);
+  std::filesystem::create_directories(out);
+  std::vector<std::filesystem::path> written;
+  const auto copy = [&](const std::filesystem::path& from) {
+    if (from.empty() || !std::filesystem::exists(from)) return false;
+    std::filesystem::copy_file(from, out / from.filename(), std::filesystem::copy_options::overwrite_existing);
+    written.push_back(out / from.filename());
+    return true;
+  };
+  const bool have_library = copy(library);
+  const bool have_header = copy(header);
+  const std::string library_name = library.filename().string();
+  write_file_atomically(out / "README.md", [&](std::ostream& os) {
+    os << "# dtwire contact laws: C ABI\n\n"
+          "The contact laws (thesis macro-element, macro3d, WirePM, parallel bond) as a shared\n"
+          "library with a C header, for any DEM code. Built by the `dtwire_contact` target.\n\n"
+       << "- library: `" << library_name << "` " << (have_library ? "(copied here)" : "(NOT FOUND: build dtwire_contact)")
+       << "\n- header: `dtwire_contact.h` "
+       << (have_header ? "(copied here)" : "(NOT FOUND: this build has no C header yet)") << "\n\n"
+       << "Compile and link a DEM code against it (from this folder):\n\n"
+          "```sh\n"
+          "cc -std=c11 -I. my_dem.c -L. -ldtwire_contact -Wl,-rpath,'$ORIGIN' -o my_dem\n"
+          "```\n\n"
+          "The header documents the functions (create a bond from a law name and named SI\n"
+          "parameters, update it with a generalised displacement increment, read forces, energy\n"
+          "and failure); see docs/dem_driver_export.md and the dem_export documentation of the\n"
+          "dtwire repository for the parameter names of every law.\n";
+  });
+  written.push_back(out / "README.md");
+  return written;
+}
+
+}  // namespace dtwire::dem
