@@ -1,0 +1,78 @@
+#pragma once
+// The gap diagnosis: where the gap between a simulated curve and laboratory curves lies, which
+// catalogue effect explains it, and how far it shrinks once that effect is added.
+#include <string>
+#include <vector>
+
+#include "dtwire/gap/effect_fit.hpp"
+#include "dtwire/gap/effects.hpp"
+#include "dtwire/gap/regions.hpp"
+
+namespace dtwire::gap {
+
+struct DiagnosisOptions {
+  std::vector<std::string> effects;  // empty: every effect of the catalogue
+  bool try_pairs = true;
+  unsigned seed = 1;
+  std::size_t random_starts = 3;
+};
+
+struct RankedEffect {
+  std::string effect;  // catalogue name, or "a+b" for a pair
+  std::vector<AppliedEffect> fitted;
+  int parameters = 0;
+  double gap_after = 0.0;
+  double shrink = 0.0;  // 1 - gap_after / gap_before
+  double score = 0.0;   // Akaike weight x plausibility x (1 + region match) / 2
+  double aicc = 0.0, delta_aicc = 0.0, bic = 0.0;  // delta: against the simulation alone
+  double plausibility = 1.0;
+  double region_match = 0.0;  // 1 when the effect changes the curve where the gap is
+  double frechet_after = 0.0;
+  std::vector<double> gap_after_by_segment;  // per entry of Diagnosis::where
+  bool qualifies = false;  // beats the noise floor and the information criterion
+};
+
+struct PredictiveCheck {
+  bool done = false;
+  std::string note;  // why not done
+  std::string effect, fitted_on, predicted;
+  double gap_before = 0.0, gap_after = 0.0, shrink = 0.0;
+};
+
+struct Diagnosis {
+  std::string metric = "normalised_area";
+  double noise_sigma_N = 0.0;
+  double scatter_gap = -1.0;  // mean gap between the laboratory curves (< 0: one curve)
+  double noise_floor = 0.0;
+  double gap_before = 0.0;
+  double frechet_before = 0.0;
+  double effective_sample_size = 0.0;
+  double lag1_autocorrelation = 0.0;
+  bool compression = false;  // curves were given in compression; reported as magnitudes
+  std::vector<GapSegment> where;
+  std::vector<RankedEffect> ranking;
+  std::string cause = "none";
+  std::string reason;
+  std::vector<std::string> not_tested;
+  PredictiveCheck predictive;
+  ForceCurve sim;                // oriented
+  std::vector<ForceCurve> labs;  // oriented
+  ForceCurve best_model;         // the simulation with the cause (or the top effect) added
+};
+
+// Orients a curve so that its dominant force is positive (compression -> tension signs).
+ForceCurve oriented(const ForceCurve& curve, bool* flipped = nullptr);
+
+// Throws InputError (naming the files) for curves that cannot be compared: too few points,
+// no force, or displacement ranges that do not overlap.
+Diagnosis diagnose(const std::vector<ForceCurve>& labs, const ForceCurve& sim,
+                   const DiagnosisOptions& options);
+
+// Thresholds, documented in docs/gap.md.
+inline constexpr double kNoiseFloorFactor = 1.2;    // floor = 1.2 x expected noise-only area
+inline constexpr double kMinimumReduction = 0.3;    // x expected noise-only area
+inline constexpr double kMinimumOverlap = 0.2;      // of the laboratory displacement range
+inline constexpr double kInformationMargin = 10.0;  // AICc units an accepted effect must gain
+inline constexpr double kPairGapRatio = 0.8;        // a pair must cut the single's gap by 20 %
+
+}  // namespace dtwire::gap

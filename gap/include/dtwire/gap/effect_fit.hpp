@@ -1,0 +1,35 @@
+#pragma once
+// Least-squares fit of one or more catalogue effects to laboratory curves (Ceres, bounded,
+// multi-start). Kept in this one file so that it can move onto calibrate/'s fitter later.
+#include <random>
+#include <vector>
+
+#include "dtwire/gap/curve_metrics.hpp"
+#include "dtwire/gap/effects.hpp"
+
+namespace dtwire::gap {
+
+struct FitProblem {
+  ForceCurve sim;
+  CurveScale scale;
+  std::vector<Comparison> labs;  // residuals of all curves are stacked
+};
+
+struct EffectFit {
+  std::vector<AppliedEffect> effects;  // fitted parameters, in the order given
+  double weighted_sse = 0.0;           // sum over labs of sum w r^2 (normalised residual)
+  std::vector<double> residual;        // normalised residuals, stacked in lab order
+  int parameter_count = 0;
+};
+
+// Fitted residual vector and weighted SSE for given parameters.
+EffectFit evaluate_fit(const FitProblem& problem, std::vector<AppliedEffect> effects);
+
+// Fits `effects` (starting values: each start is a full parameter vector per effect; the
+// plausible-range centre and random plausible values are added). Grid parameters are searched
+// over their grid around the continuous fit.
+EffectFit fit_effects(const FitProblem& problem, const std::vector<const EffectSpec*>& effects,
+                      std::vector<std::vector<std::vector<double>>> starts, std::size_t random_starts,
+                      std::mt19937& rng);
+
+}  // namespace dtwire::gap

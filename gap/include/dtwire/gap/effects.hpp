@@ -1,0 +1,60 @@
+#pragma once
+// The catalogue of candidate unmodelled effects. Each is a parametrised augmentation of a
+// simulated force-displacement curve with bounds (for the fit) and a plausible range (for the
+// ranking). Effects that need the FE model re-run (`needs_model`) are declared here so that the
+// --model mode can plug them in; in --sim mode they are listed as not tested.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dtwire/gap/force_curve.hpp"
+
+namespace dtwire::gap {
+
+// Scales of the simulated curve that set the bounds of the effect parameters.
+struct CurveScale {
+  double peak_force_N = 1.0;
+  double max_displacement_m = 1.0;
+  double initial_stiffness_N_per_m = 1.0;
+};
+CurveScale curve_scale(const ForceCurve& sim);
+
+struct ParameterSpec {
+  std::string name;  // with its unit, e.g. compliance_mm_per_kN
+  double lower = 0.0, upper = 1.0;                      // fit bounds
+  double plausible_lower = 0.0, plausible_upper = 1.0;  // realistic range
+  // Fitted by a search over `grid` (piecewise-constant effect on the curve, no gradient).
+  std::vector<double> grid;
+};
+
+struct EffectSpec {
+  std::string name;
+  std::string description;
+  bool needs_model = false;  // only in --model mode
+  int order = 0;             // composition order: material first, then the measurement chain
+  std::size_t magnitude = 0; // index of the parameter that measures the effect's size
+  double neutral = 0.0;      // value of that parameter for which the effect vanishes
+  std::function<std::vector<ParameterSpec>(const CurveScale&)> parameters;
+  std::function<ForceCurve(const ForceCurve&, const std::vector<double>&, const CurveScale&)> apply;
+};
+
+const std::vector<EffectSpec>& effect_catalogue();
+// Throws std::invalid_argument listing the known names.
+const EffectSpec& find_effect(const std::string& name);
+std::string effect_names();
+
+struct AppliedEffect {
+  const EffectSpec* effect;
+  std::vector<double> params;
+};
+
+// Applies the effects in catalogue order (strain_rate, ductile_damage, gauge_length,
+// machine_compliance, grip_slip, initial_slack).
+ForceCurve apply_effects(const ForceCurve& sim, std::vector<AppliedEffect> effects,
+                         const CurveScale& scale);
+
+// 1 inside the plausible range, falling linearly to 0.2 at the fit bounds; product over params.
+double plausibility(const EffectSpec& effect, const std::vector<double>& params,
+                    const CurveScale& scale);
+
+}  // namespace dtwire::gap

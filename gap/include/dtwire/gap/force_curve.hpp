@@ -1,0 +1,32 @@
+#pragma once
+// A force-displacement curve in SI (m, N), the working form of every gap computation, and
+// loading it from a curve CSV (displacement/force, or strain/stress with a gauge length and
+// a cross-section).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace dtwire::gap {
+
+struct ForceCurve {
+  std::vector<double> u;  // displacement [m]
+  std::vector<double> f;  // force [N]
+  std::string source;     // file name or a description, for messages
+  std::size_t size() const { return u.size(); }
+};
+
+struct CurveConversion {
+  std::optional<double> gauge_length_m;  // turns strain_1 into displacement
+  std::optional<double> area_m2;         // turns stress into force
+};
+
+// Reads a curve CSV: a length channel named displacement (or elongation/extension) and a
+// force channel named force; or strain and stress channels when `conversion` gives the gauge
+// length and the area. Throws InputError naming the file and what was expected.
+ForceCurve load_force_curve(const std::filesystem::path& path, const CurveConversion& conversion);
+
+// Checks size (>= 3 points) and finiteness; throws InputError naming `curve.source`.
+void validate_force_curve(const ForceCurve& curve);
+
+}  // namespace dtwire::gap

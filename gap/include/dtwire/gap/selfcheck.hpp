@@ -1,0 +1,54 @@
+#pragma once
+// `dtwire gap selfcheck`: laboratory-like curves made from a base model with one effect (then
+// pairs) injected at random realistic magnitudes, with noise, sampling and test end drawn at
+// random; the effect is withheld from the simulation and the diagnosis has to find it.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace dtwire::gap {
+
+struct SelfcheckOptions {
+  std::size_t trials = 8;        // per single curve-mode effect
+  std::size_t pair_trials = 8;   // random pairs
+  std::size_t none_trials = 10;  // effect-free curves
+  unsigned seed = 1;
+  std::filesystem::path backbone_csv;  // DEM backbone; empty or missing: Voce model only
+};
+
+struct SelfcheckTrial {
+  std::string base;       // base model
+  std::string truth;      // injected effect(s), "none" or "a+b"
+  std::string predicted;  // diagnosed cause
+  double gap_before = 0.0;
+  double noise_floor = 0.0;
+  double shrink = 0.0;           // of the diagnosed cause (0 for none)
+  double parameter_error = -1.0; // relative error of the effect's magnitude (< 0: n/a)
+};
+
+struct SelfcheckResult {
+  std::vector<SelfcheckTrial> trials;
+  std::vector<std::string> labels;  // confusion-matrix rows and columns
+  double single_top1 = 0.0;
+  double single_mean_shrink = 0.0;
+  double none_rate = 0.0;
+  double pair_exact = 0.0;
+  double pair_partial = 0.0;  // at least one of the two found
+  double mean_parameter_error = 0.0;
+  double median_parameter_error = 0.0;
+  double seconds = 0.0;
+  bool goals_met = false;
+};
+
+inline constexpr double kGoalTop1 = 0.9;
+inline constexpr double kGoalShrink = 0.7;
+inline constexpr double kGoalNone = 0.9;
+
+SelfcheckResult run_selfcheck(const SelfcheckOptions& options);
+
+nlohmann::json selfcheck_json(const SelfcheckResult& result);
+std::string selfcheck_markdown(const SelfcheckResult& result);
+
+}  // namespace dtwire::gap

@@ -1,0 +1,133 @@
+#include "dtwire/gap/curve_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dtwire::gap {
+namespace {
+
+double travel_tolerance(const std::vector<double>& u) {
+  const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
+  return 1e-3 * (*hi - *lo);
+}
+
+struct MonotoneBranch {
+  std::vector<double> u;  // non-decreasing
+  std::vector<double> f;
+};
+
+std::vector<MonotoneBranch> monotone_branches(const ForceCurve& model) {
+  std::vector<MonotoneBranch> out;
+  for (const Branch& b : split_monotone_branches(model.u, travel_tolerance(model.u))) {
+    MonotoneBranch m;
+    const bool loading = b.direction == BranchDirection::Loading;
+    for (std::size_t i = b.begin; i < b.end; ++i) {
+      const double u = loading ? model.u[i] : -model.u[i];
+      m.u.push_back(m.u.empty() ? u : std::max(u, m.u.back()));
+      m.f.push_back(model.f[i]);
+    }
+    if (!loading)
+      for (double& u : m.u) u = -u;
+    if (!loading) {
+      std::reverse(m.u.begin(), m.u.end());
+      std::reverse(m.f.begin(), m.f.end());
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+}  // namespace
+
+double interpolate_clamped(const std::vector<double>& x, const std::vector<double>& y, double xq) {
+  if (xq <= x.front()) return y.front();
+  if (xq >= x.back()) return y.back();
+  const auto upper = std::upper_bound(x.begin(), x.end(), xq);
+  const std::size_t i = static_cast<std::size_t>(upper - x.begin());
+  const double t = (xq - x[i - 1]) / (x[i] - x[i - 1]);
+  return y[i - 1] + t * (y[i] - y[i - 1]);
+}
+
+Comparison make_comparison(const ForceCurve& lab) {
+  Comparison c;
+  c.lab = lab;
+  const std::size_t n = lab.size();
+  double travel = 0.0, peak = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i > 0) travel += std::abs(lab.u[i] - lab.u[i - 1]);
+    peak = std::max(peak, std::abs(lab.f[i]));
+  }
+  c.u_scale = travel > 0 ? travel : 1.0;
+  c.f_scale = peak > 0 ? peak : 1.0;
+  c.weight.assign(n, 0.0);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double half = 0.5 * std::abs(lab.u[i + 1] - lab.u[i]) / c.u_scale;
+    c.weight[i] += half;
+    c.weight[i + 1] += half;
+  }
+  c.branches = split_monotone_branches(lab.u, travel_tolerance(lab.u));
+  c.branch_of.assign(n, 0);
+  for (std::size_t b = 0; b < c.branches.size(); ++b)
+    for (std::size_t i = c.branches[b].begin; i < c.branches[b].end; ++i) c.branch_of[i] = b;
+  return c;
+}
+
+std::vector<double> model_forces_at_lab(const ForceCurve& model, const Comparison& comparison) {
+  const auto branches = monotone_branches(model);
+  std::vector<double> out(comparison.lab.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const std::size_t b = std::min(comparison.branch_of[i], branches.size() - 1);
+    out[i] = interpolate_clamped(branches[b].u, branches[b].f, comparison.lab.u[i]);
+  }
+  return out;
+}
+
+std::vector<double> normalised_residual(const std::vector<double>& model_forces,
+                                        const Comparison& comparison) {
+  std::vector<double> r(model_forces.size());
+  for (std::size_t i = 0; i < r.size(); ++i)
+    r[i] = (model_forces[i] - comparison.lab.f[i]) / comparison.f_scale;
+  return r;
+}
+
+double normalised_area(const std::vector<double>& model_forces, const Comparison& comparison) {
+  double area = 0.0;
+  for (std::size_t i = 0; i < model_forces.size(); ++i)
+    area += comparison.weight[i] * std::abs(model_forces[i] - comparison.lab.f[i]);
+  return area / comparison.f_scale;
+}
+
+double normalised_area(const ForceCurve& model, const Comparison& comparison) {
+  return normalised_area(model_forces_at_lab(model, comparison), comparison);
+}
+
+double frechet_distance(const ForceCurve& model, const Comparison& comparison,
+                        std::size_t max_points) {
+  auto thin = [&](const ForceCurve& c) {
+    std::vector<std::pair<double, double>> p;
+    const std::size_t stride = std::max<std::size_t>(1, (c.size() + max_points - 1) / max_points);
+    for (std::size_t i = 0; i < c.size(); i += stride)
+      p.emplace_back(c.u[i] / comparison.u_scale, c.f[i] / comparison.f_scale);
+    if ((c.size() - 1) % stride != 0)
+      p.emplace_back(c.u.back() / comparison.u_scale, c.f.back() / comparison.f_scale);
+    return p;
+  };
+  const auto a = thin(model), b = thin(comparison.lab);
+  auto dist = [&](std::size_t i, std::size_t j) {
+    return std::hypot(a[i].first - b[j].first, a[i].second - b[j].second);
+  };
+  std::vector<double> previous(b.size()), current(b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (std::size_t j = 0; j < b.size(); ++j) {
+      const double d = dist(i, j);
+      if (i == 0 && j == 0) current[j] = d;
+      else if (i == 0) current[j] = std::max(current[j - 1], d);
+      else if (j == 0) current[j] = std::max(previous[j], d);
+      else current[j] = std::max(std::min({previous[j], previous[j - 1], current[j - 1]}), d);
+    }
+    std::swap(previous, current);
+  }
+  return previous.back();
+}
+
+}  // namespace dtwire::gap

@@ -1,0 +1,239 @@
+#include "dtwire/gap/effects.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace dtwire::gap {
+namespace {
+
+constexpr double kMm = 1e-3;
+constexpr double kMmPerKn = 1e-6;  // m per N
+
+// Displacement added by a force-driven series element: u' = u + g(f).
+ForceCurve add_displacement(const ForceCurve& sim, const std::function<double(double, double)>& g) {
+  ForceCurve out = sim;
+  double running_max = 0.0;
+  for (std::size_t i = 0; i < sim.size(); ++i) {
+    running_max = std::max(running_max, sim.f[i]);
+    out.u[i] = sim.u[i] + g(sim.f[i], running_max);
+  }
+  return out;
+}
+
+std::vector<EffectSpec> make_catalogue() {
+  std::vector<EffectSpec> c;
+  {
+    EffectSpec e;
+    e.name = "strain_rate";
+    e.description = "rate scaling of the flow stress, sigma' = s sigma (Johnson-Cook: "
+                    "s = 1 + C ln(rate ratio)); elastic slope unchanged";
+    e.order = 0;
+    e.magnitude = 0;
+    e.neutral = 1.0;
+    e.parameters = [](const CurveScale&) {
+      return std::vector<ParameterSpec>{{"stress_factor_1", 0.6, 1.6, 0.9, 1.15, {}}};
+    };
+    e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale& s) {
+      ForceCurve out = sim;
+      const double compliance = 1.0 / s.initial_stiffness_N_per_m;
+      for (std::size_t i = 0; i < sim.size(); ++i) {
+        out.f[i] = p[0] * sim.f[i];
+        out.u[i] = sim.u[i] + (p[0] - 1.0) * sim.f[i] * compliance;
+      }
+      return out;
+    };
+    c.push_back(e);
+  }
+  {
+    EffectSpec e;
+    e.name = "ductile_damage";
+    e.description = "early softening, f' = f (1 - D), D = D_end ((u - u_d)/(u_end - u_d))^2 "
+                    "after the onset displacement u_d";
+    e.order = 1;
+    e.magnitude = 1;
+    e.parameters = [](const CurveScale& s) {
+      const double end = s.max_displacement_m / kMm;
+      return std::vector<ParameterSpec>{{"onset_mm", 0.0, end, 0.0, end, {}},
+                                        {"damage_at_end_1", 0.0, 0.95, 0.02, 0.5, {}}};
+    };
+    e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale& s) {
+      ForceCurve out = sim;
+      const double onset = p[0] * kMm;
+      const double span = std::max(s.max_displacement_m - onset, 1e-12);
+      double reached = 0.0;
+      for (std::size_t i = 0; i < sim.size(); ++i) {
+        reached = std::max(reached, sim.u[i]);
+        const double x = std::clamp((reached - onset) / span, 0.0, 1.0);
+        out.f[i] = sim.f[i] * (1.0 - p[1] * x * x);
+      }
+      return out;
+    };
+    c.push_back(e);
+  }
+  {
+    EffectSpec e;
+    e.name = "gauge_length";
+    e.description = "crosshead vs extensometer gauge mismatch: displacement scaled, u' = lambda u";
+    e.order = 2;
+    e.magnitude = 0;
+    e.neutral = 1.0;
+    e.parameters = [](const CurveScale&) {
+      return std::vector<ParameterSpec>{{"scale_1", 0.5, 2.0, 0.85, 1.3, {}}};
+    };
+    e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale&) {
+      ForceCurve out = sim;
+      for (double& u : out.u) u *= p[0];
+      return out;
+    };
+    c.push_back(e);
+  }
+  {
+    EffectSpec e;
+    e.name = "machine_compliance";
+    e.description = "series spring of frame, load cell and grips, u' = u + C f";
+    e.order = 3;
+    e.magnitude = 0;
+    e.parameters = [](const CurveScale&) {
+      return std::vector<ParameterSpec>{{"compliance_mm_per_kN", 0.0, 5.0, 0.01, 1.0, {}}};
+    };
+    e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale&) {
+      return add_displacement(sim, [c = p[0] * kMmPerKn](double f, double) { return c * f; });
+    };
+    c.push_back(e);
+  }
+  {
+    EffectSpec e;
+    e.name = "grip_slip";
+    e.description = "irreversible slip in the grips once the force passes the onset F_s: "
+                    "s = c (F_max - F_s), taken in steps of `step_mm` (stick-slip) when > 0";
+    e.order = 4;
+    e.magnitude = 1;
+    e.parameters = [](const CurveScale& s) {
+      const double fp = s.peak_force_N;
+      return std::vector<ParameterSpec>{
+          {"onset_force_N", 0.05 * fp, fp, 0.05 * fp, fp, {}},
+          {"slip_mm_per_kN", 0.0, 50.0, 0.1, 10.0, {}},
+          {"step_mm", 0.0, 2.0, 0.0, 1.0, {0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8}}};
+    };
+    e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale&) {
+      const double onset = p[0], rate = p[1] * kMmPerKn, step = p[2] * kMm;
+      return add_displacement(sim, [=](double, double fmax) {
+        const double slip = rate * std::max(0.0, fmax - onset);
+        return step > 0 ? step * std::floor(slip / step) : slip;
+      });
+    };
+    c.push_back(e);
+  }
+  {
+    EffectSpec e;
+    e.name = "initial_slack";
+    e.description = "seating of the specimen in the grips (toe): u' = u + u0 (1 - exp(-F_max/F_t))";
+    e.order = 5;
+    e.magnitude = 0;
+    e.parameters = [](const CurveScale& s) {
+      const double fp = s.peak_force_N;
+      const double most = std::max(2.0, 0.2 * s.max_displacement_m / kMm);
+      return std::vector<ParameterSpec>{{"slack_mm", 0.0, most, 0.02, 1.5, {}},
+                                        {"toe_force_N", 0.002 * fp, 0.3 * fp, 0.005 * fp, 0.15 * fp, {}}};
+    };
+    e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale&) {
+      const double slack = p[0] * kMm, toe = p[1];
+      return add_displacement(sim, [=](double, double fmax) {
+        return slack * (1.0 - std::exp(-std::max(0.0, fmax) / toe));
+      });
+    };
+    c.push_back(e);
+  }
+  const std::vector<std::pair<const char*, const char*>> model_only = {
+      {"wire_friction", "friction between the wires of the double twist"},
+      {"twist_tightening", "initial gap/slack of the interweavement closing under load"},
+      {"residual_stress", "plasticity left by twisting the wires"},
+      {"shear_failure", "failure by combined tension and shear at the SW/DT junction"},
+      {"coating_slip", "sliding between steel and PVC sheath"},
+      {"geometry_imperfection", "diameter, lay and initial kink (decisive in compression)"}};
+  int order = 10;
+  for (const auto& [name, description] : model_only) {
+    EffectSpec e;
+    e.name = name;
+    e.description = description;
+    e.needs_model = true;
+    e.order = order++;
+    e.parameters = [](const CurveScale&) { return std::vector<ParameterSpec>{}; };
+    e.apply = [n = std::string(name)](const ForceCurve&, const std::vector<double>&,
+                                      const CurveScale&) -> ForceCurve {
+      throw std::logic_error("effect " + n + " needs the FE model (--model)");
+    };
+    c.push_back(e);
+  }
+  return c;
+}
+
+}  // namespace
+
+CurveScale curve_scale(const ForceCurve& sim) {
+  CurveScale s;
+  s.peak_force_N = 0.0;
+  s.max_displacement_m = 0.0;
+  for (std::size_t i = 0; i < sim.size(); ++i) {
+    s.peak_force_N = std::max(s.peak_force_N, sim.f[i]);
+    s.max_displacement_m = std::max(s.max_displacement_m, sim.u[i]);
+  }
+  // Initial stiffness: the steepest secant from the first point up to half the peak force.
+  double k = 0.0;
+  for (std::size_t i = 1; i < sim.size() && sim.f[i] <= 0.5 * s.peak_force_N; ++i)
+    if (sim.u[i] > sim.u[0]) k = std::max(k, (sim.f[i] - sim.f[0]) / (sim.u[i] - sim.u[0]));
+  if (!(k > 0) && sim.size() > 1 && sim.u[1] > sim.u[0])
+    k = (sim.f[1] - sim.f[0]) / (sim.u[1] - sim.u[0]);
+  s.initial_stiffness_N_per_m = k > 0 ? k : s.peak_force_N / std::max(s.max_displacement_m, 1e-12);
+  if (!(s.peak_force_N > 0)) s.peak_force_N = 1.0;
+  if (!(s.max_displacement_m > 0)) s.max_displacement_m = 1.0;
+  return s;
+}
+
+const std::vector<EffectSpec>& effect_catalogue() {
+  static const std::vector<EffectSpec> catalogue = make_catalogue();
+  return catalogue;
+}
+
+std::string effect_names() {
+  std::string out;
+  for (const EffectSpec& e : effect_catalogue()) out += (out.empty() ? "" : ", ") + e.name;
+  return out;
+}
+
+const EffectSpec& find_effect(const std::string& name) {
+  for (const EffectSpec& e : effect_catalogue())
+    if (e.name == name) return e;
+  throw std::invalid_argument("unknown effect '" + name + "', expected one of: " + effect_names());
+}
+
+ForceCurve apply_effects(const ForceCurve& sim, std::vector<AppliedEffect> effects,
+                         const CurveScale& scale) {
+  std::sort(effects.begin(), effects.end(), [](const AppliedEffect& a, const AppliedEffect& b) {
+    return a.effect->order < b.effect->order;
+  });
+  ForceCurve out = sim;
+  for (const AppliedEffect& a : effects) out = a.effect->apply(out, a.params, scale);
+  return out;
+}
+
+double plausibility(const EffectSpec& effect, const std::vector<double>& params,
+                    const CurveScale& scale) {
+  const auto specs = effect.parameters(scale);
+  double p = 1.0;
+  for (std::size_t i = 0; i < specs.size() && i < params.size(); ++i) {
+    const ParameterSpec& s = specs[i];
+    const double v = params[i];
+    if (v < s.plausible_lower) {
+      const double width = s.plausible_lower - s.lower;
+      p *= width > 0 ? 1.0 - 0.8 * std::min(1.0, (s.plausible_lower - v) / width) : 0.2;
+    } else if (v > s.plausible_upper) {
+      const double width = s.upper - s.plausible_upper;
+      p *= width > 0 ? 1.0 - 0.8 * std::min(1.0, (v - s.plausible_upper) / width) : 0.2;
+    }
+  }
+  return p;
+}
+
+}  // namespace dtwire::gap

@@ -1,0 +1,75 @@
+#include "dtwire/gap/force_curve.hpp"
+
+#include <cmath>
+
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/error.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+const Channel* find_any(const Curve& curve, std::initializer_list<const char*> names) {
+  for (const char* name : names)
+    if (const Channel* c = curve.find(name)) return c;
+  return nullptr;
+}
+
+std::string columns_of(const Curve& curve) {
+  std::string out;
+  for (const Channel& c : curve.channels()) out += (out.empty() ? "" : ", ") + c.column_name();
+  return out;
+}
+
+std::vector<double> checked_si(const Channel& channel, Dimension expected, const std::string& file,
+                               const std::string& what) {
+  if (channel.unit.dimension != expected)
+    throw InputError(file, "column '" + channel.column_name() + "': expected " + what + " in a " +
+                               std::string(dimension_name(expected)) + " unit, found '" +
+                               channel.unit.symbol + "' (" +
+                               std::string(dimension_name(channel.unit.dimension)) + ")");
+  return channel.si();
+}
+
+}  // namespace
+
+void validate_force_curve(const ForceCurve& curve) {
+  if (curve.u.size() != curve.f.size())
+    throw InputError(curve.source, "displacement and force differ in length");
+  if (curve.u.size() < kMinimumCurvePoints)
+    throw InputError(curve.source, "a curve needs at least " + std::to_string(kMinimumCurvePoints) +
+                                       " points, found " + std::to_string(curve.u.size()));
+  for (std::size_t i = 0; i < curve.u.size(); ++i)
+    if (!std::isfinite(curve.u[i]) || !std::isfinite(curve.f[i]))
+      throw InputError(curve.source, "point " + std::to_string(i + 1) + " is not a finite number");
+}
+
+ForceCurve load_force_curve(const std::filesystem::path& path, const CurveConversion& conversion) {
+  const std::string file = path.string();
+  const Curve curve = read_csv(path);
+  ForceCurve out;
+  out.source = file;
+  const Channel* displacement = find_any(curve, {"displacement", "elongation", "extension"});
+  const Channel* force = curve.find("force");
+  if (displacement && force) {
+    out.u = checked_si(*displacement, Dimension::Length, file, "a displacement");
+    out.f = checked_si(*force, Dimension::Force, file, "a force");
+  } else if (const Channel* strain = curve.find("strain"); strain && curve.find("stress")) {
+    const Channel& stress = curve.channel("stress");
+    if (!conversion.gauge_length_m || !conversion.area_m2)
+      throw InputError(file, "strain/stress curve: give --gauge-mm and --area-mm2 to turn it into "
+                             "displacement and force");
+    const auto e = checked_si(*strain, Dimension::Dimensionless, file, "a strain");
+    const auto s = checked_si(stress, Dimension::Stress, file, "a stress");
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      out.u.push_back(e[i] * *conversion.gauge_length_m);
+      out.f.push_back(s[i] * *conversion.area_m2);
+    }
+  } else {
+    throw InputError(file, "expected columns displacement_<length unit> and force_<force unit> "
+                           "(or strain_1 and stress_<unit>), found: " + columns_of(curve));
+  }
+  validate_force_curve(out);
+  return out;
+}
+
+}  // namespace dtwire::gap

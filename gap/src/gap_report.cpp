@@ -1,0 +1,160 @@
+#include "dtwire/gap/gap_report.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "dtwire/core/error.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+nlohmann::json params_json(const std::vector<AppliedEffect>& fitted, const CurveScale& scale) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const AppliedEffect& a : fitted) {
+    const auto specs = a.effect->parameters(scale);
+    for (std::size_t i = 0; i < specs.size(); ++i) {
+      const std::string key = fitted.size() > 1 ? a.effect->name + "." + specs[i].name : specs[i].name;
+      out[key] = a.params[i];
+    }
+  }
+  return out;
+}
+
+nlohmann::json curve_json(const ForceCurve& c) {
+  std::vector<double> u, f;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    u.push_back(c.u[i] * 1e3);
+    f.push_back(c.f[i]);
+  }
+  return {{"source", c.source}, {"displacement_mm", u}, {"force_N", f}};
+}
+
+}  // namespace
+
+void require_finite(const nlohmann::json& value, const std::string& path) {
+  if (value.is_number_float() && !std::isfinite(value.get<double>()))
+    throw ComputationError("gap: the result " + path + " is not a finite number");
+  if (value.is_object())
+    for (const auto& [key, item] : value.items()) require_finite(item, path + "/" + key);
+  if (value.is_array())
+    for (std::size_t i = 0; i < value.size(); ++i) require_finite(value[i], path + "/" + std::to_string(i));
+}
+
+nlohmann::json diagnosis_json(const Diagnosis& d) {
+  const CurveScale scale = curve_scale(d.sim);
+  nlohmann::json where = nlohmann::json::array();
+  for (const GapSegment& g : d.where)
+    where.push_back({{"region", g.region},
+                     {"from_mm", g.from_m * 1e3},
+                     {"to_mm", g.to_m * 1e3},
+                     {"share", g.share},
+                     {"direction", g.direction},
+                     {"gap", g.gap}});
+  nlohmann::json ranking = nlohmann::json::array();
+  for (const RankedEffect& r : d.ranking)
+    ranking.push_back({{"effect", r.effect},
+                       {"params", params_json(r.fitted, scale)},
+                       {"gap_after", r.gap_after},
+                       {"shrink", r.shrink},
+                       {"score", r.score},
+                       {"aicc", r.aicc},
+                       {"delta_aicc", r.delta_aicc},
+                       {"bic", r.bic},
+                       {"plausibility", r.plausibility},
+                       {"region_match", r.region_match},
+                       {"frechet_after", r.frechet_after},
+                       {"gap_after_by_region", r.gap_after_by_segment},
+                       {"qualifies", r.qualifies}});
+  nlohmann::json labs = nlohmann::json::array();
+  for (const ForceCurve& lab : d.labs) labs.push_back(lab.source);
+  nlohmann::json predictive = {{"done", d.predictive.done}};
+  if (d.predictive.done) {
+    predictive["effect"] = d.predictive.effect;
+    predictive["fitted_on"] = d.predictive.fitted_on;
+    predictive["predicted"] = d.predictive.predicted;
+    predictive["gap_before"] = d.predictive.gap_before;
+    predictive["gap_after"] = d.predictive.gap_after;
+    predictive["shrink"] = d.predictive.shrink;
+  } else {
+    predictive["note"] = d.predictive.note;
+  }
+  nlohmann::json out = {{"metric", d.metric},
+                        {"noise_floor", d.noise_floor},
+                        {"gap_before", d.gap_before},
+                        {"where", where},
+                        {"ranking", ranking},
+                        {"cause", d.cause},
+                        {"cause_reason", d.reason},
+                        {"noise_sigma_N", d.noise_sigma_N},
+                        {"frechet_before", d.frechet_before},
+                        {"effective_sample_size", d.effective_sample_size},
+                        {"lag1_autocorrelation", d.lag1_autocorrelation},
+                        {"compression", d.compression},
+                        {"not_tested", d.not_tested},
+                        {"predictive_check", predictive},
+                        {"lab", labs},
+                        {"sim", d.sim.source}};
+  if (d.scatter_gap >= 0) out["scatter_gap"] = d.scatter_gap;
+  require_finite(out);
+  return out;
+}
+
+std::string diagnosis_markdown(const Diagnosis& d) {
+  std::ostringstream s;
+  s.precision(3);
+  s << "### Gap diagnosis\n\n"
+    << "Simulation `" << d.sim.source << "` against " << d.labs.size() << " laboratory curve(s)";
+  for (const ForceCurve& lab : d.labs) s << " `" << lab.source << "`";
+  s << ".\n\n"
+    << "- gap before (area between curves on normalised axes): " << d.gap_before
+    << "; discrete Frechet distance " << d.frechet_before << "\n"
+    << "- noise floor: " << d.noise_floor << " (load noise " << d.noise_sigma_N << " N"
+    << (d.scatter_gap >= 0 ? ", scatter between the laboratory curves " + std::to_string(d.scatter_gap) : std::string())
+    << ")\n"
+    << "- **cause: " << d.cause << "** (" << d.reason << ")\n";
+  if (!d.not_tested.empty()) {
+    s << "- not tested (need `--model`):";
+    for (const auto& n : d.not_tested) s << " " << n;
+    s << "\n";
+  }
+  if (d.predictive.done)
+    s << "- predictive check: " << d.predictive.effect << " fitted on `" << d.predictive.fitted_on
+      << "` shrinks the gap of `" << d.predictive.predicted << "` from " << d.predictive.gap_before
+      << " to " << d.predictive.gap_after << " (shrink " << d.predictive.shrink << ")\n";
+  else
+    s << "- predictive check: not done (" << d.predictive.note << ")\n";
+  s << "\n| region | from mm | to mm | share | direction |\n|---|---|---|---|---|\n";
+  for (const GapSegment& g : d.where)
+    s << "| " << g.region << " | " << g.from_m * 1e3 << " | " << g.to_m * 1e3 << " | " << g.share
+      << " | " << g.direction << " |\n";
+  s << "\n| effect | gap after | shrink | score | dAICc | plausibility | region match |\n"
+    << "|---|---|---|---|---|---|---|\n";
+  for (const RankedEffect& r : d.ranking)
+    s << "| " << r.effect << " | " << r.gap_after << " | " << r.shrink << " | " << r.score << " | "
+      << r.delta_aicc << " | " << r.plausibility << " | " << r.region_match << " |\n";
+  return s.str();
+}
+
+nlohmann::json plot_data_json(const Diagnosis& d) {
+  nlohmann::json labs = nlohmann::json::array();
+  for (const ForceCurve& lab : d.labs) labs.push_back(curve_json(lab));
+  nlohmann::json regions = nlohmann::json::array();
+  for (const GapSegment& g : d.where)
+    regions.push_back({{"region", g.region}, {"from_mm", g.from_m * 1e3}, {"to_mm", g.to_m * 1e3},
+                       {"share", g.share}, {"direction", g.direction}});
+  const std::string best = d.cause != "none" ? d.cause
+                           : d.ranking.empty() ? std::string("simulation")
+                                               : d.ranking.front().effect + " (not significant)";
+  nlohmann::json out = {{"labs", labs},
+                        {"sim", curve_json(d.sim)},
+                        {"best", curve_json(d.best_model)},
+                        {"best_label", "simulation + " + best},
+                        {"regions", regions},
+                        {"cause", d.cause},
+                        {"gap_before", d.gap_before},
+                        {"noise_floor", d.noise_floor}};
+  require_finite(out);
+  return out;
+}
+
+}  // namespace dtwire::gap

@@ -1,0 +1,265 @@
+#include "dtwire/gap/selfcheck.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <random>
+#include <sstream>
+
+#include "dtwire/gap/diagnosis.hpp"
+#include "dtwire/gap/synthetic_curves.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+const std::vector<std::string>& curve_effects() {
+  static const std::vector<std::string> names = {"machine_compliance", "grip_slip", "initial_slack",
+                                                 "gauge_length", "ductile_damage", "strain_rate"};
+  return names;
+}
+
+double uniform(std::mt19937& rng, double lo, double hi) {
+  return std::uniform_real_distribution<double>(lo, hi)(rng);
+}
+
+// Away from the neutral value on either side: [lo, hi] or its mirror below the neutral.
+double either_side(std::mt19937& rng, double neutral, double lo, double hi, double lo_below) {
+  return uniform(rng, 0, 1) < 0.5 ? uniform(rng, lo, hi) : uniform(rng, lo_below, neutral - (lo - neutral));
+}
+
+struct Base {
+  std::string name;
+  ForceCurve curve;
+  double min_end_fraction;
+};
+
+// Realistic magnitudes for an injected effect, relative to the visible part of the test.
+std::vector<double> draw_params(const std::string& effect, const ForceCurve& sim, double end_m,
+                                double visible_peak_N, std::mt19937& rng) {
+  if (effect == "machine_compliance") return {uniform(rng, 0.1, 1.0)};
+  if (effect == "grip_slip") {
+    const double step = uniform(rng, 0, 1) < 0.5 ? 0.0 : uniform(rng, 0.1, 0.5);
+    return {uniform(rng, 0.3, 0.8) * visible_peak_N, uniform(rng, 1.0, 6.0), step};
+  }
+  if (effect == "initial_slack")
+    return {uniform(rng, 0.2, 1.5), uniform(rng, 0.01, 0.08) * visible_peak_N};
+  if (effect == "gauge_length") return {either_side(rng, 1.0, 1.05, 1.3, 0.85)};
+  if (effect == "ductile_damage") {
+    const double total = sim.u.back();
+    const double onset = uniform(rng, 0.2, 0.6) * end_m;
+    const double visible = uniform(rng, 0.05, 0.3);  // damage reached at the test end
+    const double x = (end_m - onset) / (total - onset);
+    return {onset * 1e3, std::min(0.95, visible / (x * x))};
+  }
+  if (effect == "strain_rate") return {either_side(rng, 1.0, 1.04, 1.15, 0.88)};
+  return {};
+}
+
+struct Injection {
+  std::string truth;
+  std::vector<AppliedEffect> effects;
+};
+
+SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effects,
+                         std::mt19937& rng, unsigned seed) {
+  const ForceCurve& sim = base.curve;
+  const CurveScale scale = curve_scale(sim);
+  const double end_fraction = uniform(rng, base.min_end_fraction, 1.0);
+  const double end_sim = end_fraction * sim.u.back();
+  double visible_peak = 0.0;
+  std::size_t last = 0;
+  for (std::size_t i = 0; i < sim.size() && sim.u[i] <= end_sim; ++i) {
+    visible_peak = std::max(visible_peak, sim.f[i]);
+    last = i;
+  }
+  std::vector<AppliedEffect> injected;
+  for (const std::string& name : effects)
+    injected.push_back({&find_effect(name), draw_params(name, sim, end_sim, visible_peak, rng)});
+  const ForceCurve lab_model = apply_effects(sim, injected, scale);
+  double end_lab = 0.0;
+  for (std::size_t i = 0; i <= last; ++i) end_lab = std::max(end_lab, lab_model.u[i]);
+  LabSampling sampling;
+  sampling.points = static_cast<std::size_t>(uniform(rng, 400, 1500));
+  sampling.end_m = end_lab;
+  sampling.noise_sigma_N = uniform(rng, 0.002, 0.008) * visible_peak;
+  sampling.noise_rho = uniform(rng, 0.0, 0.3);
+  const ForceCurve lab = sample_lab_curve(lab_model, sampling, rng);
+
+  DiagnosisOptions options;
+  options.seed = seed;
+  const Diagnosis d = diagnose({lab}, sim, options);
+  SelfcheckTrial t;
+  t.base = base.name;
+  std::vector<std::string> sorted = effects;
+  std::sort(sorted.begin(), sorted.end());
+  t.truth = "none";
+  for (std::size_t i = 0; i < sorted.size(); ++i) t.truth = (i ? t.truth + "+" : "") + sorted[i];
+  t.predicted = d.cause;
+  t.gap_before = d.gap_before;
+  t.noise_floor = d.noise_floor;
+  for (const RankedEffect& r : d.ranking)
+    if (r.effect == d.cause) t.shrink = r.shrink;
+  if (effects.size() == 1 && d.cause == effects.front()) {
+    const EffectSpec& spec = find_effect(effects.front());
+    const double truth = injected.front().params[spec.magnitude];
+    for (const RankedEffect& r : d.ranking)
+      if (r.effect == d.cause) {
+        const double fitted = r.fitted.front().params[spec.magnitude];
+        t.parameter_error = std::abs(fitted - truth) / std::abs(truth - spec.neutral);
+      }
+  }
+  return t;
+}
+
+double fraction(std::size_t hit, std::size_t total) {
+  return total ? static_cast<double>(hit) / static_cast<double>(total) : 0.0;
+}
+
+}  // namespace
+
+SelfcheckResult run_selfcheck(const SelfcheckOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Base> bases = {{"voce", voce_tension_curve(), 0.6}};
+  if (!options.backbone_csv.empty() && std::filesystem::exists(options.backbone_csv))
+    bases.push_back({"backbone", backbone_tension_curve(options.backbone_csv), 0.3});
+  std::mt19937 rng(options.seed);
+  SelfcheckResult result;
+  unsigned trial_seed = options.seed;
+  std::size_t base_index = 0;
+  auto next_base = [&]() -> const Base& { return bases[base_index++ % bases.size()]; };
+  for (std::size_t k = 0; k < options.trials; ++k)
+    for (const std::string& effect : curve_effects())
+      result.trials.push_back(run_trial(next_base(), {effect}, rng, ++trial_seed));
+  for (std::size_t k = 0; k < options.none_trials; ++k)
+    result.trials.push_back(run_trial(next_base(), {}, rng, ++trial_seed));
+  for (std::size_t k = 0; k < options.pair_trials; ++k) {
+    std::vector<std::string> names = curve_effects();
+    std::shuffle(names.begin(), names.end(), rng);
+    result.trials.push_back(run_trial(next_base(), {names[0], names[1]}, rng, ++trial_seed));
+  }
+
+  std::size_t singles = 0, single_hits = 0, nones = 0, none_hits = 0, pairs = 0, pair_hits = 0,
+              pair_partial = 0;
+  double shrink_sum = 0.0;
+  std::vector<double> errors;
+  for (const SelfcheckTrial& t : result.trials) {
+    if (t.truth == "none") {
+      ++nones;
+      none_hits += t.predicted == "none";
+    } else if (t.truth.find('+') == std::string::npos) {
+      ++singles;
+      single_hits += t.predicted == t.truth;
+      shrink_sum += t.shrink;
+      if (t.parameter_error >= 0) errors.push_back(t.parameter_error);
+    } else {
+      ++pairs;
+      pair_hits += t.predicted == t.truth;
+      const auto plus = t.truth.find('+');
+      const std::string a = t.truth.substr(0, plus), b = t.truth.substr(plus + 1);
+      auto has = [&](const std::string& name) {
+        std::istringstream parts(t.predicted);
+        std::string part;
+        while (std::getline(parts, part, '+'))
+          if (part == name) return true;
+        return false;
+      };
+      pair_partial += has(a) || has(b);
+    }
+  }
+  result.single_top1 = fraction(single_hits, singles);
+  result.single_mean_shrink = singles ? shrink_sum / static_cast<double>(singles) : 0.0;
+  result.none_rate = fraction(none_hits, nones);
+  result.pair_exact = fraction(pair_hits, pairs);
+  result.pair_partial = fraction(pair_partial, pairs);
+  if (!errors.empty()) {
+    double sum = 0.0;
+    for (double e : errors) sum += e;
+    result.mean_parameter_error = sum / static_cast<double>(errors.size());
+    std::sort(errors.begin(), errors.end());
+    result.median_parameter_error = errors[errors.size() / 2];
+  }
+  std::vector<std::string> labels = curve_effects();
+  labels.push_back("none");
+  for (const SelfcheckTrial& t : result.trials)
+    for (const std::string& name : {t.truth, t.predicted})
+      if (std::find(labels.begin(), labels.end(), name) == labels.end()) labels.push_back(name);
+  result.labels = labels;
+  result.goals_met = (singles == 0 || result.single_top1 >= kGoalTop1) &&
+                     (singles == 0 || result.single_mean_shrink >= kGoalShrink) &&
+                     (nones == 0 || result.none_rate >= kGoalNone);
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+nlohmann::json selfcheck_json(const SelfcheckResult& r) {
+  nlohmann::json trials = nlohmann::json::array();
+  for (const SelfcheckTrial& t : r.trials) {
+    nlohmann::json j = {{"base", t.base},           {"truth", t.truth},
+                        {"predicted", t.predicted}, {"gap_before", t.gap_before},
+                        {"noise_floor", t.noise_floor}, {"shrink", t.shrink}};
+    if (t.parameter_error >= 0) j["parameter_error"] = t.parameter_error;
+    trials.push_back(j);
+  }
+  std::map<std::string, std::map<std::string, int>> matrix;
+  for (const SelfcheckTrial& t : r.trials) ++matrix[t.truth][t.predicted];
+  nlohmann::json confusion = nlohmann::json::object();
+  for (const auto& [truth, row] : matrix) confusion[truth] = row;
+  return {{"single_top1", r.single_top1},
+          {"single_mean_shrink", r.single_mean_shrink},
+          {"none_rate", r.none_rate},
+          {"pair_exact", r.pair_exact},
+          {"pair_partial", r.pair_partial},
+          {"mean_parameter_error", r.mean_parameter_error},
+          {"median_parameter_error", r.median_parameter_error},
+          {"goals", {{"single_top1", kGoalTop1}, {"single_mean_shrink", kGoalShrink}, {"none_rate", kGoalNone}}},
+          {"goals_met", r.goals_met},
+          {"seconds", r.seconds},
+          {"labels", r.labels},
+          {"confusion", confusion},
+          {"trials", trials}};
+}
+
+std::string selfcheck_markdown(const SelfcheckResult& r) {
+  std::map<std::string, std::map<std::string, int>> matrix;
+  for (const SelfcheckTrial& t : r.trials) ++matrix[t.truth][t.predicted];
+  std::vector<std::string> rows, columns;
+  for (const std::string& label : r.labels) {
+    bool as_truth = matrix.count(label) > 0, as_prediction = false;
+    for (const auto& [truth, row] : matrix) as_prediction = as_prediction || row.count(label);
+    if (as_truth) rows.push_back(label);
+    if (as_prediction) columns.push_back(label);
+  }
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(2);
+  s << "### Gap diagnosis selfcheck\n\n"
+    << r.trials.size() << " synthetic laboratory curves (effect withheld from the simulation), "
+    << r.seconds << " s.\n\n"
+    << "| figure | value | goal |\n|---|---|---|\n"
+    << "| top-1 cause correct, single effects | " << r.single_top1 << " | >= " << kGoalTop1 << " |\n"
+    << "| mean gap shrink, single effects | " << r.single_mean_shrink << " | >= " << kGoalShrink << " |\n"
+    << "| `none` on effect-free curves | " << r.none_rate << " | >= " << kGoalNone << " |\n"
+    << "| pairs: both found | " << r.pair_exact << " | - |\n"
+    << "| pairs: at least one found | " << r.pair_partial << " | - |\n"
+    << "| magnitude recovery error (relative), mean / median | " << r.mean_parameter_error
+    << " / " << r.median_parameter_error << " | - |\n\n"
+    << "Goals " << (r.goals_met ? "met" : "NOT met") << ".\n\n"
+    << "Confusion matrix (rows: injected, columns: diagnosed):\n\n| injected |";
+  for (const auto& c : columns) s << " " << c << " |";
+  s << "\n|---|";
+  for (std::size_t i = 0; i < columns.size(); ++i) s << "---|";
+  s << "\n";
+  for (const auto& row : rows) {
+    s << "| " << row << " |";
+    for (const auto& c : columns) {
+      const auto it = matrix[row].find(c);
+      s << " " << (it == matrix[row].end() ? 0 : it->second) << " |";
+    }
+    s << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace dtwire::gap
