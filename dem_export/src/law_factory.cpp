@@ -1,6 +1,9 @@
 #include <stdexcept>
 
 #include "dtwire/dem/contact_law.hpp"
+#include "dtwire/dem/macro3d.hpp"
+#include "dtwire/dem/parallel_bond.hpp"
+#include "dtwire/dem/thesis_macroelement.hpp"
 #include "dtwire/dem/wirepm.hpp"
 
 namespace dtwire::dem {
@@ -15,6 +18,9 @@ double require_parameter(const ParameterMap& parameters, const std::string& law,
 
 std::unique_ptr<ContactLaw> make_contact_law(const std::string& name, const ParameterMap& parameters) {
   // Each law adds one line here when it lands.
+  if (name == "thesis") return std::make_unique<ThesisMacroElement>(parameters);
+  if (name == "macro3d") return std::make_unique<Macro3dLaw>(parameters);
+  if (name == "parallel_bond") return std::make_unique<ParallelBondLaw>(parameters);
   if (name == "wirepm") return std::make_unique<WirePmLaw>(make_wirepm_backbone(parameters));
   throw std::invalid_argument("unknown contact law '" + name +
                               "', expected one of: thesis, macro3d, wirepm, parallel_bond");

@@ -1,0 +1,166 @@
+#include "dtwire/dem/macro3d.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "law_parameters.hpp"
+
+namespace dtwire::dem {
+
+namespace {
+constexpr double degrees_per_radian = 57.295779513082320876798154814105;
+constexpr double poisson_ratio = 0.3;  // as in the thesis plugin
+const std::string law_name = "macro3d";
+}  // namespace
+
+ParameterMap macro3d_parameters_from_thesis(const ParameterMap& thesis) {
+  ParameterMap out = thesis;
+  auto move = [&](const std::string& from, const std::string& to, double factor) {
+    const auto found = out.find(from);
+    if (found == out.end()) return;
+    if (out.count(to) == 0) out[to] = found->second * factor;
+    out.erase(from);
+  };
+  const bool degree_based = thesis.count("EI_Nm2_per_deg_convention") || thesis.count("k_M");
+  move("EA_N", "axial_stiffness_N_per_m", 1.0);
+  move("EI_Nm2_per_deg_convention", "bending_stiffness_Nm_per_rad", degrees_per_radian);
+  move("k_F", "k_F_per_m", 1.0);
+  move("k_M", "k_M_per_rad", degrees_per_radian);
+  if (degree_based) {
+    if (out.count("rotation_flow_scale") == 0) out["rotation_flow_scale"] = 1.0 / degrees_per_radian;
+    if (out.count("damage_moment_work_weight") == 0) out["damage_moment_work_weight"] = degrees_per_radian;
+  }
+  if (detail::optional_parameter(out, "slide_a", 0.0) != 0.0)
+    throw std::invalid_argument("macro3d: slide_a != 0 (wire-sliding spring) is not supported");
+  out.erase("slide_a");
+  out.erase("slide_b");
+  out.erase("reference_length_m");
+  return out;
+}
+
+Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
+  using detail::nonnegative_parameter;
+  using detail::optional_parameter;
+  using detail::positive_parameter;
+  const ParameterMap p = given.count("EA_N") ? macro3d_parameters_from_thesis(given) : given;
+  surface_.D = positive_parameter(p, law_name, "D_m");
+  surface_.N0 = positive_parameter(p, law_name, "N0_N");
+  surface_.Nult = positive_parameter(p, law_name, "Nult_N");
+  surface_.Nc = positive_parameter(p, law_name, "Nc_N");
+  surface_.m_f = positive_parameter(p, law_name, "m_f");
+  surface_.beta_f = positive_parameter(p, law_name, "beta_f");
+  surface_.k_F = nonnegative_parameter(p, law_name, "k_F_per_m");
+  surface_.k_M = nonnegative_parameter(p, law_name, "k_M_per_rad");
+  surface_.m_g = positive_parameter(p, law_name, "m_g");
+  surface_.alpha_g = nonnegative_parameter(p, law_name, "alpha_g");
+  surface_.beta_g = positive_parameter(p, law_name, "beta_g");
+  surface_.rotation_flow_scale =
+      detail::checked(law_name, "rotation_flow_scale", optional_parameter(p, "rotation_flow_scale", 1.0));
+  if (surface_.Nult < surface_.N0) throw std::invalid_argument("macro3d: Nult_N must be >= N0_N");
+  damage_.W1 = nonnegative_parameter(p, law_name, "W1_J");
+  damage_.W2 = positive_parameter(p, law_name, "W2_J");
+  damage_.alpha_d = positive_parameter(p, law_name, "alpha_d");
+  if (damage_.W2 <= damage_.W1) throw std::invalid_argument("macro3d: W2_J must be > W1_J");
+  moment_work_weight_ = detail::checked(law_name, "damage_moment_work_weight",
+                                        optional_parameter(p, "damage_moment_work_weight", 1.0));
+  shear_strength_ = detail::checked(law_name, "shear_strength_N",
+                                    optional_parameter(p, "shear_strength_N", 0.0), true);
+  settings_.tolerance = detail::checked(law_name, "rk_tolerance", optional_parameter(p, "rk_tolerance", 1e-6));
+  settings_.drift_correction = true;
+
+  stiffness_.axial = positive_parameter(p, law_name, "axial_stiffness_N_per_m");
+  stiffness_.moment = positive_parameter(p, law_name, "bending_stiffness_Nm_per_rad");
+  shear_stiffness_ = detail::checked(
+      law_name, "shear_stiffness_N_per_m",
+      optional_parameter(p, "shear_stiffness_N_per_m", stiffness_.axial / (2.0 * (1.0 + poisson_ratio))));
+  torsion_stiffness_ = detail::checked(
+      law_name, "torsion_stiffness_Nm_per_rad",
+      optional_parameter(p, "torsion_stiffness_Nm_per_rad", stiffness_.moment / (1.0 + poisson_ratio)));
+  plastic_.Ny = surface_.N0;
+}
+
+double Macro3dLaw::effective_energy(const detail::PlasticState& s, double shear_y, double shear_z,
+                                    double torque) const {
+  return 0.5 * (s.y[0] * s.y[0] / stiffness_.axial +
+                (s.y[1] * s.y[1] + s.y[2] * s.y[2]) / stiffness_.moment +
+                (shear_y * shear_y + shear_z * shear_z) / shear_stiffness_ +
+                torque * torque / torsion_stiffness_);
+}
+
+void Macro3dLaw::update(const Vector6& increment) {
+  if (broken_) return;
+  const std::array<double, 3> dq{increment[0], increment[4], increment[5]};
+  const double shear_y0 = shear_y_, shear_z0 = shear_z_, torque0 = torque_;
+  const double d_shear_y = shear_stiffness_ * increment[1];
+  const double d_shear_z = shear_stiffness_ * increment[2];
+  const double d_torque = torsion_stiffness_ * increment[3];
+
+  auto on_substep = [&](const detail::PlasticState& before, const detail::PlasticState& after,
+                        double t0, double t1) {
+    const double dt = t1 - t0;
+    const double shear_y1 = shear_y0 + t1 * d_shear_y, shear_z1 = shear_z0 + t1 * d_shear_z;
+    const double torque1 = torque0 + t1 * d_torque;
+    const double N_mean = 0.5 * (before.y[0] + after.y[0]);
+    const double My_mean = 0.5 * (before.y[1] + after.y[1]);
+    const double Mz_mean = 0.5 * (before.y[2] + after.y[2]);
+    // Qbar.dq over all six components (the shear and torsion parts are linear).
+    const double work = dt * (N_mean * increment[0] + 0.5 * (shear_y_ + shear_y1) * increment[1] +
+                              0.5 * (shear_z_ + shear_z1) * increment[2] +
+                              0.5 * (torque_ + torque1) * increment[3] + My_mean * increment[4] +
+                              Mz_mean * increment[5]);
+    const double axial_plastic = N_mean * (after.y[3] - before.y[3]);
+    const double moment_plastic = My_mean * (after.y[4] - before.y[4]) + Mz_mean * (after.y[5] - before.y[5]);
+    if (axial_plastic == 0.0 && moment_plastic == 0.0) {  // elastic piece: damage unchanged
+      energy_.external += damage_factor_ * work;
+    } else {
+      axial_plastic_work_ += axial_plastic;
+      moment_plastic_work_ += moment_plastic;
+      damage_work_ += axial_plastic + moment_work_weight_ * moment_plastic;
+      const double d1 = damage_.factor(damage_work_);
+      energy_.book({damage_factor_, d1, effective_energy(before, shear_y_, shear_z_, torque_),
+                    effective_energy(after, shear_y1, shear_z1, torque1), work,
+                    axial_plastic + moment_plastic});
+      damage_factor_ = d1;
+    }
+    shear_y_ = shear_y1, shear_z_ = shear_z1, torque_ = torque1;
+    return damage_factor_ > detail::DamageParameters::break_factor;
+  };
+  last_substeps_ = detail::integrate_increment(surface_, stiffness_, settings_, plastic_, dq, on_substep);
+  if (damage_factor_ <= detail::DamageParameters::break_factor) {
+    // Necking when the dissipation was mostly axial and the wire ends in tension.
+    const bool tension_dominated = axial_plastic_work_ >= moment_plastic_work_ && plastic_.y[0] > 0.0;
+    break_bond(tension_dominated ? FailureMode::Necking : FailureMode::Shear);
+  } else if (shear_strength_ > 0.0 &&
+             damage_factor_ * std::hypot(shear_y_, shear_z_) > shear_strength_) {
+    break_bond(FailureMode::Shear);
+  }
+}
+
+void Macro3dLaw::break_bond(FailureMode mode) {
+  // The energy still stored is released when the bond is deleted.
+  energy_.damage += damage_factor_ * effective_energy(plastic_, shear_y_, shear_z_, torque_);
+  broken_ = true;
+  failure_mode_ = mode;
+  damage_factor_ = 0.0;
+}
+
+Vector6 Macro3dLaw::forces() const {
+  Vector6 q;
+  q << plastic_.y[0], shear_y_, shear_z_, torque_, plastic_.y[1], plastic_.y[2];
+  return damage_factor_ * q;
+}
+
+EnergyAccount Macro3dLaw::energy() const {
+  EnergyAccount account;
+  account.external = energy_.external;
+  account.plastic = energy_.plastic;
+  account.damage = energy_.damage;
+  account.elastic = damage_factor_ * effective_energy(plastic_, shear_y_, shear_z_, torque_);
+  return account;
+}
+
+double Macro3dLaw::normalised_yield_function() const { return detail::yield_value(surface_, plastic_); }
+
+std::unique_ptr<ContactLaw> Macro3dLaw::clone() const { return std::make_unique<Macro3dLaw>(*this); }
+
+}  // namespace dtwire::dem
