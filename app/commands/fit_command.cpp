@@ -1,12 +1,159 @@
 #include <CLI/CLI.hpp>
 
+#include <atomic>
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+#include <random>
+
 #include "../cli.hpp"
 #include "../commands.hpp"
+#include "dtwire/calibrate/fit_file.hpp"
+#include "dtwire/calibrate/fit_output.hpp"
+#include "dtwire/calibrate/fitter.hpp"
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/version.hpp"
 
 namespace dtwire::app {
+namespace {
+
+std::atomic<bool> stop_requested{false};
+extern "C" void request_stop(int) { stop_requested = true; }
+
+// Simulated curves at the parameters' reference values (else initial values), written as
+// target CSVs with optional Gaussian noise (relative to each channel's range), thinned to at
+// most `points` rows. For demonstrations and tests of the fit; the files say so.
+void synthesize_targets(const calibrate::FitDefinition& def, const std::filesystem::path& dir,
+                        double noise, std::uint64_t seed, std::size_t points) {
+  calibrate::ParameterValues values;
+  for (const auto& p : def.parameters) values[p.name] = p.reference.value_or(p.initial);
+  std::filesystem::create_directories(dir);
+  std::mt19937_64 generator(seed);
+  const auto gaussian = [&] {  // Box-Muller on the raw generator output (portable)
+    const double u1 = (static_cast<double>(generator() >> 11) + 0.5) * 0x1.0p-53;
+    const double u2 = static_cast<double>(generator() >> 11) * 0x1.0p-53;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+  };
+  for (std::size_t e = 0; e < def.experiments.size(); ++e) {
+    const auto& experiment = def.experiments[e];
+    const Curve simulated = experiment.simulator->simulate(values);
+    const std::size_t stride = std::max<std::size_t>(1, (simulated.size() + points - 2) / (points - 1));
+    Curve out;
+    std::vector<std::string> quantities{experiment.abscissa};
+    for (const auto& c : experiment.channels) quantities.push_back(c.quantity);
+    for (const auto& quantity : quantities) {
+      const Channel& channel = simulated.channel(quantity);
+      std::vector<double> v;
+      for (std::size_t i = 0; i < simulated.size(); i += stride) v.push_back(channel.values[i]);
+      if ((simulated.size() - 1) % stride) v.push_back(channel.values.back());
+      if (quantity != experiment.abscissa && noise > 0) {
+        const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+        const double sigma = noise * (*hi - *lo);
+        for (double& x : v) x += sigma * gaussian();
+      }
+      // Lengths in mm, like laboratory files.
+      if (channel.unit.dimension == Dimension::Length) {
+        for (double& x : v) x /= find_unit("mm")->to_si / channel.unit.to_si;
+        out.add_channel(quantity, *find_unit("mm"), v);
+      } else {
+        out.add_channel(quantity, channel.unit, v);
+      }
+    }
+    out.set_metadata("source", "synthetic: dtwire fit --synthesize, simulator " + def.simulator + " law " +
+                                   def.law + " at the reference parameter values of " +
+                                   def.file.filename().string());
+    out.set_metadata("noise", format_number(noise) + " x channel range (Gaussian, seed " +
+                                  std::to_string(seed) + ")");
+    const auto file = dir / def.experiment_targets.at(e).filename();
+    write_csv(out, file);
+    std::cout << "wrote " << file.string() << "\n";
+  }
+}
+
+}  // namespace
 
 void add_fit_command(CLI::App& root, CommandSet& commands) {
-  commands.add_unavailable(root, "fit", "Calibrate parameters with Ceres from a .prm fit definition", "the calibrate module (issue #7)");
+  struct Options {
+    std::string file;
+    std::string out;
+    bool resume = false;
+    bool plot = false;
+    int threads = -1;
+    std::string synthesize;
+    double noise = 0.0;
+    std::uint64_t seed = 1;
+    std::size_t points = 81;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = root.add_subcommand(
+      "fit", "Calibrate parameters with Ceres from a fit definition (TOML, see docs/calibrate.md)");
+  command->add_option("file", options->file, "Fit definition (.toml)")->required();
+  command->add_option("-o,--out", options->out, "Output directory (default: fit-out/<file stem>)");
+  command->add_flag("--resume", options->resume,
+                    "Continue from <out>/checkpoint.json if present (same fit definition)");
+  command->add_flag("--plot", options->plot,
+                    "Also draw <out>/fit_curves.png with scripts/plot_fit.py (python3-matplotlib)");
+  command->add_option("--threads", options->threads, "Parallel simulation runs (default: fit file, else all cores)");
+  command->add_option("--synthesize", options->synthesize,
+                      "Instead of fitting: write the targets simulated at the parameters' reference "
+                      "values into this directory");
+  command->add_option("--noise", options->noise, "With --synthesize: Gaussian noise, fraction of each channel's range")
+      ->check(CLI::Range(0.0, 1.0));
+  command->add_option("--seed", options->seed, "With --synthesize: noise seed");
+  command->add_option("--points", options->points, "With --synthesize: at most this many rows per curve")
+      ->check(CLI::Range(3, 100000));
+  commands.add(command, [options] {
+    if (!options->synthesize.empty()) {
+      const auto def = calibrate::read_fit_file(options->file, /*read_targets=*/false);
+      synthesize_targets(def, options->synthesize, options->noise, options->seed, options->points);
+      return 0;
+    }
+    auto def = calibrate::read_fit_file(options->file);
+    const std::filesystem::path out =
+        options->out.empty() ? std::filesystem::path("fit-out") / def.file.stem() : std::filesystem::path(options->out);
+    std::filesystem::create_directories(out);
+    if (options->threads >= 0) def.evaluation.threads = static_cast<unsigned>(options->threads);
+    if (def.disk_cache) def.evaluation.cache_directory = out / "cache";
+    def.fit.checkpoint = out / "checkpoint.json";
+    def.fit.resume = options->resume;
+    def.fit.progress = &std::cerr;
+    stop_requested = false;
+    def.fit.stop_requested = &stop_requested;
+    const auto previous = std::signal(SIGINT, request_stop);
+    calibrate::ProblemEvaluator evaluator(def.experiments, def.parameters, def.evaluation);
+    calibrate::FitResult result;
+    try {
+      result = calibrate::run_fit(evaluator, def.fit);
+    } catch (...) {
+      std::signal(SIGINT, previous);
+      throw;
+    }
+    std::signal(SIGINT, previous);
+    if (!result.completed) {
+      std::cerr << "fit interrupted; continue with: dtwire fit " << options->file << " --out "
+                << out.string() << " --resume\n";
+      return kExitFailure;
+    }
+    const auto provenance = make_provenance("dtwire fit " + options->file, def.inputs);
+    calibrate::write_fit_outputs(def, result, provenance, out);
+    std::cout << "fit " << def.file.filename().string() << ": cost " << result.cost << ", "
+              << result.statistics.simulations << " simulation runs, " << result.wall_seconds
+              << " s; parameters: " << (out / "parameters.json").string() << "\n";
+    for (std::size_t i = 0; i < result.values.size(); ++i)
+      std::cout << "  " << result.parameters[i].name << " = " << result.values[i]
+                << (result.sigma.empty() ? std::string() : " +- " + std::to_string(result.sigma[i])) << " "
+                << result.parameters[i].unit << "\n";
+    if (options->plot) {
+      const std::string script = std::string(kSourceDir) + "/scripts/plot_fit.py";
+      // Debian's interpreter has python3-matplotlib; a python3 earlier on PATH may not.
+      const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+      const std::string call = python + " '" + script + "' '" + out.string() + "'";
+      if (std::system(call.c_str()) != 0)
+        std::cerr << "warning: the plot failed (" << call << "); the fit results are written\n";
+    }
+    return 0;
+  });
 }
 
 }  // namespace dtwire::app

@@ -400,7 +400,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) {
         const double d = result.sigma[i] * result.sigma[j];
-        corr(i, j) = d > 0 ? cov(i, j) / d : (i == j ? 1.0 : 0.0);
+        corr(i, j) = i == j ? 1.0 : (d > 0 ? cov(i, j) / d : 0.0);
       }
     result.covariance = cov;
     result.correlation = corr;

@@ -1,0 +1,36 @@
+#pragma once
+// Fit definition files (TOML; format in docs/calibrate.md): the simulator (law and load paths,
+// or the analytic Voce bar), target curves (CSV), fitted parameters with bounds and initial
+// values, weights, loss, multi-start. Errors name file:line:column and the field.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dtwire/calibrate/evaluation.hpp"
+#include "dtwire/calibrate/fitter.hpp"
+#include "dtwire/dem/contact_law.hpp"
+
+namespace dtwire::calibrate {
+
+struct FitDefinition {
+  std::filesystem::path file;
+  std::string title;
+  std::string simulator;  // "law_replay" or "voce_bar"
+  std::string law;        // law_replay: contact law name; written to parameters.json
+  std::string wire_type;  // written to parameters.json ("single_wire", "double_twist", ...)
+  dem::ParameterMap fixed;  // law parameters that are not fitted
+  std::vector<ParameterDefinition> parameters;
+  std::vector<Experiment> experiments;
+  std::vector<std::filesystem::path> experiment_targets;  // target CSV per experiment
+  EvaluationOptions evaluation;
+  bool disk_cache = false;  // keep simulated curves as files (worth it for FE runs)
+  FitOptions fit;                                  // checkpoint/progress set by the caller
+  std::vector<std::filesystem::path> inputs;       // every file read (for provenance)
+};
+
+// Throws InputError (file:line:column, field, what was expected) for any bad entry and for
+// unreadable target files. With read_targets = false the target CSVs are not read (for
+// generating synthetic targets): experiments then have empty target curves.
+FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets = true);
+
+}  // namespace dtwire::calibrate

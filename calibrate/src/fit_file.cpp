@@ -1,0 +1,335 @@
+#include "dtwire/calibrate/fit_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include <nlohmann/json.hpp>
+
+#include "dtwire/calibrate/law_replay.hpp"
+#include "dtwire/calibrate/voce_bar.hpp"
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/units.hpp"
+
+namespace dtwire::calibrate {
+namespace {
+
+// Reads fields of one TOML table and reports errors at the right place.
+class Table {
+ public:
+  Table(const toml::table& table, std::string path, const std::string& file)
+      : table_(table), path_(std::move(path)), file_(file) {}
+
+  [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const {
+    const auto& where = node ? node->source() : table_.source();
+    throw InputError(file_, static_cast<int>(where.begin.line), static_cast<int>(where.begin.column),
+                     "field '" + field(key) + "': " + what);
+  }
+  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  const toml::node* get(const std::string& key) const { return table_.get(key); }
+  bool has(const std::string& key) const { return table_.contains(key); }
+
+  std::string text(const std::string& key, std::optional<std::string> fallback = std::nullopt) const {
+    const toml::node* node = get(key);
+    if (!node) {
+      if (fallback) return *fallback;
+      fail(nullptr, key, "missing (expected a string)");
+    }
+    if (!node->is_string()) fail(node, key, "expected a string");
+    return node->as_string()->get();
+  }
+  double number(const std::string& key, std::optional<double> fallback = std::nullopt) const {
+    const toml::node* node = get(key);
+    if (!node) {
+      if (fallback) return *fallback;
+      fail(nullptr, key, "missing (expected a number)");
+    }
+    return number_of(node, key);
+  }
+  double number_of(const toml::node* node, const std::string& key) const {
+    double value = 0;
+    if (node->is_integer()) value = static_cast<double>(node->as_integer()->get());
+    else if (node->is_floating_point()) value = node->as_floating_point()->get();
+    else fail(node, key, "expected a number");
+    if (!std::isfinite(value)) fail(node, key, "expected a finite number");
+    return value;
+  }
+  long long integer(const std::string& key, long long fallback, long long minimum) const {
+    const toml::node* node = get(key);
+    if (!node) return fallback;
+    if (!node->is_integer()) fail(node, key, "expected an integer");
+    const long long value = node->as_integer()->get();
+    if (value < minimum) fail(node, key, "expected an integer >= " + std::to_string(minimum));
+    return value;
+  }
+  bool boolean(const std::string& key, bool fallback) const {
+    const toml::node* node = get(key);
+    if (!node) return fallback;
+    if (!node->is_boolean()) fail(node, key, "expected true or false");
+    return node->as_boolean()->get();
+  }
+  std::vector<double> numbers(const std::string& key) const {
+    const toml::node* node = get(key);
+    if (!node || !node->is_array()) fail(node, key, "expected an array of numbers");
+    std::vector<double> out;
+    for (const toml::node& item : *node->as_array()) out.push_back(number_of(&item, key));
+    return out;
+  }
+  // Rejects keys outside `known` (typos must not be ignored silently).
+  void only(const std::set<std::string>& known, const std::string& prefix_allowed = "") const {
+    for (const auto& [key, node] : table_) {
+      const std::string name(key.str());
+      const bool prefixed = !prefix_allowed.empty() && name.rfind(prefix_allowed, 0) == 0;
+      if (!known.count(name) && !prefixed) {
+        std::string list;
+        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+        fail(&node, name, "unknown field (expected one of: " + list + ")");
+      }
+    }
+  }
+
+ private:
+  const toml::table& table_;
+  std::string path_;
+  std::string file_;
+};
+
+const toml::table& table_at(const toml::table& root, const std::string& key, const std::string& file) {
+  const toml::node* node = root.get(key);
+  if (!node || !node->is_table())
+    throw InputError(file, node ? static_cast<int>(node->source().begin.line) : 0, 0,
+                     "field '" + key + "': expected a table [" + key + "]");
+  return *node->as_table();
+}
+
+// Waypoints from keys <prefix><unit> (e.g. path_displacement_mm), converted to SI.
+std::vector<double> waypoints(const Table& t, const std::string& prefix, Dimension dimension,
+                              const toml::table& raw) {
+  std::vector<double> out;
+  std::string found;
+  for (const auto& [key, node] : raw) {
+    const std::string name(key.str());
+    if (name.rfind(prefix, 0) != 0) continue;
+    const auto unit = find_unit(name.substr(prefix.size()));
+    if (!unit || unit->dimension != dimension)
+      t.fail(&node, name, "unknown unit suffix '" + name.substr(prefix.size()) + "' (expected " +
+                              std::string(dimension_name(dimension)) + " unit, e.g. " + prefix +
+                              si_unit(dimension).symbol + ")");
+    if (!found.empty()) t.fail(&node, name, "given twice (also as " + found + ")");
+    found = name;
+    out = t.numbers(name);
+    for (double& v : out) v *= unit->to_si;
+  }
+  return out;
+}
+
+dem::ParameterMap read_fixed_json(const std::filesystem::path& path, const std::string& section,
+                                  const Table& t) {
+  std::ifstream in(path);
+  if (!in) t.fail(t.get("fixed_parameters_file"), "fixed_parameters_file", "cannot open " + path.string());
+  nlohmann::json root;
+  try {
+    root = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& error) {
+    throw InputError(path.string(), std::string("not valid JSON: ") + error.what());
+  }
+  const nlohmann::json* object = &root;
+  if (!section.empty()) {
+    if (!root.contains(section) || !root[section].is_object())
+      t.fail(t.get("fixed_parameters_section"), "fixed_parameters_section",
+             "no object '" + section + "' in " + path.string());
+    object = &root[section];
+  }
+  dem::ParameterMap out;
+  for (const auto& [name, value] : object->items())
+    if (value.is_number()) out[name] = value.get<double>();
+  return out;
+}
+
+LossKind loss_kind(const Table& t) {
+  const std::string loss = t.text("loss", "squared");
+  if (loss == "squared") return LossKind::Squared;
+  if (loss == "huber") return LossKind::Huber;
+  if (loss == "cauchy") return LossKind::Cauchy;
+  t.fail(t.get("loss"), "loss", "expected squared, huber or cauchy, found '" + loss + "'");
+}
+
+}  // namespace
+
+FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets) {
+  const std::string name = file.string();
+  toml::table root;
+  try {
+    root = toml::parse_file(name);
+  } catch (const toml::parse_error& error) {
+    const auto& where = error.source().begin;
+    throw InputError(name, static_cast<int>(where.line), static_cast<int>(where.column),
+                     std::string(error.description()));
+  }
+  const std::filesystem::path folder = file.parent_path();
+  const auto resolve = [&](const std::string& relative) {
+    const std::filesystem::path p(relative);
+    return p.is_absolute() ? p : folder / p;
+  };
+  FitDefinition def;
+  def.file = file;
+  def.inputs.push_back(file);
+  const Table top(root, "", name);
+  top.only({"title", "wire_type", "simulator", "fit", "parameter", "experiment"});
+  def.title = top.text("title", "");
+  def.wire_type = top.text("wire_type", "default");
+
+  const toml::table& sim_table = table_at(root, "simulator", name);
+  const Table sim(sim_table, "simulator", name);
+  sim.only({"kind", "law", "fixed_parameters_file", "fixed_parameters_section", "fixed"});
+  def.simulator = sim.text("kind");
+  if (def.simulator == "law_replay") {
+    def.law = sim.text("law");
+    if (sim.has("fixed_parameters_file")) {
+      const auto path = resolve(sim.text("fixed_parameters_file"));
+      def.fixed = read_fixed_json(path, sim.text("fixed_parameters_section", ""), sim);
+      def.inputs.push_back(path);
+    }
+    if (const toml::node* fixed = sim.get("fixed")) {
+      if (!fixed->is_table()) sim.fail(fixed, "fixed", "expected a table of name = number");
+      const Table fixed_table(*fixed->as_table(), "simulator.fixed", name);
+      for (const auto& [key, value] : *fixed->as_table())
+        def.fixed[std::string(key.str())] = fixed_table.number_of(&value, std::string(key.str()));
+    }
+  } else if (def.simulator == "voce_bar") {
+    def.law = "voce_bar";
+  } else {
+    sim.fail(sim.get("kind"), "kind", "expected law_replay or voce_bar, found '" + def.simulator + "'");
+  }
+
+  if (root.contains("fit")) {
+    const Table fit(table_at(root, "fit", name), "fit", name);
+    fit.only({"loss", "loss_scale", "starts", "seed", "max_iterations", "relative_step",
+              "central_differences", "threads", "function_tolerance", "parameter_tolerance",
+              "gradient_tolerance", "disk_cache"});
+    def.disk_cache = fit.boolean("disk_cache", false);
+    def.fit.loss = loss_kind(fit);
+    def.fit.loss_scale = fit.number("loss_scale", 1.0);
+    if (!(def.fit.loss_scale > 0)) fit.fail(fit.get("loss_scale"), "loss_scale", "expected a number > 0");
+    def.fit.starts = static_cast<int>(fit.integer("starts", 1, 1));
+    def.fit.seed = static_cast<std::uint64_t>(fit.integer("seed", 1, 0));
+    def.fit.max_iterations = static_cast<int>(fit.integer("max_iterations", 50, 1));
+    def.fit.function_tolerance = fit.number("function_tolerance", def.fit.function_tolerance);
+    def.fit.parameter_tolerance = fit.number("parameter_tolerance", def.fit.parameter_tolerance);
+    def.fit.gradient_tolerance = fit.number("gradient_tolerance", def.fit.gradient_tolerance);
+    def.evaluation.relative_step = fit.number("relative_step", def.evaluation.relative_step);
+    if (!(def.evaluation.relative_step > 0 && def.evaluation.relative_step < 1))
+      fit.fail(fit.get("relative_step"), "relative_step", "expected a number in (0, 1)");
+    def.evaluation.central_differences = fit.boolean("central_differences", false);
+    def.evaluation.threads = static_cast<unsigned>(fit.integer("threads", 0, 0));
+  }
+
+  const toml::node* parameters = root.get("parameter");
+  if (!parameters || !parameters->is_array_of_tables())
+    throw InputError(name, parameters ? static_cast<int>(parameters->source().begin.line) : 0, 0,
+                     "field 'parameter': expected at least one [[parameter]] table");
+  std::size_t index = 0;
+  for (const toml::node& node : *parameters->as_array()) {
+    const Table p(*node.as_table(), "parameter[" + std::to_string(++index) + "]", name);
+    p.only({"name", "unit", "initial", "lower", "upper", "scale", "reference"});
+    ParameterDefinition d;
+    d.name = p.text("name");
+    d.unit = p.text("unit", "1");
+    d.initial = p.number("initial");
+    d.lower = p.number("lower");
+    d.upper = p.number("upper");
+    d.scale = p.number("scale", 0.0);
+    if (p.has("reference")) d.reference = p.number("reference");
+    if (!(d.lower < d.upper)) p.fail(p.get("upper"), "upper", "expected upper > lower");
+    if (d.initial < d.lower || d.initial > d.upper)
+      p.fail(p.get("initial"), "initial", "expected a value within [lower, upper]");
+    if (d.scale < 0) p.fail(p.get("scale"), "scale", "expected a number > 0");
+    for (const auto& other : def.parameters)
+      if (other.name == d.name) p.fail(p.get("name"), "name", "parameter '" + d.name + "' defined twice");
+    def.parameters.push_back(d);
+  }
+
+  const toml::node* experiments = root.get("experiment");
+  if (!experiments || !experiments->is_array_of_tables())
+    throw InputError(name, experiments ? static_cast<int>(experiments->source().begin.line) : 0, 0,
+                     "field 'experiment': expected at least one [[experiment]] table");
+  index = 0;
+  for (const toml::node& node : *experiments->as_array()) {
+    const toml::table& raw = *node.as_table();
+    const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
+    x.only({"name", "target", "abscissa", "arc_length", "channels", "weight", "branch_tolerance",
+            "increments_per_leg"},
+           "path_");
+    Experiment e;
+    e.name = x.text("name");
+    for (const auto& other : def.experiments)
+      if (other.name == e.name) x.fail(x.get("name"), "name", "experiment '" + e.name + "' defined twice");
+    const auto target = resolve(x.text("target"));
+    if (read_targets) {
+      e.target = read_csv(target);  // InputError with the CSV's own file:line:column
+      def.inputs.push_back(target);
+    }
+    def.experiment_targets.push_back(target);
+    e.abscissa = x.text("abscissa", "displacement");
+    e.kind = x.boolean("arc_length", false) ? AbscissaKind::NormalizedArcLength : AbscissaKind::Channel;
+    e.weight = x.number("weight", 1.0);
+    if (!(e.weight > 0)) x.fail(x.get("weight"), "weight", "expected a number > 0");
+    e.branch_tolerance = x.number("branch_tolerance", e.branch_tolerance);
+    if (e.branch_tolerance < 0) x.fail(x.get("branch_tolerance"), "branch_tolerance", "expected >= 0");
+    const toml::node* channels = x.get("channels");
+    if (!channels || !channels->is_array() || channels->as_array()->empty())
+      x.fail(channels, "channels", "expected a non-empty array, e.g. [\"force\"] or [{quantity = \"force\", weight = 1}]");
+    for (const toml::node& c : *channels->as_array()) {
+      ChannelWeight w;
+      if (c.is_string()) {
+        w.quantity = c.as_string()->get();
+      } else if (c.is_table()) {
+        const Table ct(*c.as_table(), x.field("channels"), name);
+        ct.only({"quantity", "weight", "scale"});
+        w.quantity = ct.text("quantity");
+        w.weight = ct.number("weight", 1.0);
+        w.scale = ct.number("scale", 0.0);
+        if (!(w.weight > 0)) ct.fail(ct.get("weight"), "weight", "expected a number > 0");
+      } else {
+        x.fail(&c, "channels", "expected a quantity name or a {quantity, weight, scale} table");
+      }
+      if (read_targets && !e.target.has(w.quantity))
+        x.fail(&c, "channels", "the target " + target.string() + " has no channel '" + w.quantity + "'");
+      e.channels.push_back(w);
+    }
+    if (read_targets && !e.target.has(e.abscissa))
+      x.fail(x.get("abscissa"), "abscissa", "the target " + target.string() + " has no channel '" + e.abscissa + "'");
+    const int increments = static_cast<int>(x.integer("increments_per_leg", 100, 1));
+    if (def.simulator == "law_replay") {
+      LoadPath path;
+      path.displacement_m = waypoints(x, "path_displacement_", Dimension::Length, raw);
+      path.rotation_rad = waypoints(x, "path_rotation_", Dimension::Angle, raw);
+      if (path.displacement_m.empty() && path.rotation_rad.empty())
+        x.fail(nullptr, "path_displacement_mm", "missing: give path_displacement_<unit> and/or path_rotation_<unit>");
+      if (path.displacement_m.empty()) path.displacement_m.assign(path.rotation_rad.size(), 0.0);
+      if (path.rotation_rad.empty()) path.rotation_rad.assign(path.displacement_m.size(), 0.0);
+      if (path.displacement_m.size() != path.rotation_rad.size() || path.displacement_m.size() < 2)
+        x.fail(nullptr, "path_rotation", "displacement and rotation waypoints must have the same length, >= 2");
+      path.increments_per_leg = increments;
+      e.simulator = std::make_shared<LawReplaySimulator>(def.law, def.fixed, path);
+    } else {
+      std::vector<double> strain;
+      if (x.has("path_strain_1")) strain = x.numbers("path_strain_1");
+      else x.fail(nullptr, "path_strain_1", "missing (the voce_bar path: strain waypoints)");
+      if (strain.size() < 2) x.fail(x.get("path_strain_1"), "path_strain_1", "expected >= 2 waypoints");
+      e.simulator = std::make_shared<VoceBarSimulator>(strain, increments);
+    }
+    try {
+      if (read_targets) validate(e);
+    } catch (const std::invalid_argument& error) {
+      x.fail(nullptr, "target", error.what());
+    }
+    def.experiments.push_back(std::move(e));
+  }
+  return def;
+}
+
+}  // namespace dtwire::calibrate
