@@ -56,6 +56,7 @@ Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
   surface_.beta_g = positive_parameter(p, law_name, "beta_g");
   surface_.rotation_flow_scale =
       detail::checked(law_name, "rotation_flow_scale", optional_parameter(p, "rotation_flow_scale", 1.0));
+  surface_.prepare();
   if (surface_.Nult < surface_.N0) throw std::invalid_argument("macro3d: Nult_N must be >= N0_N");
   damage_.W1 = nonnegative_parameter(p, law_name, "W1_J");
   damage_.W2 = positive_parameter(p, law_name, "W2_J");
@@ -67,6 +68,7 @@ Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
                                     optional_parameter(p, "shear_strength_N", 0.0), true);
   settings_.tolerance = detail::checked(law_name, "rk_tolerance", optional_parameter(p, "rk_tolerance", 1e-6));
   settings_.drift_correction = true;
+  settings_.moment_error_weight = 1.0 / (surface_.D * std::sqrt(surface_.m_f));
 
   stiffness_.axial = positive_parameter(p, law_name, "axial_stiffness_N_per_m");
   stiffness_.moment = positive_parameter(p, law_name, "bending_stiffness_Nm_per_rad");
@@ -76,15 +78,14 @@ Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
   torsion_stiffness_ = detail::checked(
       law_name, "torsion_stiffness_Nm_per_rad",
       optional_parameter(p, "torsion_stiffness_Nm_per_rad", stiffness_.moment / (1.0 + poisson_ratio)));
+  compliance_ = {1.0 / stiffness_.axial, 1.0 / stiffness_.moment, 1.0 / shear_stiffness_, 1.0 / torsion_stiffness_};
   plastic_.Ny = surface_.N0;
 }
 
 double Macro3dLaw::effective_energy(const detail::PlasticState& s, double shear_y, double shear_z,
                                     double torque) const {
-  return 0.5 * (s.y[0] * s.y[0] / stiffness_.axial +
-                (s.y[1] * s.y[1] + s.y[2] * s.y[2]) / stiffness_.moment +
-                (shear_y * shear_y + shear_z * shear_z) / shear_stiffness_ +
-                torque * torque / torsion_stiffness_);
+  return 0.5 * (s.y[0] * s.y[0] * compliance_[0] + (s.y[1] * s.y[1] + s.y[2] * s.y[2]) * compliance_[1] +
+                (shear_y * shear_y + shear_z * shear_z) * compliance_[2] + torque * torque * compliance_[3]);
 }
 
 void Macro3dLaw::update(const Vector6& increment) {

@@ -27,6 +27,7 @@ ThesisMacroElement::ThesisMacroElement(const ParameterMap& p) {
   surface_.alpha_g = nonnegative_parameter(p, law_name, "alpha_g");
   surface_.beta_g = positive_parameter(p, law_name, "beta_g");
   surface_.rotation_flow_scale = 1.0;  // degrees throughout, as the plugin
+  surface_.prepare();
   if (surface_.Nult < surface_.N0)
     throw std::invalid_argument("thesis: Nult_N must be >= N0_N");
   damage_.W1 = nonnegative_parameter(p, law_name, "W1_J");

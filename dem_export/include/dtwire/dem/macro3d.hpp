@@ -17,6 +17,8 @@
 //             rk_tolerance (default 1e-6)
 // A map with the thesis keys (EA_N, EI_Nm2_per_deg_convention, k_F, k_M, ...) is converted with
 // macro3d_parameters_from_thesis first, so the published calibrations can be used directly.
+#include <array>
+
 #include "dtwire/dem/contact_law.hpp"
 #include "dtwire/dem/detail/macroelement_damage.hpp"
 #include "dtwire/dem/detail/macroelement_integrator.hpp"
@@ -63,6 +65,7 @@ class Macro3dLaw final : public ContactLaw {
   double torsion_stiffness_ = 0.0;        // [N m/rad]
   double moment_work_weight_ = 1.0;       // weight of the moment work in the damage variable
   double shear_strength_ = 0.0;           // [N], 0: none
+  std::array<double, 4> compliance_{};    // 1 / (axial, bending, shear, torsion stiffness)
 
   detail::PlasticState plastic_;          // N, M_y, M_z, u_p, theta_py, theta_pz, a_u, a_w
   double shear_y_ = 0.0, shear_z_ = 0.0, torque_ = 0.0;

@@ -1,9 +1,10 @@
 #pragma once
 // Integration of one generalised-displacement increment of the macro-element: elastic trial,
 // elastic-plastic crossing, then explicit embedded Runge-Kutta 2(3) substepping as in the
-// published implementation (relative error tolerance, step factor 0.9 (tol/R)^(1/3) bounded to
-// [1/4, 4]; Sloan 1987, Sloan, Abbo & Sheng 2001), optionally followed after every substep by a
-// consistent drift correction back to the yield surface (Sloan, Abbo & Sheng 2001, eq. 33-35).
+// published implementation (Kutta's third-order scheme with the midpoint rule as the embedded
+// second order; relative error tolerance, step factor 0.9 (tol/R)^(1/3) bounded to [1/4, 4]; the
+// third-order solution is kept; Sloan 1987), optionally followed after every substep by a
+// consistent drift correction back to the yield surface (Sloan, Abbo & Sheng 2001).
 //
 // The state carries the surface forces (N, M_1, M_2), the signed plastic displacements
 // (u_p, w_p1, w_p2) and the hardening variables a_u = sum |du_p|, a_w = sum |dw_p|.
@@ -19,12 +20,18 @@ namespace dtwire::dem::detail {
 struct PlasticState {
   // y = (N, M_1, M_2, u_p, w_p1, w_p2, a_u, a_w)
   std::array<double, 8> y{};
-  double Ny = 0.0;  // yield strength of the current hardening state (cache)
+  double Ny = 0.0;         // yield strength of the current hardening state (cache)
+  double f = -1.0;         // normalised yield function of this state, when f_known
+  bool f_known = false;
 };
 
 struct IntegratorSettings {
   double tolerance = 1e-6;      // relative error tolerance of the RK2(3) pair
   bool drift_correction = false;
+  // Weight of the moments against the axial force in the error norm. The published norm adds
+  // newtons and newton-metres (weight 1): near N = 0 it asks for micro-newton accuracy of N and
+  // needs ~100 substeps. 1 / (D sqrt(m_f)) (= N_y / M_Y) measures both on the surface's scale.
+  double moment_error_weight = 1.0;
   int max_substeps = 100000;
 };
 
@@ -39,9 +46,10 @@ inline double moment_squared(const std::array<double, 8>& y) { return y[1] * y[1
 
 // Rates d y / d T over the pseudo-time T in [0, 1] of a plastic increment (du, dw1, dw2):
 // consistency gives the multiplier lambda = a.K.dq / (a.K.b + H), H the hardening modulus.
+// `loading` (optional) receives a.K.dq, positive when the increment loads the surface.
 inline std::array<double, 8> plastic_rates(const SurfaceParameters& p, const ElasticStiffness& k,
                                            const std::array<double, 8>& y,
-                                           const std::array<double, 3>& dq) {
+                                           const std::array<double, 3>& dq, double* loading = nullptr) {
   const Hardening hard = hardening(p, y[6], y[7]);
   const double M2 = moment_squared(y);
   const SurfaceGradients g = surface_gradients(p, y[0], M2, hard.Ny);
@@ -49,6 +57,7 @@ inline std::array<double, 8> plastic_rates(const SurfaceParameters& p, const Ela
   const double H = -g.df_dNy * (hard.dNy_dau * std::abs(g.flow_F) + hard.dNy_daw * flow_M_norm);
   const double numerator = g.df_dF * k.axial * dq[0] + g.df_dM * k.moment * (y[1] * dq[1] + y[2] * dq[2]);
   const double denominator = g.df_dF * k.axial * g.flow_F + g.df_dM * k.moment * g.flow_M * M2 + H;
+  if (loading != nullptr) *loading = numerator;
   const double lambda = denominator != 0.0 ? std::max(numerator / denominator, 0.0) : 0.0;
   std::array<double, 8> rate{};
   rate[3] = lambda * g.flow_F;
@@ -96,17 +105,20 @@ double find_crossing(const Phi& phi, double lo, double phi_lo, double hi, double
 // Moves a state that drifted outside back onto f = 0 at fixed total displacement: the correction
 // is plastic, along K b, with the hardening it implies (consistent correction, Sloan, Abbo &
 // Sheng 2001). States inside are left alone: pulling them outward would harden the surface
-// against the correction.
+// against the correction. `s.Ny` must be current. Drift below 1e-10 is left (the guarantee is
+// f <= 1e-8 after every step), which spares most corrections.
 inline void correct_drift(const SurfaceParameters& p, const ElasticStiffness& k, PlasticState& s) {
+  constexpr double accepted_drift = 1e-10;
+  const double f_original = yield_function(p, s.y[0], integrator_impl::moment_squared(s.y), s.Ny);
+  s.f = f_original;
+  s.f_known = true;
+  if (f_original <= accepted_drift) return;
   const PlasticState original = s;
-  double f_original = 0.0;
-  for (int iteration = 0; iteration < 8; ++iteration) {
+  double f = f_original;
+  for (int iteration = 0; iteration < 8 && f > 1e-13; ++iteration) {
     const Hardening hard = hardening(p, s.y[6], s.y[7]);
-    s.Ny = hard.Ny;
     const double M2 = integrator_impl::moment_squared(s.y);
     const SurfaceGradients g = surface_gradients(p, s.y[0], M2, hard.Ny);
-    if (iteration == 0) f_original = g.f;
-    if (g.f <= 1e-13) return;
     const double flow_M_norm = std::abs(g.flow_M) * std::sqrt(M2);
     const double H = -g.df_dNy * (hard.dNy_dau * std::abs(g.flow_F) + hard.dNy_daw * flow_M_norm);
     const double denominator = g.df_dF * k.axial * g.flow_F + g.df_dM * k.moment * g.flow_M * M2 + H;
@@ -123,9 +135,14 @@ inline void correct_drift(const SurfaceParameters& p, const ElasticStiffness& k,
     s.y[5] += dw2;
     s.y[6] += std::abs(dup);
     s.y[7] += dl * flow_M_norm;
+    s.Ny = hardening(p, s.y[6], s.y[7]).Ny;
+    f = yield_function(p, s.y[0], integrator_impl::moment_squared(s.y), s.Ny);
   }
-  s.Ny = hardening(p, s.y[6], s.y[7]).Ny;
-  if (yield_function(p, s.y[0], integrator_impl::moment_squared(s.y), s.Ny) > f_original) s = original;
+  if (f > f_original) {
+    s = original;
+  } else {
+    s.f = f;
+  }
 }
 
 inline double yield_value(const SurfaceParameters& p, const PlasticState& s) {
@@ -145,6 +162,7 @@ int integrate_increment(const SurfaceParameters& p, const ElasticStiffness& k,
   const double dM2 = k.moment * dq[2];
   auto elastic_at = [&](double t) {
     PlasticState s = state;
+    s.f_known = false;
     s.y[0] += t * dN;
     s.y[1] += t * dM1;
     s.y[2] += t * dM2;
@@ -155,28 +173,40 @@ int integrate_increment(const SurfaceParameters& p, const ElasticStiffness& k,
     return yield_function(p, N, M1 * M1 + M2 * M2, state.Ny);
   };
 
-  const double f_trial = phi(1.0);
-  if (f_trial <= 0.0) {  // elastic fast path
+  auto elastic_step = [&] {
     const PlasticState before = state;
     state = elastic_at(1.0);
     on_substep(before, state, 0.0, 1.0);
     return 0;
-  }
+  };
+  const double N_trial = state.y[0] + dN, M1_trial = state.y[1] + dM1, M2_trial = state.y[2] + dM2;
+  const double M2_sq_trial = M1_trial * M1_trial + M2_trial * M2_trial;
+  if (certainly_inside(p, N_trial, M2_sq_trial, state.Ny)) return elastic_step();  // fast path
+  auto f_trial = [&] { return yield_function(p, N_trial, M2_sq_trial, state.Ny); };
 
-  // Where along the elastic segment does plastic flow start?
-  const double f_start = yield_value(p, state);
+  // Where along the elastic segment does plastic flow start? States within 1e-9 of the surface
+  // (the drift left by the substepping) count as on it; there the sign of a.K.dq decides.
+  constexpr double on_surface = 1e-9;
+  const double f_start = state.f_known ? state.f : yield_value(p, state);
   double t_plastic = 0.0;
-  if (f_start < 0.0) {
-    t_plastic = find_crossing(phi, 0.0, f_start, 1.0, f_trial);
+  std::array<double, 8> first_rates{};
+  bool first_rates_known = false;
+  if (f_start < -on_surface) {
+    const double f1 = f_trial();
+    if (f1 <= 0.0) return elastic_step();
+    t_plastic = find_crossing(phi, 0.0, f_start, 1.0, f1);
   } else {
-    const SurfaceGradients g = surface_gradients(p, state.y[0], moment_squared(state.y), state.Ny);
-    const double loading = g.df_dF * dN + g.df_dM * (state.y[1] * dM1 + state.y[2] * dM2);
-    if (loading <= 0.0) {
+    double loading = 0.0;
+    first_rates = plastic_rates(p, k, state.y, dq, &loading);
+    first_rates_known = loading > 0.0;
+    if (!first_rates_known) {
+      const double f1 = f_trial();
+      if (f1 <= 0.0) return elastic_step();
       // Elastic unloading that crosses the elastic domain and reaches the far side of the surface.
       double t_inside = -1.0;
       for (int i = 1; i < 64 && t_inside < 0.0; ++i)
         if (phi(i / 64.0) < 0.0) t_inside = i / 64.0;
-      if (t_inside > 0.0) t_plastic = find_crossing(phi, t_inside, phi(t_inside), 1.0, f_trial);
+      if (t_inside > 0.0) t_plastic = find_crossing(phi, t_inside, phi(t_inside), 1.0, f1);
     }
   }
   if (t_plastic > 0.0) {
@@ -196,29 +226,43 @@ int integrate_increment(const SurfaceParameters& p, const ElasticStiffness& k,
     if (++substeps > settings.max_substeps)
       throw std::runtime_error("macro-element: too many plastic substeps in one increment");
     const auto& y = state.y;
-    const auto k1 = plastic_rates(p, k, y, rest);
+    // The rates at the start of a substep are kept while it is retried (and come from the
+    // loading test for the first one).
+    if (!first_rates_known) first_rates = plastic_rates(p, k, y, rest);
+    first_rates_known = true;
+    const auto& k1 = first_rates;
     const auto k2 = plastic_rates(p, k, combine(y, 0.5 * dT, k1), rest);
     const auto k3 = plastic_rates(p, k, combine(y, -dT, k1, 2.0 * dT, k2), rest);
     const auto second = combine(y, dT, k2);
     const auto third = combine(y, dT / 6.0, k1, dT * 2.0 / 3.0, k2, dT / 6.0, k3);
 
-    const double sigma_norm = std::max(std::sqrt(third[0] * third[0] + third[1] * third[1] + third[2] * third[2]), tiny);
-    const double Ny_third = hardening(p, third[6], third[7]).Ny;
-    const double Ny_second = hardening(p, second[6], second[7]).Ny;
+    const double w = settings.moment_error_weight;
+    const double sigma_norm =
+        std::max(std::sqrt(third[0] * third[0] + w * w * (third[1] * third[1] + third[2] * third[2])), tiny);
+    const Hardening hard_third = hardening(p, third[6], third[7]);
+    const double Ny_third = hard_third.Ny;
+    // N_y of the second-order solution, linearised about the third (their hardening variables
+    // differ by the local error only).
+    const double Ny_second = Ny_third + hard_third.dNy_dau * (second[6] - third[6]) +
+                             hard_third.dNy_daw * (second[7] - third[7]);
     const double e0 = (third[0] - second[0]) / sigma_norm;
-    const double e1 = (third[1] - second[1]) / sigma_norm;
-    const double e2 = (third[2] - second[2]) / sigma_norm;
+    const double e1 = w * (third[1] - second[1]) / sigma_norm;
+    const double e2 = w * (third[2] - second[2]) / sigma_norm;
     const double e3 = (Ny_third - Ny_second) / std::max(std::abs(Ny_third), tiny);
     const double residual = std::max(std::sqrt(e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3), tiny);
-    const double next = 0.9 * dT * std::cbrt(settings.tolerance / residual);
+    // 0.9 (tol/R)^(1/3) >= 4 when R <= tol / 87.8: the growth bound applies, no cube root needed.
+    const double next = residual * 87.8 <= settings.tolerance ? 4.0 * dT
+                                                              : 0.9 * dT * std::cbrt(settings.tolerance / residual);
     if (residual < settings.tolerance) {
       const PlasticState before = state;
       state.y = third;
       state.Ny = Ny_third;
+      state.f_known = false;
       if (settings.drift_correction) correct_drift(p, k, state);
       const double t0 = t_plastic + (1.0 - t_plastic) * T;
       T += dT;
       const double t1 = T >= 1.0 ? 1.0 : t_plastic + (1.0 - t_plastic) * T;
+      first_rates_known = false;
       if (!on_substep(before, state, t0, t1)) return substeps;
       dT = std::min({4.0 * dT, next, 1.0 - T});
     } else {
