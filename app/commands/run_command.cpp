@@ -1,12 +1,48 @@
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+#include <memory>
+
 #include "../cli.hpp"
 #include "../commands.hpp"
+#ifdef DTWIRE_HAVE_FEM
+#include "dtwire/fem/run.hpp"
+#endif
 
 namespace dtwire::app {
 
+// `dtwire run FILE.prm [--out DIR]`: a virtual FE experiment. Works under mpirun; MPI is
+// initialised inside the command (deal.II MPI_InitFinalize).
 void add_run_command(CLI::App& root, CommandSet& commands) {
-  commands.add_unavailable(root, "run", "Run a virtual FE experiment from a .prm file", "the FE solver (issues #4, #5)");
+#ifndef DTWIRE_HAVE_FEM
+  commands.add_unavailable(root, "run", "Run a virtual FE experiment from a .prm file", "the FE solver (DTWIRE_WITH_FEM=OFF)");
+#else
+  struct Options {
+    std::string file;
+    std::string out;
+    bool quiet = false;
+  };
+  auto options = std::make_shared<Options>();
+  CLI::App* command = root.add_subcommand("run", "Run a virtual FE experiment from a .prm file (MPI-capable)");
+  command->add_option("file", options->file, "Experiment parameter file (.prm)")->required();
+  command->add_option("-o,--out", options->out, "Output directory (default: fem-out/<file stem>)");
+  command->add_flag("-q,--quiet", options->quiet, "Write progress only to run.log");
+  commands.add(command, [options] {
+    fem::RunOptions run;
+    run.parameter_file = options->file;
+    run.output_directory = options->out.empty()
+                               ? std::filesystem::path("fem-out") / std::filesystem::path(options->file).stem()
+                               : std::filesystem::path(options->out);
+    run.command_line = "dtwire run " + options->file + " --out " + run.output_directory.string();
+    run.echo = !options->quiet;
+    const fem::RunSummary s = fem::run_experiment_with_mpi(run);
+    if (s.root)
+      std::cout << "run: " << s.steps << " steps, " << s.dofs << " dofs on " << s.ranks << " rank(s), peak force "
+                << s.peak_force_N << " N at " << s.displacement_at_peak_mm << " mm, " << s.wall_seconds
+                << " s; curve: " << s.curve_csv.string() << "\n";
+    return 0;
+  });
+#endif
 }
 
 }  // namespace dtwire::app

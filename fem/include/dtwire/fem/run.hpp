@@ -1,0 +1,36 @@
+#pragma once
+// `dtwire run FILE.prm`: a virtual single-wire FE experiment (finite-strain J2 plasticity,
+// deal.II). This header is deal.II-free so that the command line compiles fast.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+
+namespace dtwire::fem {
+
+struct RunOptions {
+  std::filesystem::path parameter_file;
+  std::filesystem::path output_directory;  // curve.csv, results.h5, run.log, fields/
+  std::string command_line;                // recorded in the provenance
+  bool echo = true;                        // progress on stdout (rank 0)
+};
+
+struct RunSummary {
+  bool root = true;  // this process is MPI rank 0 (the one that wrote the files)
+  unsigned ranks = 1;
+  std::size_t dofs = 0, cells = 0;
+  std::size_t steps = 0, newton_iterations = 0, cutbacks = 0;
+  double peak_force_N = 0.0, displacement_at_peak_mm = 0.0;
+  double wall_seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0;
+  std::filesystem::path curve_csv, results_h5, log;
+};
+
+// MPI must already be initialised (tests, benchmarks). Throws InputError for a bad .prm and
+// ComputationError if the load stepping falls below its minimum step (the converged part of
+// the curve is then written to curve.partial.csv).
+RunSummary run_experiment(const RunOptions& options);
+
+// For the command line: initialises MPI, PETSc and threads (deal.II MPI_InitFinalize) for the
+// duration of the call, then run_experiment.
+RunSummary run_experiment_with_mpi(const RunOptions& options);
+
+}  // namespace dtwire::fem

@@ -1,0 +1,232 @@
+#include "parameters.hpp"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <cmath>
+#include <regex>
+#include <sstream>
+
+#include "dtwire/core/error.hpp"
+
+namespace dtwire::fem {
+namespace {
+
+using dealii::ParameterHandler;
+namespace Patterns = dealii::Patterns;
+
+void declare(ParameterHandler& prm) {
+  prm.enter_subsection("Geometry");
+  prm.declare_entry("Diameter (mm)", "2.7", Patterns::Double(0.0), "Wire diameter");
+  prm.declare_entry("Length (mm)", "60", Patterns::Double(0.0), "Free length along z");
+  prm.declare_entry("Cross section", "quarter", Patterns::Selection("full|quarter"),
+                    "quarter: symmetry planes x = 0 and y = 0");
+  prm.declare_entry("Radial refinements", "1", Patterns::Integer(0, 6),
+                    "Global refinements of the cross-section disc");
+  prm.declare_entry("Axial cells", "30", Patterns::Integer(1), "Cells along the length");
+  prm.declare_entry("Imperfection", "0", Patterns::Double(0.0, 0.5),
+                    "Relative radius reduction at the imperfection centre");
+  prm.declare_entry("Imperfection centre (mm)", "30", Patterns::Double(), "z of the smallest radius");
+  prm.declare_entry("Imperfection half width (mm)", "30", Patterns::Double(0.0),
+                    "Half width of the cosine radius profile");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Material");
+  prm.declare_entry("Young modulus (MPa)", "200000", Patterns::Double(0.0), "");
+  prm.declare_entry("Poisson ratio", "0.3", Patterns::Double(-1.0, 0.5), "");
+  prm.declare_entry("Hardening law", "linear", Patterns::Selection("linear|voce|swift|table"), "");
+  prm.declare_entry("Yield stress (MPa)", "250", Patterns::Double(0.0), "linear, voce");
+  prm.declare_entry("Hardening modulus (MPa)", "0", Patterns::Double(), "linear, voce: linear term");
+  prm.declare_entry("Saturation stress (MPa)", "0", Patterns::Double(0.0), "voce");
+  prm.declare_entry("Saturation rate", "0", Patterns::Double(0.0), "voce");
+  prm.declare_entry("Swift coefficient (MPa)", "0", Patterns::Double(0.0), "swift: K");
+  prm.declare_entry("Swift offset", "0.002", Patterns::Double(0.0), "swift: eps0");
+  prm.declare_entry("Swift exponent", "0.2", Patterns::Double(0.0), "swift: n");
+  prm.declare_entry("Hardening table", "", Patterns::Anything(),
+                    "table: comma-separated plastic_strain:true_stress_MPa pairs");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Formulation");
+  prm.declare_entry("Element", "fbar", Patterns::Selection("fbar|displacement"),
+                    "fbar: locking-free mean-dilatation F-bar; displacement: plain Q1");
+  prm.declare_entry("Polynomial degree", "1", Patterns::Integer(1, 2), "");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Boundary conditions");
+  prm.declare_entry("Bottom end", "clamped", Patterns::Selection("clamped|axial|symmetry"),
+                    "z = 0: clamped (u = 0), axial (u_z = 0), symmetry (mid-plane: u_z = 0, "
+                    "curve displacement and energies doubled)");
+  prm.declare_entry("Top end", "clamped", Patterns::Selection("clamped|axial"),
+                    "z = length: u_z from the load path; clamped also fixes u_x = u_y = 0");
+  prm.declare_entry("Load path (mm)", "0:0, 1:1", Patterns::Anything(),
+                    "pseudo-time:top displacement pairs, piecewise linear (unload/reload/cycles)");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Load stepping");
+  prm.declare_entry("Initial step", "0.01", Patterns::Double(0.0), "pseudo-time");
+  prm.declare_entry("Minimum step", "1e-6", Patterns::Double(0.0), "");
+  prm.declare_entry("Maximum step", "0.05", Patterns::Double(0.0), "");
+  prm.declare_entry("Growth factor", "1.5", Patterns::Double(1.0), "");
+  prm.declare_entry("Cutback factor", "0.5", Patterns::Double(0.0, 1.0), "");
+  prm.declare_entry("Easy iterations", "4", Patterns::Integer(1), "");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Newton");
+  prm.declare_entry("Maximum iterations", "15", Patterns::Integer(1), "");
+  prm.declare_entry("Relative tolerance", "1e-10", Patterns::Double(0.0), "");
+  prm.declare_entry("Line search", "true", Patterns::Bool(), "");
+  prm.declare_entry("Maximum line search steps", "5", Patterns::Integer(0), "");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Output");
+  prm.declare_entry("Fields", "true", Patterns::Bool(), "write VTU/PVTU fields");
+  prm.declare_entry("Field interval", "0", Patterns::Integer(0), "every n steps; the last always");
+  prm.leave_subsection();
+}
+
+std::vector<std::pair<double, double>> parse_pairs(const std::string& text, const std::string& file,
+                                                   const std::string& entry) {
+  std::vector<std::pair<double, double>> pairs;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    const auto colon = item.find(':');
+    try {
+      if (colon == std::string::npos) throw std::invalid_argument("no colon");
+      std::size_t used = 0;
+      const double x = std::stod(item.substr(0, colon), &used);
+      const double y = std::stod(item.substr(colon + 1), &used);
+      if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("not finite");
+      pairs.emplace_back(x, y);
+    } catch (const std::exception&) {
+      throw InputError(file, "'" + entry + "': expected number:number pairs, found '" + item + "'");
+    }
+  }
+  return pairs;
+}
+
+EndCondition end_condition(const std::string& s) {
+  if (s == "axial") return EndCondition::axial;
+  if (s == "symmetry") return EndCondition::symmetry;
+  return EndCondition::clamped;
+}
+
+// deal.II's exception text is long; keep its "Additional information" on one line.
+std::string short_message(const std::string& what) {
+  std::string text = what;
+  const auto pos = text.find("Additional information:");
+  if (pos != std::string::npos) text = text.substr(pos + 23);
+  const auto stack = text.find("Stacktrace:");
+  if (stack != std::string::npos) text = text.substr(0, stack);
+  text = std::regex_replace(text, std::regex("[\\s-]+\\n|\\s+"), " ");
+  return std::regex_replace(text, std::regex("^ +| +$"), "");
+}
+
+}  // namespace
+
+Parameters read_parameters(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  if (!std::filesystem::is_regular_file(file)) throw InputError(name, "cannot open the parameter file");
+  ParameterHandler prm;
+  declare(prm);
+  try {
+    prm.parse_input(name, "", true);
+  } catch (const std::exception& e) {
+    const std::string message = short_message(e.what());
+    std::smatch m;
+    if (std::regex_search(message, m, std::regex("[Ll]ine <(\\d+)>")))
+      throw InputError(name, std::stoi(m[1]), 0, message);
+    throw InputError(name, message);
+  }
+
+  Parameters p;
+  prm.enter_subsection("Geometry");
+  p.geometry.diameter = prm.get_double("Diameter (mm)") * 1e-3;
+  p.geometry.length = prm.get_double("Length (mm)") * 1e-3;
+  p.geometry.quarter = prm.get("Cross section") == "quarter";
+  p.geometry.radial_refinements = prm.get_integer("Radial refinements");
+  p.geometry.axial_cells = prm.get_integer("Axial cells");
+  p.geometry.imperfection = prm.get_double("Imperfection");
+  p.geometry.imperfection_centre = prm.get_double("Imperfection centre (mm)") * 1e-3;
+  p.geometry.imperfection_half_width = prm.get_double("Imperfection half width (mm)") * 1e-3;
+  prm.leave_subsection();
+
+  prm.enter_subsection("Material");
+  p.material.young = prm.get_double("Young modulus (MPa)") * 1e6;
+  p.material.poisson = prm.get_double("Poisson ratio");
+  auto& h = p.material.hardening;
+  h.law = parse_hardening_law(prm.get("Hardening law"));
+  h.yield_stress = prm.get_double("Yield stress (MPa)") * 1e6;
+  h.linear_modulus = prm.get_double("Hardening modulus (MPa)") * 1e6;
+  h.saturation_stress = prm.get_double("Saturation stress (MPa)") * 1e6;
+  h.saturation_rate = prm.get_double("Saturation rate");
+  h.swift_coefficient = prm.get_double("Swift coefficient (MPa)") * 1e6;
+  h.swift_offset = prm.get_double("Swift offset");
+  h.swift_exponent = prm.get_double("Swift exponent");
+  for (const auto& [strain, stress] : parse_pairs(prm.get("Hardening table"), name, "Hardening table")) {
+    h.table_plastic_strain.push_back(strain);
+    h.table_stress.push_back(stress * 1e6);
+  }
+  try {
+    IsotropicHardening check(h);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(name, std::string("subsection Material: ") + e.what());
+  }
+  prm.leave_subsection();
+
+  prm.enter_subsection("Formulation");
+  p.formulation.fbar = prm.get("Element") == "fbar";
+  p.formulation.degree = prm.get_integer("Polynomial degree");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Boundary conditions");
+  p.load.bottom = end_condition(prm.get("Bottom end"));
+  p.load.top = end_condition(prm.get("Top end"));
+  for (const auto& [t, u] : parse_pairs(prm.get("Load path (mm)"), name, "Load path (mm)"))
+    p.load.path.emplace_back(t, u * 1e-3);
+  if (p.load.path.size() < 2 || p.load.path.front().first != 0.0 || p.load.path.front().second != 0.0)
+    throw InputError(name, "'Load path (mm)': expected at least two pairs starting with 0:0");
+  for (std::size_t i = 1; i < p.load.path.size(); ++i)
+    if (!(p.load.path[i].first > p.load.path[i - 1].first))
+      throw InputError(name, "'Load path (mm)': pseudo-times must increase strictly");
+  if (!p.geometry.quarter && p.load.bottom != EndCondition::clamped && p.load.top != EndCondition::clamped)
+    throw InputError(name, "a full cross-section needs at least one clamped end (rigid-body modes)");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Load stepping");
+  p.stepping.initial_step = prm.get_double("Initial step");
+  p.stepping.minimum_step = prm.get_double("Minimum step");
+  p.stepping.maximum_step = prm.get_double("Maximum step");
+  p.stepping.growth_factor = prm.get_double("Growth factor");
+  p.stepping.cutback_factor = prm.get_double("Cutback factor");
+  p.stepping.easy_iterations = prm.get_integer("Easy iterations");
+  if (!(p.stepping.minimum_step <= p.stepping.initial_step && p.stepping.initial_step <= p.stepping.maximum_step))
+    throw InputError(name, "Load stepping: expected Minimum step <= Initial step <= Maximum step");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Newton");
+  p.newton.maximum_iterations = prm.get_integer("Maximum iterations");
+  p.newton.relative_tolerance = prm.get_double("Relative tolerance");
+  p.newton.line_search = prm.get_bool("Line search");
+  p.newton.maximum_line_search_steps = prm.get_integer("Maximum line search steps");
+  prm.leave_subsection();
+
+  prm.enter_subsection("Output");
+  p.output.fields = prm.get_bool("Fields");
+  p.output.field_interval = prm.get_integer("Field interval");
+  prm.leave_subsection();
+  return p;
+}
+
+double path_displacement(const LoadParameters& load, double t) {
+  const auto& path = load.path;
+  if (t <= path.front().first) return path.front().second;
+  for (std::size_t i = 1; i < path.size(); ++i)
+    if (t <= path[i].first) {
+      const double s = (t - path[i - 1].first) / (path[i].first - path[i - 1].first);
+      return path[i - 1].second + s * (path[i].second - path[i - 1].second);
+    }
+  return path.back().second;
+}
+
+}  // namespace dtwire::fem

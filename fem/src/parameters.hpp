@@ -1,0 +1,80 @@
+#pragma once
+// The .prm file of a virtual experiment: one struct per concern (as in deal.II step-44), parsed
+// with dealii::ParameterHandler. Values are converted to SI here; the file uses mm and MPa.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "hardening.hpp"
+
+namespace dtwire::fem {
+
+struct GeometryParameters {
+  double diameter = 2.7e-3;      // m
+  double length = 60e-3;         // m, along z from 0 to length
+  bool quarter = true;           // quarter cross-section with symmetry planes x = 0, y = 0
+  unsigned radial_refinements = 1;
+  unsigned axial_cells = 30;
+  double imperfection = 0.0;     // relative radius reduction at the imperfection centre
+  double imperfection_centre = 30e-3;      // m
+  double imperfection_half_width = 30e-3;  // m, cosine profile
+};
+
+struct MaterialParameters {
+  double young = 200e9;  // Pa
+  double poisson = 0.3;
+  HardeningParameters hardening;
+};
+
+struct FormulationParameters {
+  bool fbar = true;
+  unsigned degree = 1;
+};
+
+enum class EndCondition { clamped, axial, symmetry };
+
+struct LoadParameters {
+  EndCondition bottom = EndCondition::clamped;  // z = 0
+  EndCondition top = EndCondition::clamped;     // z = length, carries the prescribed u_z
+  std::vector<std::pair<double, double>> path;  // (pseudo-time, top displacement in m)
+};
+
+struct SteppingParameters {
+  double initial_step = 0.01;  // pseudo-time
+  double minimum_step = 1e-6;
+  double maximum_step = 0.05;
+  double growth_factor = 1.5;
+  double cutback_factor = 0.5;
+  unsigned easy_iterations = 4;  // grow the step when Newton needs at most this many
+};
+
+struct NewtonParameters {
+  unsigned maximum_iterations = 15;
+  double relative_tolerance = 1e-10;  // free residual vs internal-force norm
+  bool line_search = true;
+  unsigned maximum_line_search_steps = 5;
+};
+
+struct OutputParameters {
+  unsigned field_interval = 0;  // VTU every n steps (0: none); the last step is always written
+  bool fields = true;
+};
+
+struct Parameters {
+  GeometryParameters geometry;
+  MaterialParameters material;
+  FormulationParameters formulation;
+  LoadParameters load;
+  SteppingParameters stepping;
+  NewtonParameters newton;
+  OutputParameters output;
+};
+
+// Throws InputError naming the file (and line, when deal.II reports it) and what was expected.
+Parameters read_parameters(const std::filesystem::path& file);
+
+// Top displacement (m) at pseudo-time t, piecewise linear in the load path.
+double path_displacement(const LoadParameters& load, double t);
+
+}  // namespace dtwire::fem

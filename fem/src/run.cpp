@@ -1,0 +1,151 @@
+#include "dtwire/fem/run.hpp"
+
+#include <deal.II/base/mpi.h>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/provenance.hpp"
+#include "dtwire/core/results_store.hpp"
+#include "dtwire/version.hpp"
+#include "solver.hpp"
+
+namespace dtwire::fem {
+namespace {
+
+// Writes to the log file and, if wanted, to stdout.
+class TeeBuffer : public std::streambuf {
+ public:
+  TeeBuffer(std::streambuf* a, std::streambuf* b) : a_(a), b_(b) {}
+
+ protected:
+  int overflow(int c) override {
+    if (c == EOF) return !EOF;
+    if (a_ && a_->sputc(static_cast<char>(c)) == EOF) return EOF;
+    if (b_ && b_->sputc(static_cast<char>(c)) == EOF) return EOF;
+    return c;
+  }
+  int sync() override {
+    if (a_) a_->pubsync();
+    if (b_) b_->pubsync();
+    return 0;
+  }
+
+ private:
+  std::streambuf* a_;
+  std::streambuf* b_;
+};
+
+Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& options, const Parameters& p) {
+  std::vector<double> u, f, d, e, r;
+  for (const auto& s : records) {
+    u.push_back(s.displacement);
+    f.push_back(s.force);
+    d.push_back(s.plastic_dissipation);
+    e.push_back(s.elastic_energy);
+    r.push_back(s.neck_radius);
+  }
+  Curve c;
+  c.add_channel_si("displacement", Dimension::Length, u, *find_unit("mm"));
+  c.add_channel_si("force", Dimension::Force, f, *find_unit("N"));
+  c.add_channel_si("plastic_dissipation", Dimension::Energy, d, *find_unit("J"));
+  c.add_channel_si("elastic_energy", Dimension::Energy, e, *find_unit("J"));
+  c.add_channel_si("neck_radius", Dimension::Length, r, *find_unit("mm"));
+  c.set_metadata("source", "dtwire run " + options.parameter_file.filename().string());
+  c.set_metadata("model", std::string("finite-strain J2 plasticity, ") +
+                              (p.formulation.fbar ? "F-bar" : "plain displacement") + " Q" +
+                              std::to_string(p.formulation.degree) + " hexahedra");
+  return c;
+}
+
+}  // namespace
+
+RunSummary run_experiment(const RunOptions& options) {
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (!initialised) throw std::logic_error("run_experiment: MPI is not initialised");
+  const auto start = std::chrono::steady_clock::now();
+  const Parameters parameters = read_parameters(options.parameter_file);
+  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  const auto& out = options.output_directory;
+  if (root) std::filesystem::create_directories(out);
+  MPI_Barrier(MPI_COMM_WORLD);
+
+  std::ofstream log_file;
+  if (root) log_file.open(out / "run.log");
+  TeeBuffer tee(root ? log_file.rdbuf() : nullptr, root && options.echo ? std::cout.rdbuf() : nullptr);
+  std::ostream log(&tee);
+  log << "dtwire " << kVersion << " (" << kGitHash << "): " << options.parameter_file.string() << "\n";
+
+  WireSolver solver(parameters, log, parameters.output.fields ? out / "fields" : std::filesystem::path());
+  std::vector<StepRecord> records;
+  RunSummary summary;
+  summary.root = root;
+  summary.curve_csv = out / "curve.csv";
+  summary.results_h5 = out / "results.h5";
+  summary.log = out / "run.log";
+  try {
+    solver.run([&](const StepRecord& r) { records.push_back(r); });
+  } catch (const ComputationError&) {
+    if (root && records.size() >= kMinimumCurvePoints)
+      write_csv(make_curve(records, options, parameters), out / "curve.partial.csv");
+    throw;
+  }
+  const auto& st = solver.statistics();
+  summary.ranks = st.ranks;
+  summary.dofs = st.dofs;
+  summary.cells = st.cells;
+  summary.steps = st.steps;
+  summary.newton_iterations = st.newton_iterations;
+  summary.cutbacks = st.cutbacks;
+  summary.assembly_seconds = st.assembly_seconds;
+  summary.solve_seconds = st.solve_seconds;
+  for (const auto& r : records)
+    if (r.force > summary.peak_force_N) {
+      summary.peak_force_N = r.force;
+      summary.displacement_at_peak_mm = r.displacement * 1e3;
+    }
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  log << "done: " << st.steps << " steps, " << st.newton_iterations << " Newton iterations, " << st.cutbacks
+      << " cut-backs, " << st.assemblies << " assemblies; peak force " << summary.peak_force_N << " N at "
+      << summary.displacement_at_peak_mm << " mm; wall " << summary.wall_seconds << " s (assembly "
+      << st.assembly_seconds << " s, solve " << st.solve_seconds << " s)\n";
+  log.flush();
+  if (!root) return summary;
+
+  const Curve curve = make_curve(records, options, parameters);
+  if (records.size() >= kMinimumCurvePoints) write_csv(curve, summary.curve_csv);
+  else throw ComputationError("fewer than 3 load steps: no curve written");
+  Results results;
+  results.curves.emplace_back("curve", curve);
+  results.parameters.push_back({"peak_force", summary.peak_force_N, "N", std::nullopt});
+  results.parameters.push_back({"displacement_at_peak", summary.displacement_at_peak_mm * 1e-3, "m", std::nullopt});
+  results.parameters.push_back({"dofs", static_cast<double>(st.dofs), "1", std::nullopt});
+  results.parameters.push_back({"steps", static_cast<double>(st.steps), "1", std::nullopt});
+  results.parameters.push_back({"newton_iterations", static_cast<double>(st.newton_iterations), "1", std::nullopt});
+  results.parameters.push_back({"mpi_ranks", static_cast<double>(st.ranks), "1", std::nullopt});
+  const auto files = solver.field_files();
+  for (std::size_t i = 0; i < files.size(); ++i)
+    results.fields.emplace_back(i == 0 ? "pvd" : "step_" + std::to_string(i - 1), "fields/" + files[i]);
+  results.provenance = make_provenance(options.command_line, {options.parameter_file});
+  write_results(results, summary.results_h5);
+  return summary;
+}
+
+RunSummary run_experiment_with_mpi(const RunOptions& options) {
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (initialised) return run_experiment(options);
+  int argc = 1;
+  char name[] = "dtwire";
+  char* args[] = {name, nullptr};
+  char** argv = args;
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
+  return run_experiment(options);
+}
+
+}  // namespace dtwire::fem

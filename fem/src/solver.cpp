@@ -1,0 +1,487 @@
+#include "solver.hpp"
+
+#include <deal.II/base/conditional_ostream.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/base/timer.h>
+#include <deal.II/base/work_stream.h>
+#include <deal.II/distributed/tria.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/fe/fe_system.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/petsc_solver.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/numerics/data_out.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "dtwire/core/error.hpp"
+#include "fbar_element.hpp"
+#include "wire_mesh.hpp"
+
+namespace dtwire::fem {
+
+using namespace dealii;
+
+namespace {
+
+struct QuadraturePointRecord {
+  PlasticState committed, trial;
+  SymTensor2 cauchy;
+};
+
+struct ScratchData {
+  ScratchData(const FiniteElement<3>& fe, const Quadrature<3>& q)
+      : values(fe, q, update_gradients | update_JxW_values) {}
+  ScratchData(const ScratchData& other)
+      : values(other.values.get_fe(), other.values.get_quadrature(), other.values.get_update_flags()) {}
+  FEValues<3> values;
+  ElementGeometry geometry;
+  std::vector<double> u;
+  std::vector<PlasticState> history;
+  ElementResult result;
+};
+
+struct CopyData {
+  FullMatrix<double> matrix;
+  Vector<double> rhs;
+  std::vector<double> internal_force;
+  std::vector<types::global_dof_index> dofs;
+  double elastic_energy = 0.0, dissipation = 0.0;
+  bool failed = false;
+};
+
+struct AssemblyOutcome {
+  bool ok = true;
+  double residual = 0.0;        // l2 norm of the free (unconstrained) residual
+  double force_scale = 0.0;     // l2 norm of the internal force vector, reactions included
+};
+
+}  // namespace
+
+struct WireSolver::Impl {
+  Impl(const Parameters& p, std::ostream& log_stream, std::filesystem::path fields)
+      : prm(p),
+        comm(MPI_COMM_WORLD),
+        log(log_stream, Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0),
+        triangulation(comm),
+        fe(FE_Q<3>(p.formulation.degree), 3),
+        dof_handler(triangulation),
+        quadrature(p.formulation.degree + 1),
+        material(ElasticParameters{p.material.young, p.material.poisson}, IsotropicHardening(p.material.hardening)),
+        field_directory(std::move(fields)) {}
+
+  Parameters prm;
+  MPI_Comm comm;
+  ConditionalOStream log;
+  parallel::distributed::Triangulation<3> triangulation;
+  FESystem<3> fe;
+  DoFHandler<3> dof_handler;
+  QGauss<3> quadrature;
+  J2LogPlasticity material;
+  std::filesystem::path field_directory;
+
+  IndexSet owned, relevant, top_axial_dofs;
+  AffineConstraints<double> homogeneous, predictor;
+  PETScWrappers::MPI::SparseMatrix matrix;
+  PETScWrappers::MPI::Vector solution, rhs, internal_force, increment;
+  PETScWrappers::MPI::Vector ghosted;  // solution with ghost entries, for assembly
+  std::vector<QuadraturePointRecord> points;
+  double elastic_energy = 0.0, dissipation = 0.0;
+
+  SolverStatistics stats;
+  std::vector<std::string> written_fields;
+  std::vector<std::pair<double, std::string>> pvd_records;
+
+  double force_multiplier() const { return prm.geometry.quarter ? 4.0 : 1.0; }
+  double length_multiplier() const { return prm.load.bottom == EndCondition::symmetry ? 2.0 : 1.0; }
+
+  void setup();
+  void make_constraints(AffineConstraints<double>& c, double top_increment) const;
+  AssemblyOutcome assemble(bool with_matrix, const AffineConstraints<double>& constraints);
+  void commit();
+  double reaction() const;
+  double neck_radius() const;
+  bool solve_step(double t_old, double t_new, unsigned& iterations, std::string& reason);
+  void write_fields(unsigned step, double time);
+};
+
+void WireSolver::Impl::setup() {
+  make_wire_mesh(prm.geometry, triangulation);
+  dof_handler.distribute_dofs(fe);
+  owned = dof_handler.locally_owned_dofs();
+  DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
+  stats.dofs = dof_handler.n_dofs();
+  stats.cells = triangulation.n_global_active_cells();
+  stats.ranks = Utilities::MPI::n_mpi_processes(comm);
+
+  make_constraints(homogeneous, 0.0);
+  make_constraints(predictor, 1.0);  // same sparsity; values reset per step
+  DynamicSparsityPattern dsp(relevant);
+  DoFTools::make_sparsity_pattern(dof_handler, dsp, predictor, false);
+  SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+  matrix.reinit(owned, owned, dsp, comm);
+  solution.reinit(owned, comm);
+  rhs.reinit(owned, comm);
+  internal_force.reinit(owned, comm);
+  increment.reinit(owned, comm);
+  ghosted.reinit(owned, relevant, comm);
+
+  const FEValuesExtractors::Scalar uz(2);
+  top_axial_dofs = DoFTools::extract_boundary_dofs(dof_handler, fe.component_mask(uz), {kTop});
+  points.assign(triangulation.n_active_cells() * quadrature.size(), QuadraturePointRecord{});
+  log << "mesh: " << stats.cells << " cells, " << stats.dofs << " dofs, " << stats.ranks << " MPI rank(s), "
+      << MultithreadInfo::n_threads() << " thread(s) per rank, element "
+      << (prm.formulation.fbar ? "F-bar" : "plain displacement") << " Q" << prm.formulation.degree << "\n";
+}
+
+void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double top_increment) const {
+  c.clear();
+  c.reinit(relevant);
+  const FEValuesExtractors::Scalar ux(0), uy(1), uz(2);
+  const ComponentMask all(3, true), z_only = fe.component_mask(uz);
+  const auto zero = Functions::ZeroFunction<3>(3);
+  Vector<double> top_value(3);
+  top_value[2] = top_increment;
+  const Functions::ConstantFunction<3> top(top_value);
+  VectorTools::interpolate_boundary_values(dof_handler, kTop, top, c,
+                                           prm.load.top == EndCondition::clamped ? all : z_only);
+  VectorTools::interpolate_boundary_values(dof_handler, kBottom, zero, c,
+                                           prm.load.bottom == EndCondition::clamped ? all : z_only);
+  if (prm.geometry.quarter) {
+    VectorTools::interpolate_boundary_values(dof_handler, kSymmetryX, zero, c, fe.component_mask(ux));
+    VectorTools::interpolate_boundary_values(dof_handler, kSymmetryY, zero, c, fe.component_mask(uy));
+  }
+  c.close();
+}
+
+AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstraints<double>& constraints) {
+  Timer timer;
+  ghosted = solution;
+  if (with_matrix) matrix = 0.0;
+  rhs = 0.0;
+  internal_force = 0.0;
+  elastic_energy = dissipation = 0.0;
+  bool failed = false;
+  const unsigned n_q = quadrature.size();
+  const unsigned n_dofs = fe.n_dofs_per_cell();
+  const FEValuesExtractors::Vector displacement(0);
+  const bool fbar = prm.formulation.fbar;
+
+  auto worker = [&](const typename DoFHandler<3>::active_cell_iterator& cell, ScratchData& scratch, CopyData& copy) {
+    scratch.values.reinit(cell);
+    copy.dofs.resize(n_dofs);
+    cell->get_dof_indices(copy.dofs);
+    auto& geo = scratch.geometry;
+    geo.grad.resize(n_q);
+    geo.weight.resize(n_q);
+    for (unsigned q = 0; q < n_q; ++q) {
+      geo.grad[q].resize(n_dofs);
+      for (unsigned i = 0; i < n_dofs; ++i) geo.grad[q][i] = scratch.values[displacement].gradient(i, q);
+      geo.weight[q] = scratch.values.JxW(q);
+    }
+    scratch.u.resize(n_dofs);
+    for (unsigned i = 0; i < n_dofs; ++i) scratch.u[i] = ghosted[copy.dofs[i]];
+    const std::size_t first = cell->active_cell_index() * n_q;
+    scratch.history.resize(n_q);
+    for (unsigned q = 0; q < n_q; ++q) scratch.history[q] = points[first + q].committed;
+    copy.failed = false;
+    try {
+      evaluate_element(material, geo, scratch.u, scratch.history, fbar, with_matrix, scratch.result);
+    } catch (const std::domain_error&) {
+      copy.failed = true;
+      return;
+    }
+    const auto& r = scratch.result;
+    copy.elastic_energy = copy.dissipation = 0.0;
+    for (unsigned q = 0; q < n_q; ++q) {
+      auto& record = points[first + q];
+      record.trial = r.points[q].state;
+      // Cauchy stress: tau / det(Fbar), det(Fbar) = exp(tr eps_e) since det(Fp) = 1.
+      const double K = material.elastic().bulk();
+      record.cauchy = r.points[q].kirchhoff / std::exp(trace(r.points[q].kirchhoff) / (3.0 * K));
+      copy.elastic_energy += r.points[q].elastic_energy * geo.weight[q];
+      copy.dissipation += r.points[q].state.plastic_dissipation * geo.weight[q];
+    }
+    copy.internal_force = r.residual;
+    copy.rhs.reinit(n_dofs);
+    for (unsigned i = 0; i < n_dofs; ++i) copy.rhs[i] = -r.residual[i];
+    if (with_matrix) {
+      copy.matrix.reinit(n_dofs, n_dofs);
+      for (unsigned i = 0; i < n_dofs; ++i)
+        for (unsigned j = 0; j < n_dofs; ++j) copy.matrix(i, j) = r.tangent[i * n_dofs + j];
+    }
+  };
+  auto copier = [&](const CopyData& copy) {
+    if (copy.failed) {
+      failed = true;
+      return;
+    }
+    if (with_matrix) constraints.distribute_local_to_global(copy.matrix, copy.rhs, copy.dofs, matrix, rhs);
+    else constraints.distribute_local_to_global(copy.rhs, copy.dofs, rhs);
+    internal_force.add(copy.dofs, copy.internal_force);
+    elastic_energy += copy.elastic_energy;
+    dissipation += copy.dissipation;
+  };
+  using CellFilter = FilteredIterator<typename DoFHandler<3>::active_cell_iterator>;
+  WorkStream::run(CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.begin_active()),
+                  CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.end()), worker, copier,
+                  ScratchData(fe, quadrature), CopyData());
+  if (with_matrix) matrix.compress(VectorOperation::add);
+  rhs.compress(VectorOperation::add);
+  internal_force.compress(VectorOperation::add);
+  elastic_energy = Utilities::MPI::sum(elastic_energy, comm);
+  dissipation = Utilities::MPI::sum(dissipation, comm);
+  ++stats.assemblies;
+
+  AssemblyOutcome outcome;
+  outcome.ok = Utilities::MPI::max(failed ? 1 : 0, comm) == 0;
+  if (outcome.ok) {
+    outcome.residual = rhs.l2_norm();
+    outcome.force_scale = internal_force.l2_norm();
+    outcome.ok = std::isfinite(outcome.residual) && std::isfinite(outcome.force_scale);
+  }
+  stats.assembly_seconds += timer.wall_time();
+  return outcome;
+}
+
+void WireSolver::Impl::commit() {
+  for (auto& p : points) p.committed = p.trial;
+}
+
+double WireSolver::Impl::reaction() const {
+  double local = 0.0;
+  for (const auto i : top_axial_dofs)
+    if (owned.is_element(i)) local += internal_force[i];
+  return Utilities::MPI::sum(local, comm) * force_multiplier();
+}
+
+double WireSolver::Impl::neck_radius() const {
+  // The vertex layer nearest the imperfection centre (mid-length without imperfection).
+  const auto& g = prm.geometry;
+  const double h = g.length / g.axial_cells;
+  const double z_ref = g.imperfection > 0.0 ? g.imperfection_centre : 0.5 * g.length;
+  const double z_layer = std::min(g.length, std::max(0.0, std::round(z_ref / h) * h));
+  double smallest = std::numeric_limits<double>::max();
+  for (const auto& cell : dof_handler.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    for (const auto f : cell->face_indices()) {
+      if (!cell->face(f)->at_boundary() || cell->face(f)->boundary_id() != kHull) continue;
+      for (const auto v : cell->face(f)->vertex_indices()) {
+        const Point<3> x = cell->face(f)->vertex(v);
+        if (std::abs(x[2] - z_layer) > 1e-6 * h) continue;
+        const double X = x[0] + ghosted[cell->face(f)->vertex_dof_index(v, 0)];
+        const double Y = x[1] + ghosted[cell->face(f)->vertex_dof_index(v, 1)];
+        smallest = std::min(smallest, std::hypot(X, Y));
+      }
+    }
+  }
+  return Utilities::MPI::min(smallest, comm);
+}
+
+// Newton-Raphson for one load step. Iteration 0 applies the boundary increment through
+// inhomogeneous constraints (linearised predictor, as in deal.II step-44); later iterations are
+// homogeneous. Backtracking line search (from iteration 2 on, when the residual did not drop).
+bool WireSolver::Impl::solve_step(double t_old, double t_new, unsigned& iterations, std::string& reason) {
+  const double increment_value = path_displacement(prm.load, t_new) - path_displacement(prm.load, t_old);
+  make_constraints(predictor, increment_value);
+  const double floor = 1e-14 * prm.material.young * prm.geometry.diameter * prm.geometry.diameter;
+  PETScWrappers::MPI::Vector previous(owned, comm), previous_increment(owned, comm);
+  double previous_residual = 0.0;
+  std::ostringstream history;
+  history << std::scientific << std::setprecision(2);
+  for (unsigned it = 0; it <= prm.newton.maximum_iterations; ++it) {
+    const auto& constraints = it == 0 ? predictor : homogeneous;
+    AssemblyOutcome a = assemble(true, constraints);
+    if (it >= 2 && prm.newton.line_search && (!a.ok || a.residual > (1.0 - 1e-4) * previous_residual)) {
+      double step = 1.0;
+      for (unsigned ls = 0; ls < prm.newton.maximum_line_search_steps; ++ls) {
+        step *= 0.5;
+        solution = previous;
+        solution.add(step, previous_increment);
+        a = assemble(false, homogeneous);
+        if (a.ok && a.residual < (1.0 - 1e-4 * step) * previous_residual) break;
+      }
+      history << " [line search " << step << "]";
+      if (a.ok) a = assemble(true, homogeneous);
+    }
+    if (!a.ok) {
+      reason = "inverted element or failed return mapping at iteration " + std::to_string(it);
+      log << "    newton:" << history.str() << "\n";
+      return false;
+    }
+    if (it > 0) {
+      const double relative = a.residual / std::max(a.force_scale, floor);
+      history << " " << relative;
+      if (a.residual <= prm.newton.relative_tolerance * std::max(a.force_scale, floor)) {
+        iterations = it;
+        log << "    newton (relative residual):" << history.str() << "\n";
+        return true;
+      }
+      if (it >= 2 && a.residual > 1e6 * previous_residual) break;
+    }
+    Timer timer;
+    SolverControl control(1, 0.0);
+    PETScWrappers::SparseDirectMUMPS direct(control, comm);
+    try {
+      direct.solve(matrix, increment, rhs);
+    } catch (const std::exception& e) {
+      reason = "direct solver failed";
+      stats.solve_seconds += timer.wall_time();
+      return false;
+    }
+    stats.solve_seconds += timer.wall_time();
+    constraints.distribute(increment);
+    previous = solution;
+    previous_increment = increment;
+    previous_residual = a.residual;
+    solution.add(1.0, increment);
+  }
+  reason = "no convergence in " + std::to_string(prm.newton.maximum_iterations) + " iterations";
+  log << "    newton (relative residual):" << history.str() << "\n";
+  return false;
+}
+
+void WireSolver::Impl::write_fields(unsigned step, double time) {
+  if (field_directory.empty()) return;
+  ghosted = solution;
+  DataOut<3> out;
+  out.attach_dof_handler(dof_handler);
+  const std::vector<std::string> names(3, "displacement_m");
+  const std::vector<DataComponentInterpretation::DataComponentInterpretation> kinds(
+      3, DataComponentInterpretation::component_is_part_of_vector);
+  out.add_data_vector(ghosted, names, DataOut<3>::type_dof_data, kinds);
+  const std::size_t n_cells = triangulation.n_active_cells();
+  Vector<float> von_mises(n_cells), plastic_strain(n_cells), triaxiality(n_cells), lode(n_cells), rank(n_cells);
+  const unsigned n_q = quadrature.size();
+  for (const auto& cell : triangulation.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    const std::size_t c = cell->active_cell_index();
+    SymTensor2 mean_stress;
+    double alpha = 0.0;
+    for (unsigned q = 0; q < n_q; ++q) {
+      mean_stress += points[c * n_q + q].cauchy / n_q;
+      alpha += points[c * n_q + q].committed.equivalent_plastic_strain / n_q;
+    }
+    const StressInvariants inv = stress_invariants(mean_stress);
+    von_mises[c] = inv.von_mises;
+    plastic_strain[c] = alpha;
+    triaxiality[c] = inv.triaxiality;
+    lode[c] = inv.lode_parameter;
+    rank[c] = triangulation.locally_owned_subdomain();
+  }
+  out.add_data_vector(von_mises, "von_mises_Pa");
+  out.add_data_vector(plastic_strain, "equivalent_plastic_strain");
+  out.add_data_vector(triaxiality, "triaxiality");
+  out.add_data_vector(lode, "lode_parameter");
+  out.add_data_vector(rank, "mpi_rank");
+  out.build_patches();
+  std::filesystem::create_directories(field_directory);
+  const std::string pvtu = out.write_vtu_with_pvtu_record(field_directory.string() + "/", "fields", step, comm, 5);
+  pvd_records.emplace_back(time, pvtu);
+  written_fields.push_back(pvtu);
+  if (Utilities::MPI::this_mpi_process(comm) == 0) {
+    std::ofstream pvd(field_directory / "fields.pvd");
+    DataOutBase::write_pvd_record(pvd, pvd_records);
+  }
+}
+
+WireSolver::WireSolver(const Parameters& parameters, std::ostream& log, std::filesystem::path field_directory)
+    : impl_(std::make_unique<Impl>(parameters, log, std::move(field_directory))) {
+  impl_->setup();
+}
+
+WireSolver::~WireSolver() = default;
+
+const SolverStatistics& WireSolver::statistics() const { return impl_->stats; }
+bool WireSolver::is_root() const { return Utilities::MPI::this_mpi_process(impl_->comm) == 0; }
+std::vector<std::string> WireSolver::field_files() const {
+  auto files = impl_->written_fields;
+  if (!files.empty()) files.insert(files.begin(), "fields.pvd");
+  return files;
+}
+
+void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
+  Impl& s = *impl_;
+  const auto& stepping = s.prm.stepping;
+  const auto& path = s.prm.load.path;
+  const double t_end = path.back().first;
+  const double tiny = 1e-12 * t_end;
+
+  s.assemble(false, s.homogeneous);  // initial state (stress-free), fills the field records
+  s.commit();
+  StepRecord record;
+  record.neck_radius = s.neck_radius();
+  on_step(record);
+  const unsigned interval = s.prm.output.fields ? s.prm.output.field_interval : 0;
+  if (interval > 0) s.write_fields(0, 0.0);
+
+  double t = 0.0, dt = stepping.initial_step;
+  unsigned step = 0;
+  PETScWrappers::MPI::Vector saved(s.owned, s.comm);
+  s.log << std::setprecision(6);
+  while (t < t_end - tiny) {
+    double knot = t_end;
+    for (const auto& p : path)
+      if (p.first > t + tiny) { knot = p.first; break; }
+    double dt_try = std::min(dt, knot - t);
+    if (knot - (t + dt_try) < 1e-3 * dt_try) dt_try = knot - t;  // no sliver step before a knot
+    saved = s.solution;
+    unsigned iterations = 0;
+    std::string reason;
+    s.log << "step " << step + 1 << ": t = " << t << " -> " << t + dt_try << " (dt = " << dt_try
+          << "), top displacement " << path_displacement(s.prm.load, t + dt_try) * 1e3 << " mm\n";
+    if (s.solve_step(t, t + dt_try, iterations, reason)) {
+      s.commit();
+      t = std::abs(t + dt_try - knot) <= tiny ? knot : t + dt_try;
+      ++step;
+      ++s.stats.steps;
+      s.stats.newton_iterations += iterations;
+      record.step = step;
+      record.time = t;
+      record.displacement = path_displacement(s.prm.load, t) * s.length_multiplier();
+      record.force = s.reaction();
+      record.plastic_dissipation = s.dissipation * s.force_multiplier() * s.length_multiplier();
+      record.elastic_energy = s.elastic_energy * s.force_multiplier() * s.length_multiplier();
+      record.neck_radius = s.neck_radius();
+      record.iterations = iterations;
+      s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "
+            << record.neck_radius * 1e3 << " mm\n";
+      on_step(record);
+      if (interval > 0 && step % interval == 0) s.write_fields(step, t);
+      if (iterations <= stepping.easy_iterations && dt < stepping.maximum_step) {
+        const double grown = std::min(stepping.maximum_step, dt * stepping.growth_factor);
+        s.log << "  easy step (" << iterations << " <= " << stepping.easy_iterations << " iterations): dt "
+              << dt << " -> " << grown << "\n";
+        dt = grown;
+      }
+    } else {
+      s.solution = saved;
+      ++s.stats.cutbacks;
+      const double reduced = dt_try * stepping.cutback_factor;
+      s.log << "  step failed (" << reason << "): cut back dt " << dt_try << " -> " << reduced << "\n";
+      if (reduced < stepping.minimum_step) {
+        s.log << "  dt below the minimum step " << stepping.minimum_step << ": giving up at t = " << t << "\n";
+        throw ComputationError("load stepping failed at pseudo-time " + std::to_string(t) + " (" + reason +
+                               "; step below the minimum " + std::to_string(stepping.minimum_step) + ")");
+      }
+      dt = reduced;
+    }
+  }
+  if (s.prm.output.fields && (interval == 0 || step % interval != 0)) s.write_fields(step, t);
+}
+
+}  // namespace dtwire::fem

@@ -1,0 +1,58 @@
+#pragma once
+// The quasi-static total-Lagrangian wire solver (deal.II, MPI): mesh, F-bar elements, Newton with
+// line search, adaptive load stepping, reactions from the residual, field output. pimpl so
+// that callers do not compile deal.II's heavy headers.
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "parameters.hpp"
+
+namespace dtwire::fem {
+
+// One converged load step, in SI units and for the whole wire (symmetry multipliers applied).
+struct StepRecord {
+  unsigned step = 0;
+  double time = 0.0;
+  double displacement = 0.0;  // m, elongation of the whole specimen
+  double force = 0.0;         // N, axial reaction
+  double plastic_dissipation = 0.0;  // J
+  double elastic_energy = 0.0;       // J
+  double neck_radius = 0.0;          // m, smallest deformed radius in the imperfection plane
+  unsigned iterations = 0;
+};
+
+struct SolverStatistics {
+  std::size_t dofs = 0, cells = 0;
+  unsigned ranks = 1;
+  std::size_t steps = 0, newton_iterations = 0, cutbacks = 0, assemblies = 0;
+  double assembly_seconds = 0.0, solve_seconds = 0.0;
+};
+
+class WireSolver {
+ public:
+  // `log` receives every stepping decision (only rank 0 writes). Fields go to field_directory
+  // (empty: none).
+  WireSolver(const Parameters& parameters, std::ostream& log, std::filesystem::path field_directory);
+  ~WireSolver();
+  WireSolver(const WireSolver&) = delete;
+  WireSolver& operator=(const WireSolver&) = delete;
+
+  // Follows the load path; on_step after every converged step (and for the initial state).
+  // Throws ComputationError when a step would fall below the minimum step.
+  void run(const std::function<void(const StepRecord&)>& on_step);
+
+  const SolverStatistics& statistics() const;
+  bool is_root() const;
+  std::vector<std::string> field_files() const;  // the .pvd record and .pvtu files written
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace dtwire::fem

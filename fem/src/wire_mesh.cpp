@@ -1,0 +1,65 @@
+#include "wire_mesh.hpp"
+
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_tools.h>
+#include <deal.II/grid/manifold_lib.h>
+
+#include <cmath>
+
+namespace dtwire::fem {
+
+double wire_radius(const GeometryParameters& g, double z) {
+  const double R = 0.5 * g.diameter;
+  const double s = (z - g.imperfection_centre) / g.imperfection_half_width;
+  if (g.imperfection <= 0.0 || std::abs(s) >= 1.0) return R;
+  return R * (1.0 - 0.5 * g.imperfection * (1.0 + std::cos(M_PI * s)));
+}
+
+void make_wire_mesh(const GeometryParameters& g, dealii::Triangulation<3>& target) {
+  using namespace dealii;
+  const double R = 0.5 * g.diameter;
+  Triangulation<2> disc;
+  if (g.quarter) GridGenerator::quarter_hyper_ball(disc, Point<2>(), R);
+  else GridGenerator::hyper_ball(disc, Point<2>(), R);
+  // Circle on the curved boundary, transfinite interpolation inside (as hyper_ball does).
+  disc.reset_all_manifolds();
+  disc.set_all_manifold_ids(1);
+  for (const auto& cell : disc.active_cell_iterators())
+    for (const auto f : cell->face_indices())
+      if (cell->face(f)->at_boundary() &&
+          std::abs(cell->face(f)->vertex(0).norm() - R) < 1e-9 * R &&
+          std::abs(cell->face(f)->vertex(1).norm() - R) < 1e-9 * R)
+        cell->face(f)->set_manifold_id(0);
+  disc.set_manifold(0, SphericalManifold<2>(Point<2>()));
+  TransfiniteInterpolationManifold<2> interior;
+  interior.initialize(disc);
+  disc.set_manifold(1, interior);
+  disc.refine_global(g.radial_refinements);
+
+  Triangulation<2> flat;
+  GridGenerator::flatten_triangulation(disc, flat);
+  Triangulation<3> wire;
+  GridGenerator::extrude_triangulation(flat, g.axial_cells + 1, g.length, wire);
+  GridTools::transform(
+      [&](const Point<3>& p) {
+        const double s = wire_radius(g, p[2]) / R;
+        return Point<3>(p[0] * s, p[1] * s, p[2]);
+      },
+      wire);
+
+  const double tol = 1e-9 * R;
+  for (const auto& cell : wire.active_cell_iterators())
+    for (const auto f : cell->face_indices()) {
+      if (!cell->face(f)->at_boundary()) continue;
+      const Point<3> c = cell->face(f)->center();
+      types::boundary_id id = kHull;
+      if (std::abs(c[2]) < tol) id = kBottom;
+      else if (std::abs(c[2] - g.length) < tol) id = kTop;
+      else if (g.quarter && std::abs(c[0]) < tol) id = kSymmetryX;
+      else if (g.quarter && std::abs(c[1]) < tol) id = kSymmetryY;
+      cell->face(f)->set_boundary_id(id);
+    }
+  target.copy_triangulation(wire);
+}
+
+}  // namespace dtwire::fem

@@ -1,0 +1,21 @@
+#pragma once
+// Hexahedral mesh of a straight round wire along z (0..length): a 2D disc (or quarter disc)
+// refined with its circular boundary, extruded, then scaled radially by the imperfection
+// profile r(z) = R (1 - delta (1 + cos(pi (z - zc) / w)) / 2) for |z - zc| < w.
+// Boundary ids: 0 lateral surface, 1 bottom (z = 0), 2 top (z = length), 3 plane x = 0,
+// 4 plane y = 0 (quarter section).
+#include <deal.II/grid/tria.h>
+
+#include "parameters.hpp"
+
+namespace dtwire::fem {
+
+enum BoundaryId : unsigned { kHull = 0, kBottom = 1, kTop = 2, kSymmetryX = 3, kSymmetryY = 4 };
+
+// `target` must be empty; it may be a parallel::distributed::Triangulation (coarse copy).
+void make_wire_mesh(const GeometryParameters& geometry, dealii::Triangulation<3>& target);
+
+// The radius of the undeformed wire at height z.
+double wire_radius(const GeometryParameters& geometry, double z);
+
+}  // namespace dtwire::fem
