@@ -40,14 +40,19 @@ void synthesize_targets(const calibrate::FitDefinition& def, const std::filesyst
     const Curve simulated = experiment.simulator->simulate(values);
     const std::size_t stride = std::max<std::size_t>(1, (simulated.size() + points - 2) / (points - 1));
     Curve out;
+    // The abscissa, the path's own channels (context for plots), then the compared channels.
     std::vector<std::string> quantities{experiment.abscissa};
+    for (const char* path_channel : {"displacement", "rotation", "strain"})
+      if (simulated.has(path_channel) && path_channel != experiment.abscissa) quantities.push_back(path_channel);
     for (const auto& c : experiment.channels) quantities.push_back(c.quantity);
     for (const auto& quantity : quantities) {
       const Channel& channel = simulated.channel(quantity);
       std::vector<double> v;
       for (std::size_t i = 0; i < simulated.size(); i += stride) v.push_back(channel.values[i]);
       if ((simulated.size() - 1) % stride) v.push_back(channel.values.back());
-      if (quantity != experiment.abscissa && noise > 0) {
+      const bool compared = std::any_of(experiment.channels.begin(), experiment.channels.end(),
+                                        [&](const calibrate::ChannelWeight& c) { return c.quantity == quantity; });
+      if (compared && noise > 0) {
         const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
         const double sigma = noise * (*hi - *lo);
         for (double& x : v) x += sigma * gaussian();

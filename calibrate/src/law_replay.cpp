@@ -34,7 +34,7 @@ Curve LawReplaySimulator::simulate(const ParameterValues& parameters) const {
   }
   const auto& u = path_.displacement_m;
   const auto& w = path_.rotation_rad;
-  std::vector<double> du{u.front()}, rot{w.front()}, force{0.0}, moment{0.0};
+  std::vector<double> time{0.0}, du{u.front()}, rot{w.front()}, force{0.0}, moment{0.0};
   const int steps = path_.increments_per_leg;
   for (std::size_t leg = 1; leg < u.size(); ++leg) {
     dem::Vector6 increment = dem::Vector6::Zero();
@@ -44,6 +44,7 @@ Curve LawReplaySimulator::simulate(const ParameterValues& parameters) const {
       bond->update(increment);
       const dem::Vector6 f = bond->forces();
       if (!f.allFinite()) throw ComputationError(law_ + ": non-finite forces");
+      time.push_back(static_cast<double>(leg - 1) + static_cast<double>(i) / steps);
       du.push_back(u[leg - 1] + (u[leg] - u[leg - 1]) * i / steps);
       rot.push_back(w[leg - 1] + (w[leg] - w[leg - 1]) * i / steps);
       force.push_back(f(0));
@@ -51,6 +52,7 @@ Curve LawReplaySimulator::simulate(const ParameterValues& parameters) const {
     }
   }
   Curve curve;
+  curve.add_channel("time", *find_unit("s"), time);
   curve.add_channel("displacement", *find_unit("m"), du);
   curve.add_channel("rotation", *find_unit("rad"), rot);
   curve.add_channel("force", *find_unit("N"), force);

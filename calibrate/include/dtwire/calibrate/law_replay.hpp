@@ -3,7 +3,9 @@
 // of the bond's moving node, piecewise linear between waypoints) on a dtwire::dem::ContactLaw
 // and returns the force and moment curves. This is the fit (3) simulator: macro-element
 // parameters from curves, without FE in the loop.
-// Curve channels: displacement_m, rotation_rad, force_N, moment_Nm.
+// Curve channels: time_s (pseudo-time: leg k runs from k-1 to k s, a monotone abscissa for paths
+// along which neither displacement nor rotation is monotone), displacement_m, rotation_rad,
+// force_N, moment_Nm.
 #include <string>
 #include <vector>
 
