@@ -1,6 +1,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 
 #include "../cli.hpp"
@@ -20,7 +21,7 @@ struct DriverOptions {
   std::string backbone;
   std::string path = "all";
   std::size_t steps = 2000;
-  double max_strain = 0.4;
+  std::optional<double> max_strain;
   double max_rotation = 0.5;
   std::string out;
 };
@@ -34,17 +35,14 @@ int run_driver_command(const DriverOptions& o, const std::string& command_line) 
   if (law.empty()) throw InputError("--law", "no law given and the parameter file has no 'law' field");
   const dem::ParameterMap parameters = set.map();
 
-  dem::PathOptions path_options;
-  if (const auto found = parameters.find("reference_length_m"); found != parameters.end())
-    path_options.reference_length = found->second;
-  path_options.steps = o.steps;
-  path_options.max_axial_strain = o.max_strain;
-  path_options.max_rotation = o.max_rotation;
-  dem::FreeOscillationOptions oscillation;
-  oscillation.steps = o.steps;
-
   std::vector<dem::DriverRun> runs;
   try {
+    dem::PathOptions path_options = dem::default_path_options(law, parameters);
+    path_options.steps = o.steps;
+    if (o.max_strain) path_options.max_axial_strain = *o.max_strain;
+    path_options.max_rotation = o.max_rotation;
+    dem::FreeOscillationOptions oscillation;
+    oscillation.steps = o.steps;
     runs = dem::run_driver(law, parameters, o.path, path_options, oscillation);
   } catch (const InputError&) {
     throw;
@@ -87,8 +85,8 @@ void add_dem_command(CLI::App& root, CommandSet& commands) {
                      "axial_pull, compression, bending_spin, pull_spin, cycles, free_oscillation, all, or FILE.csv")
       ->capture_default_str();
   driver->add_option("--steps", options->steps, "Increments per path")->capture_default_str()->check(CLI::Range(1, 100000000));
-  driver->add_option("--max-strain", options->max_strain, "Peak elongation / reference length of the pulls")
-      ->capture_default_str()
+  driver->add_option("--max-strain", options->max_strain,
+                     "Peak elongation / reference length of the pulls (default 0.4; wirepm: 1.1 x its break)")
       ->check(CLI::NonNegativeNumber);
   driver->add_option("--max-rotation", options->max_rotation, "Peak bending rotation theta_y [rad]")
       ->capture_default_str()

@@ -7,6 +7,7 @@
 #include "../commands.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "dtwire/dem/driver.hpp"
 #include "dtwire/dem/export.hpp"
 
 namespace dtwire::app {
@@ -44,11 +45,10 @@ int run_export_command(const ExportOptions& o) {
       continue;
     }
     const dem::ParameterMap parameters = set.map();
-    dem::PathOptions path;
-    path.reference_length = parameters.count("reference_length_m") ? parameters.at("reference_length_m") : 0.06;
-    path.steps = o.steps;
     const std::filesystem::path script = out / (set.wire_type + "_wirepm_yade.py");
     try {
+      dem::PathOptions path = dem::default_path_options("wirepm", parameters);  // as `dem driver`
+      path.steps = o.steps;
       dem::write_yade_script(parameters, path, script);
     } catch (const std::invalid_argument& e) {
       throw InputError(o.params, std::string("wire type '") + set.wire_type + "': " + e.what());

@@ -9,6 +9,7 @@
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/dem/export_params.hpp"
+#include "dtwire/dem/wirepm.hpp"
 
 namespace dtwire::dem {
 namespace {
@@ -73,6 +74,17 @@ double probe_stiffness(const ContactLaw& law, int component, double increment) {
 }
 
 }  // namespace
+
+PathOptions default_path_options(const std::string& law_name, const ParameterMap& parameters) {
+  PathOptions options;
+  if (const auto found = parameters.find("reference_length_m"); found != parameters.end())
+    options.reference_length = found->second;
+  if (law_name == "wirepm") {
+    const WirePmBackbone backbone = make_wirepm_backbone(parameters);
+    options.max_axial_strain = 1.1 * backbone.points.back().elongation / options.reference_length;
+  }
+  return options;
+}
 
 Curve replay_path(ContactLaw& law, const LoadPath& path) {
   HistoryRecorder recorder;

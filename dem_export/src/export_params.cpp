@@ -19,7 +19,7 @@ using nlohmann::json;
 
 // Thesis parameters whose names carry no SI suffix (Previtali's PFC7 plugin conventions).
 const std::pair<const char*, const char*> kKnownUnits[] = {
-    {"k_F", "1/m"}, {"k_M", "1/deg"}, {"EI_Nm2_per_deg_convention", "N m^2/deg"}, {"slide_b", "m"}};
+    {"k_F", "1/m"}, {"k_M", "1/deg"}, {"EI_Nm2_per_deg_convention", "N m^2/deg"}};
 
 bool ends_with(const std::string& text, const std::string& suffix) {
   return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;

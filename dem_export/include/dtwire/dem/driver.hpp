@@ -29,6 +29,10 @@ struct FreeOscillationOptions {
   std::size_t steps = 1000;            // whole run
 };
 
+// Path magnitudes for a law: l0 from reference_length_m; for WirePM the pulls go to 1.1 times the
+// breaking elongation so that every path with a pull ends past the break.
+PathOptions default_path_options(const std::string& law_name, const ParameterMap& parameters);
+
 // Replays the path on `law` (advanced in place), one increment per sample.
 Curve replay_path(ContactLaw& law, const LoadPath& path);
 // Throws ComputationError if the law has no initial stiffness to set the time step.

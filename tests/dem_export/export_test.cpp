@@ -1,0 +1,144 @@
+// Parameter files (thesis, flat, calibrate formats), parameter tables round trips, bad input,
+// and the YADE script generator.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/results_store.hpp"
+#include "dtwire/dem/export.hpp"
+
+namespace dtwire::dem {
+namespace {
+
+const std::string kData = std::string(DTWIRE_SOURCE_DIR) + "/experiments/data/";
+
+std::filesystem::path scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("dtwire_dem_export_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::filesystem::path write_text(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+  return file;
+}
+
+std::string input_error_of(const std::filesystem::path& file) {
+  try {
+    read_parameter_file(file);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(ParameterFile, ReadsTheThesisFile) {
+  const auto sets = read_parameter_file(kData + "macroelement_thesis_params.json");
+  ASSERT_EQ(sets.size(), 2u);
+  const ParameterSet sw = select_wire_type(sets, "single_wire", "x");
+  EXPECT_EQ(sw.map().at("N0_N"), 2750.0);  // the published value, unchanged
+  EXPECT_EQ(sw.map().at("m_f"), 0.0285);
+  const ParameterSet dt = select_wire_type(sets, "double_twist", "x");
+  EXPECT_EQ(dt.map().at("Nult_N"), 5000.0);
+  for (const ParameterEntry& e : sw.entries) {
+    if (e.name == "EA_N") {
+      EXPECT_EQ(e.unit, "N");
+    }
+  }
+  EXPECT_THROW(select_wire_type(sets, "", "x"), InputError);  // two sets: must choose
+  EXPECT_THROW(select_wire_type(sets, "gabion", "x"), InputError);
+}
+
+TEST(ParameterFile, ReadsFlatAndCalibrateFormats) {
+  const auto dir = scratch("formats");
+  const auto flat = write_text(dir / "flat.json", R"({"law": "wirepm", "wire_type": "sw",
+      "parameters": {"reference_length_m": 0.06, "diameter_m": 0.0027},
+      "backbone": {"strain_1": [0, 0.002, 0.01], "stress_Pa": [0, 2.6e8, 3e8]}})");
+  const ParameterSet a = select_wire_type(read_parameter_file(flat), "", flat);
+  EXPECT_EQ(a.law, "wirepm");
+  EXPECT_EQ(a.wire_type, "sw");
+  EXPECT_EQ(a.map().at("backbone_2_stress_Pa"), 3e8);
+  const auto calibrate = write_text(dir / "calibrate.json", R"({"law": "thesis", "parameters": [
+      {"name": "N0", "value": 2750, "unit": "N", "sigma": 12.5},
+      {"name": "m_f", "value": 0.0285, "unit": "1"},
+      {"name": "k_F", "value": 2.39e4, "unit": "1/m", "sigma": null}]})");
+  const ParameterSet b = select_wire_type(read_parameter_file(calibrate), "", calibrate);
+  EXPECT_EQ(b.wire_type, "default");
+  ASSERT_EQ(b.entries.size(), 3u);
+  EXPECT_EQ(b.entries[0].name, "N0_N");  // unit symbol appended
+  EXPECT_EQ(*b.entries[0].sigma, 12.5);
+  EXPECT_EQ(b.entries[2].name, "k_F");  // "1/m" is not a column unit symbol: name kept
+  EXPECT_FALSE(b.entries[2].sigma.has_value());
+}
+
+TEST(ParameterFile, BadInputNamesTheFileAndTheField) {
+  const auto dir = scratch("bad");
+  EXPECT_NE(input_error_of(write_text(dir / "a.json", "{\"parameters\": {\"x\": 1,}}")).find("not valid JSON"),
+            std::string::npos);
+  const std::string text = input_error_of(write_text(dir / "b.json", R"({"parameters": {"N0_N": "lots"}})"));
+  EXPECT_NE(text.find("b.json"), std::string::npos);
+  EXPECT_NE(text.find("parameters.N0_N"), std::string::npos);
+  EXPECT_NE(input_error_of(write_text(dir / "c.json", R"({"parameters": [{"name": "N0", "unit": "N"}]})"))
+                .find("parameters[0].value"),
+            std::string::npos);
+  EXPECT_NE(input_error_of(write_text(dir / "d.json", R"({"single_wire": {"N0_N": 1, "D_m": [1]}})"))
+                .find("single_wire.D_m"),
+            std::string::npos);
+  EXPECT_NE(input_error_of(write_text(dir / "e.json", R"({"source": "nothing here"})")).find("no parameters"),
+            std::string::npos);
+  EXPECT_NE(input_error_of(write_text(dir / "f.json", R"({"parameters": {"a": 1}, "backbone": {"strain_1": [0]}})"))
+                .find("backbone"),
+            std::string::npos);
+  EXPECT_NE(input_error_of(dir / "missing.json").find("cannot open"), std::string::npos);
+}
+
+TEST(ParameterTables, RoundTripThroughJsonCsvAndHdf5) {
+  auto sets = read_parameter_file(kData + "macroelement_thesis_params.json");
+  sets[0].entries[0].sigma = 0.25;  // a calibrated uncertainty must survive too
+  const auto dir = scratch("tables");
+  const auto written = export_parameter_tables(sets, dir, make_provenance("test"));
+  EXPECT_EQ(written.size(), 6u);  // three files per wire type
+  for (const ParameterSet& set : sets) {
+    const auto json_back = read_parameter_file(dir / (set.wire_type + "_parameters.json"));
+    ASSERT_EQ(json_back.size(), 1u);
+    EXPECT_EQ(json_back[0].wire_type, set.wire_type);
+    ASSERT_EQ(json_back[0].entries.size(), set.entries.size());
+    for (std::size_t i = 0; i < set.entries.size(); ++i) {
+      EXPECT_EQ(json_back[0].entries[i].name, set.entries[i].name);
+      EXPECT_EQ(json_back[0].entries[i].value, set.entries[i].value);  // exact
+      EXPECT_EQ(json_back[0].entries[i].unit, set.entries[i].unit);
+      EXPECT_EQ(json_back[0].entries[i].sigma, set.entries[i].sigma);
+    }
+    const Results h5 = read_results(dir / (set.wire_type + "_parameters.h5"));
+    ASSERT_EQ(h5.parameters.size(), set.entries.size());
+    for (const Parameter& p : h5.parameters) EXPECT_EQ(p.value, set.map().at(p.name));
+    std::ifstream csv(dir / (set.wire_type + "_parameters.csv"));
+    std::string line;
+    std::size_t rows = 0;
+    while (std::getline(csv, line))
+      if (!line.empty() && line[0] != '#' && line != "name,value,unit,sigma") ++rows;
+    EXPECT_EQ(rows, set.entries.size());
+  }
+}
+
+TEST(YadeScript, DescribesTheMaterialAndRefusesWhatYadeCannotDo) {
+  ParameterSet set{"sw", "wirepm", {}};
+  set.set("reference_length_m", 0.06);
+  set.set("diameter_m", 0.0027);
+  add_backbone(set, read_backbone_csv(kData + "sw_2.7mm_dem_backbone.csv"));
+  const std::string script = yade_wirepm_script(set.map(), PathOptions{}, "out.csv");
+  EXPECT_NE(script.find("WireMat("), std::string::npos);
+  EXPECT_NE(script.find("(0.35, 565850000)"), std::string::npos);  // the last backbone point
+  EXPECT_EQ(script.find("(0, 0)"), std::string::npos);              // YADE curves start past the origin
+  EXPECT_NE(script.find("type=0"), std::string::npos);
+  set.set("double_twist", 1);
+  set.set("lambda_u", 0.2);
+  EXPECT_THROW(yade_wirepm_script(set.map(), PathOptions{}, "out.csv"), std::invalid_argument);
+  set.set("double_twist_model", 1);
+  EXPECT_NE(yade_wirepm_script(set.map(), PathOptions{}, "out.csv").find("type=2"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace dtwire::dem
