@@ -112,7 +112,17 @@ double frechet_distance(const ForceCurve& model, const Comparison& comparison,
       p.emplace_back(c.u.back() / comparison.u_scale, c.f.back() / comparison.f_scale);
     return p;
   };
-  const auto a = thin(model), b = thin(comparison.lab);
+  // Only the part of the model inside the laboratory's displacement range: a test that ended
+  // early is not a gap.
+  const auto [lo, hi] = std::minmax_element(comparison.lab.u.begin(), comparison.lab.u.end());
+  ForceCurve inside;
+  for (std::size_t i = 0; i < model.size(); ++i)
+    if (model.u[i] >= *lo && model.u[i] <= *hi) {
+      inside.u.push_back(model.u[i]);
+      inside.f.push_back(model.f[i]);
+    }
+  if (inside.size() < 2) inside = model;
+  const auto a = thin(inside), b = thin(comparison.lab);
   auto dist = [&](std::size_t i, std::size_t j) {
     return std::hypot(a[i].first - b[j].first, a[i].second - b[j].second);
   };

@@ -241,7 +241,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return ranking[a].gap_after < ranking[b].gap_after; });
-    order.resize(std::min<std::size_t>(order.size(), 4));
+    order.resize(std::min<std::size_t>(order.size(), 6));
     const double single_gap = best_single->gap_after;
     const std::size_t singles = ranking.size();
     for (std::size_t a = 0; a < order.size(); ++a)

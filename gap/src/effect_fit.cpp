@@ -123,23 +123,24 @@ double sse_of(const FitProblem& problem, const Layout& layout, const std::vector
   return evaluate_fit(problem, unflatten(layout, flat)).weighted_sse;
 }
 
-// Coordinate search over each grid parameter, others fixed.
+// Each grid value of each grid parameter in turn, the continuous parameters refitted for it.
 std::vector<double> search_grid(const FitProblem& problem, const Layout& layout,
                                 std::vector<double> flat) {
   for (std::size_t j = 0; j < layout.specs.size(); ++j) {
     if (layout.specs[j].grid.empty()) continue;
     double best = sse_of(problem, layout, flat);
-    double best_value = flat[j];
+    std::vector<double> best_flat = flat;
     for (double v : layout.specs[j].grid) {
       std::vector<double> trial = flat;
       trial[j] = v;
+      trial = solve_continuous(problem, layout, trial);
       const double sse = sse_of(problem, layout, trial);
       if (sse < best) {
         best = sse;
-        best_value = v;
+        best_flat = trial;
       }
     }
-    flat[j] = best_value;
+    flat = best_flat;
   }
   return flat;
 }
@@ -175,6 +176,11 @@ EffectFit fit_effects(const FitProblem& problem, const std::vector<const EffectS
   for (const ParameterSpec& s : layout.specs)
     centre.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
   flat_starts.push_back(centre);
+  // The effect switched off: the fit can always fall back to the bare simulation.
+  std::vector<double> neutral = centre;
+  for (std::size_t k = 0; k < layout.effects.size(); ++k)
+    neutral[layout.offset[k] + layout.effects[k]->magnitude] = layout.effects[k]->neutral;
+  flat_starts.push_back(neutral);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (std::size_t k = 0; k < random_starts; ++k) {
     std::vector<double> flat;
@@ -185,19 +191,14 @@ EffectFit fit_effects(const FitProblem& problem, const std::vector<const EffectS
   std::vector<double> best;
   double best_sse = INFINITY;
   for (const auto& start : flat_starts) {
-    std::vector<double> flat = solve_continuous(problem, layout, start);
-    const bool has_grid = std::any_of(layout.specs.begin(), layout.specs.end(),
-                                      [](const ParameterSpec& s) { return !s.grid.empty(); });
-    if (has_grid) {
-      flat = search_grid(problem, layout, flat);
-      flat = solve_continuous(problem, layout, flat);
-    }
+    const std::vector<double> flat = solve_continuous(problem, layout, start);
     const double sse = sse_of(problem, layout, flat);
     if (sse < best_sse) {
       best_sse = sse;
       best = flat;
     }
   }
+  best = search_grid(problem, layout, best);
   return evaluate_fit(problem, unflatten(layout, best));
 }
 
