@@ -2,6 +2,7 @@
 // into C; the message is kept per thread for dtwire_contact_last_error().
 #include "dtwire_contact.h"
 
+#include <cmath>
 #include <exception>
 #include <memory>
 #include <string>
@@ -74,6 +75,8 @@ void dtwire_bond_destroy(dtwire_bond* bond) { delete bond; }
 int dtwire_bond_update(dtwire_bond* bond, const double increments[6]) {
   return guarded([&] {
     if (bond == nullptr || increments == nullptr) return fail("dtwire_bond_update: NULL argument");
+    for (int i = 0; i < 6; ++i)
+      if (!std::isfinite(increments[i])) return fail("dtwire_bond_update: increment is not finite");
     bond->law->update(Eigen::Map<const dtwire::dem::Vector6>(increments));
     return 0;
   });

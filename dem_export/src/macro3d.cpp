@@ -90,6 +90,32 @@ double Macro3dLaw::effective_energy(const detail::PlasticState& s, double shear_
 
 void Macro3dLaw::update(const Vector6& increment) {
   if (broken_) return;
+  // Elastic fast path, kept small so that it stays cheap: the trial state is certainly inside.
+  const double N1 = plastic_.y[0] + stiffness_.axial * increment[0];
+  const double My1 = plastic_.y[1] + stiffness_.moment * increment[4];
+  const double Mz1 = plastic_.y[2] + stiffness_.moment * increment[5];
+  if (!detail::certainly_inside(surface_, N1, My1 * My1 + Mz1 * Mz1, plastic_.Ny)) {
+    general_update(increment);
+    return;
+  }
+  const double shear_y1 = shear_y_ + shear_stiffness_ * increment[1];
+  const double shear_z1 = shear_z_ + shear_stiffness_ * increment[2];
+  const double torque1 = torque_ + torsion_stiffness_ * increment[3];
+  // Same booking as an elastic piece of general_update: external += d Qbar.dq.
+  energy_.external += damage_factor_ * (0.5 * (plastic_.y[0] + N1) * increment[0] +
+                                        0.5 * (shear_y_ + shear_y1) * increment[1] +
+                                        0.5 * (shear_z_ + shear_z1) * increment[2] +
+                                        0.5 * (torque_ + torque1) * increment[3] +
+                                        0.5 * (plastic_.y[1] + My1) * increment[4] +
+                                        0.5 * (plastic_.y[2] + Mz1) * increment[5]);
+  plastic_.y[0] = N1, plastic_.y[1] = My1, plastic_.y[2] = Mz1;
+  plastic_.f_known = false;
+  shear_y_ = shear_y1, shear_z_ = shear_z1, torque_ = torque1;
+  if (shear_strength_ > 0.0 && damage_factor_ * std::hypot(shear_y_, shear_z_) > shear_strength_)
+    break_bond(FailureMode::Shear);
+}
+
+void Macro3dLaw::general_update(const Vector6& increment) {
   const std::array<double, 3> dq{increment[0], increment[4], increment[5]};
   const double shear_y0 = shear_y_, shear_z0 = shear_z_, torque0 = torque_;
   const double d_shear_y = shear_stiffness_ * increment[1];

@@ -35,11 +35,12 @@ ParallelBondLaw::ParallelBondLaw(const ParameterMap& p) {
 }
 
 double ParallelBondLaw::max_tensile_stress() const {
-  return forces_[0] / area_ + std::hypot(forces_[4], forces_[5]) * radius_ / inertia_;
+  return forces_[0] / area_ + std::sqrt(forces_[4] * forces_[4] + forces_[5] * forces_[5]) * radius_ / inertia_;
 }
 
 double ParallelBondLaw::max_shear_stress() const {
-  return std::hypot(forces_[1], forces_[2]) / area_ + std::abs(forces_[3]) * radius_ / polar_inertia_;
+  return std::sqrt(forces_[1] * forces_[1] + forces_[2] * forces_[2]) / area_ +
+         std::abs(forces_[3]) * radius_ / polar_inertia_;
 }
 
 void ParallelBondLaw::update(const Vector6& increment) {

@@ -60,6 +60,18 @@ TEST(ContactCApi, ReportsErrorsWithoutThrowing) {
   EXPECT_EQ(dtwire_bond_create("parallel_bond", names, values, 2), nullptr);
   EXPECT_NE(std::string(dtwire_contact_last_error()).find("length_m"), std::string::npos);
 
+  const char* bond_names[] = {"E_Pa", "diameter_m", "length_m"};
+  const double bond_values[] = {2e11, 2.7e-3, 0.06};
+  dtwire_bond* bond = dtwire_bond_create("parallel_bond", bond_names, bond_values, 3);
+  ASSERT_NE(bond, nullptr);
+  const double not_finite[6] = {std::nan(""), 0, 0, 0, 0, 0};
+  EXPECT_EQ(dtwire_bond_update(bond, not_finite), -1);
+  EXPECT_NE(std::string(dtwire_contact_last_error()).find("finite"), std::string::npos);
+  double forces[6];
+  ASSERT_EQ(dtwire_bond_forces(bond, forces), 0);
+  EXPECT_EQ(forces[0], 0.0);  // the rejected increment left the bond untouched
+  dtwire_bond_destroy(bond);
+
   EXPECT_EQ(dtwire_bond_create(nullptr, nullptr, nullptr, 0), nullptr);
   EXPECT_EQ(dtwire_bond_update(nullptr, nullptr), -1);
   EXPECT_EQ(dtwire_bond_forces(nullptr, nullptr), -1);

@@ -56,6 +56,8 @@ class Macro3dLaw final : public ContactLaw {
   double effective_energy(const detail::PlasticState& s, double shear_y, double shear_z,
                           double torque) const;
   void break_bond(FailureMode mode);
+  // Crossing, substepping and damage: everything but the elastic fast path of update().
+  [[gnu::noinline]] void general_update(const Vector6& displacement_increment);
 
   detail::SurfaceParameters surface_;
   detail::DamageParameters damage_;
