@@ -97,7 +97,7 @@ MeshCheck check_mesh(const WireMesh& wire_mesh) {
   check.two_wires = wire_mesh.wire_count == 2;
   if (check.two_wires) {
     check.lay_angle = wire_mesh.lay_angle;
-    check.min_surface_distance = min_surface_distance(mesh, 0, 1, r + t);
+    check.min_surface_distance = wire_mesh.min_surface_distance;
   }
   return check;
 }
@@ -120,6 +120,8 @@ std::string format_check_markdown(const MeshParameters& p, const WireMesh& wire_
   if (c.two_wires) {
     md << "| minimum distance between the wire surfaces | " << number(c.min_surface_distance * 1e3)
        << " mm (gap " << number(wire_mesh.gap * 1e3) << " mm) |\n";
+    md << "| helix axis separation | d + 2 coating + gap + " << number(wire_mesh.axis_allowance * 1e3)
+       << " mm (allowance keeping the faceted surfaces gap apart) |\n";
     md << "| helix lay angle | " << number(c.lay_angle * 180 / kPi) << " deg |\n";
   }
   auto volume_row = [&](const char* what, double mesh_volume, double exact) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "dtwire/meshes/mesh_check.hpp"
+
 namespace dtwire::meshes {
 namespace {
 
@@ -16,7 +18,9 @@ std::string mm(double metres) {
   return out.str();
 }
 
-double helix_radius(const MeshParameters& p) { return 0.5 * (p.diameter + 2 * p.coating + p.gap); }
+double helix_radius(const MeshParameters& p) {
+  return 0.5 * (p.diameter + 2 * p.coating + p.gap + p.axis_allowance);
+}
 double helix_rate(const MeshParameters& p) { return p.half_turns * kPi / p.twist_length; }
 
 AxisPiece helix_piece(const MeshParameters& p, double phase) {
@@ -92,12 +96,12 @@ void check_clearance(const MeshParameters& p, const std::vector<AxisPiece> (&axe
           closest_self = std::min(closest_self, distance(wire[i].point, wire[j].point));
   if (closest_other < contact * (1 - 1e-9))
     throw_field_error(where, "arm-angle",
-                      "an arm would intersect the twist: the two wire axes come within " +
+                      "an arm would intersect the other wire (its twist or arm): the two wire axes come within " +
                           mm(closest_other) + ", less than d + 2 coating + gap = " + mm(contact) +
                           "; reduce arm-angle or bend-radius");
   if (closest_self < outer)
     throw_field_error(where, "arm-angle",
-                      "an arm would intersect its own twist: the axis comes back within " +
+                      "an arm would intersect its own wire (twist or other arm): the axis comes back within " +
                           mm(closest_self) + ", less than the wire diameter " + mm(outer) +
                           "; reduce arm-angle");
 }
@@ -141,17 +145,29 @@ WireMesh build_wire_mesh(const MeshParameters& p, const FieldLocations& where) {
     result.axis_lengths = {axis.length};
     return result;
   }
-  const std::vector<AxisPiece> axes[2] = {double_twist_axis(p, 0, where), double_twist_axis(p, 1, where)};
-  check_clearance(p, axes, where);
-  result.wire_count = 2;
-  result.lay_angle = helix_lay_angle(p);
-  result.gap = p.gap;
-  for (int wire = 0; wire < 2; ++wire) {
-    const SampledAxis axis = sample_axis(axes[wire], res.axial_cell_length);
-    sweep_wire(result.mesh, section, axis, wire, true);
-    result.axis_lengths.push_back(axis.length);
+  // The facets of a steep (e.g. coated) twist can come closer than the exact tubes: widen
+  // the axis separation by the measured shortfall until the faceted surfaces keep the gap.
+  MeshParameters q = p;
+  q.axis_allowance = 0;
+  for (int attempt = 0;; ++attempt) {
+    const std::vector<AxisPiece> axes[2] = {double_twist_axis(q, 0, where), double_twist_axis(q, 1, where)};
+    check_clearance(q, axes, where);
+    WireMesh trial = result;
+    trial.wire_count = 2;
+    trial.lay_angle = helix_lay_angle(q);
+    trial.gap = p.gap;
+    trial.axis_allowance = q.axis_allowance;
+    for (int wire = 0; wire < 2; ++wire) {
+      const SampledAxis axis = sample_axis(axes[wire], res.axial_cell_length);
+      sweep_wire(trial.mesh, section, axis, wire, true);
+      trial.axis_lengths.push_back(axis.length);
+    }
+    trial.min_surface_distance = min_surface_distance(trial.mesh, 0, 1, 0.5 * p.diameter + p.coating);
+    const double shortfall = p.gap - trial.min_surface_distance;
+    if (shortfall <= 0 || attempt == 8) return trial;
+    // The facets gain about 0.6 of the added separation: overshoot a little.
+    q.axis_allowance += 2 * shortfall + 1e-6 * p.diameter;
   }
-  return result;
 }
 
 }  // namespace dtwire::meshes

@@ -22,6 +22,9 @@ struct MeshParameters {
   double coating = 0.0;            // PVC sheath thickness t (0: none)
   double grip_length = 10e-3;      // gripped length at each wire end
   int level = 1;                   // refinement level 0..3
+  // Not a user parameter: added to the helix axis separation by build_wire_mesh when the
+  // faceted surfaces would otherwise come closer than `gap` (coated, steep twists).
+  double axis_allowance = 0.0;
 };
 
 MeshParameters default_parameters(WireKind kind);

@@ -45,6 +45,8 @@ struct WireMesh {
   std::vector<double> axis_lengths;  // per wire, exact arc length of the axis
   double lay_angle = 0;              // DT helix lay angle (rad), 0 for the SW
   double gap = 0;                    // DT nominal gap between the wire surfaces
+  double axis_allowance = 0;         // DT extra axis separation (see MeshParameters)
+  double min_surface_distance = 0;   // DT, see MeshCheck
 };
 
 }  // namespace dtwire::meshes
