@@ -147,6 +147,26 @@ std::vector<std::vector<double>> params_of(const RankedEffect& r) {
   return out;
 }
 
+// A sparse polyline (a digitised or published curve) is refined between its vertices so that
+// the area and the regions see its segments, not only its corners.
+ForceCurve densified(const ForceCurve& c) {
+  if (c.size() >= kSparseCurvePoints) return c;
+  for (std::size_t i = 1; i < c.size(); ++i)
+    if (!(c.u[i] > c.u[i - 1])) return c;  // several branches: keep as given
+  ForceCurve out;
+  out.source = c.source;
+  const std::size_t per_segment = 200 / (c.size() - 1) + 1;
+  for (std::size_t i = 0; i + 1 < c.size(); ++i)
+    for (std::size_t k = 0; k < per_segment; ++k) {
+      const double t = static_cast<double>(k) / static_cast<double>(per_segment);
+      out.u.push_back(c.u[i] + t * (c.u[i + 1] - c.u[i]));
+      out.f.push_back(c.f[i] + t * (c.f[i + 1] - c.f[i]));
+    }
+  out.u.push_back(c.u.back());
+  out.f.push_back(c.f.back());
+  return out;
+}
+
 }  // namespace
 
 ForceCurve oriented(const ForceCurve& curve, bool* flipped) {
@@ -169,7 +189,9 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   check_force(d.sim);
   for (const ForceCurve& lab : labs_in) {
     validate_force_curve(lab);
-    d.labs.push_back(oriented(lab));
+    bool flipped = false;
+    d.labs.push_back(densified(oriented(lab, &flipped)));
+    d.compression = d.compression || flipped;
     check_force(d.labs.back());
     check_overlap(d.labs.back(), d.sim);
   }
@@ -183,7 +205,11 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   // Noise floor: twice the area that noise alone leaves (E|e| = sigma sqrt(2/pi)); with
   // repeated curves, at least their mean mutual gap (specimen scatter).
   double sigma = 0.0;
-  for (const ForceCurve& lab : d.labs) sigma += estimate_noise_sigma(lab);
+  for (std::size_t k = 0; k < d.labs.size(); ++k) {
+    const bool sparse = labs_in[k].size() < kSparseCurvePoints;
+    const double resolution = sparse ? kDigitisedResolution * ctx.problem.labs[k].f_scale : 0.0;
+    sigma += std::max(estimate_noise_sigma(d.labs[k]), resolution);
+  }
   d.noise_sigma_N = sigma / static_cast<double>(d.labs.size());
   d.noise_floor = kNoiseFloorFactor * std::sqrt(2.0 / M_PI) * d.noise_sigma_N / first.f_scale;
   if (d.labs.size() >= 2) {

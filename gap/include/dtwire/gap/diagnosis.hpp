@@ -48,7 +48,7 @@ struct Diagnosis {
   double frechet_before = 0.0;
   double effective_sample_size = 0.0;
   double lag1_autocorrelation = 0.0;
-  bool compression = false;  // curves were given in compression; reported as magnitudes
+  bool compression = false;  // a curve was given in compression; reported as magnitudes
   std::vector<GapSegment> where;
   std::vector<RankedEffect> ranking;
   std::string cause = "none";
@@ -74,5 +74,9 @@ inline constexpr double kMinimumReduction = 0.3;    // x expected noise-only are
 inline constexpr double kMinimumOverlap = 0.2;      // of the laboratory displacement range
 inline constexpr double kInformationMargin = 10.0;  // AICc units an accepted effect must gain
 inline constexpr double kPairGapRatio = 0.8;        // a pair must cut the single's gap by 20 %
+// Laboratory curves with fewer points are digitised polylines: refined between their vertices,
+// and their noise taken as at least 0.5 % of the peak force (digitisation resolution).
+inline constexpr std::size_t kSparseCurvePoints = 50;
+inline constexpr double kDigitisedResolution = 0.005;
 
 }  // namespace dtwire::gap
