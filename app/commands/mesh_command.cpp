@@ -98,6 +98,9 @@ void add_kind(CLI::App& mesh, CommandSet& commands, meshes::WireKind kind) {
 void add_mesh_command(CLI::App& root, CommandSet& commands) {
   CLI::App* mesh = root.add_subcommand("mesh", "Build parametric hexahedral meshes of single wires and double twists");
   mesh->require_subcommand(1);
+  // Registered before sw/dt so the campaign sees `mesh` as available; the deepest selected
+  // command runs, and require_subcommand means this runner is never reached.
+  commands.add(mesh, [] { return kExitBadInput; });
   add_kind(*mesh, commands, meshes::WireKind::Single);
   add_kind(*mesh, commands, meshes::WireKind::DoubleTwist);
 }

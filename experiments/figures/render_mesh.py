@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Render the boundary faces of a dtwire VTU preview (`dtwire mesh ... --vtu`) to a PNG.
 
-Usage: render_mesh.py MESH.vtu OUT.png [--title TEXT]
+Usage: render_mesh.py MESH.vtu OUT.png [--title TEXT] [--zoom X Y Z HALF]
+--zoom adds a close-up panel: a cube of half-width HALF (mm) centred at (X, Y, Z);
+--section ID adds the faces with boundary id ID (e.g. 1: wire A start face) in their plane.
 Faces are coloured by boundary id (lateral surfaces, grips, end faces) and lit by their
 normal, so the helix, the bends and the arms can be checked by eye.
 """
@@ -27,6 +29,8 @@ def main():
     parser.add_argument("vtu")
     parser.add_argument("png")
     parser.add_argument("--title", default="")
+    parser.add_argument("--zoom", type=float, nargs=4, default=None)
+    parser.add_argument("--section", type=int, default=None)
     args = parser.parse_args()
     piece = ET.parse(args.vtu).getroot().find("UnstructuredGrid/Piece")
     points = read_array(piece.find("Points"), "Points").reshape(-1, 3) * 1e3  # mm
@@ -49,20 +53,44 @@ def main():
     shade = 0.35 + 0.65 * np.abs(normals @ light)
     colours = np.clip(base * shade[:, None], 0, 1)
 
-    fig = plt.figure(figsize=(10, 8), dpi=130)
-    ax = fig.add_subplot(111, projection="3d")
-    ax.add_collection3d(Poly3DCollection(faces, facecolors=colours, edgecolors=(0, 0, 0, 0.15), linewidths=0.2))
-    lo, hi = points.min(axis=0), points.max(axis=0)
-    centre, half = (lo + hi) / 2, (hi - lo).max() / 2
-    ax.set_xlim(centre[0] - half, centre[0] + half)
-    ax.set_ylim(centre[1] - half, centre[1] + half)
-    ax.set_zlim(centre[2] - half, centre[2] + half)
-    ax.set_box_aspect((1, 1, 1))
-    ax.view_init(elev=12, azim=-70)
-    ax.set_xlabel("x (mm)")
-    ax.set_ylabel("y (mm)")
-    ax.set_zlabel("z (mm)")
-    ax.set_title(args.title)
+    panels = [(points.min(axis=0), points.max(axis=0), args.title, (12, -70))]
+    if args.zoom:
+        x, y, z, half = args.zoom
+        centre = np.array([x, y, z])
+        panels.append((centre - half, centre + half, f"close-up: faces inside a {2 * half:g} mm cube", (20, -35)))
+    columns = len(panels) + (1 if args.section is not None else 0)
+    fig = plt.figure(figsize=(9 * columns, 8), dpi=110)
+    for index, (lo, hi, title, view) in enumerate(panels):
+        ax = fig.add_subplot(1, columns, index + 1, projection="3d")
+        keep = np.all((faces.min(axis=1) >= lo - 1e-9) & (faces.max(axis=1) <= hi + 1e-9), axis=1)
+        edge_alpha = 0.15 if index == 0 else 0.6
+        ax.add_collection3d(Poly3DCollection(faces[keep], facecolors=colours[keep],
+                                             edgecolors=(0, 0, 0, edge_alpha), linewidths=0.2 if index == 0 else 0.4))
+        centre, half = (lo + hi) / 2, (hi - lo).max() / 2
+        ax.set_xlim(centre[0] - half, centre[0] + half)
+        ax.set_ylim(centre[1] - half, centre[1] + half)
+        ax.set_zlim(centre[2] - half, centre[2] + half)
+        ax.set_box_aspect((1, 1, 1))
+        ax.view_init(elev=view[0], azim=view[1])
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("y (mm)")
+        ax.set_zlabel("z (mm)")
+        ax.set_title(title)
+    if args.section is not None:
+        # The section faces in their own plane (principal axes of their nodes).
+        section = faces[ids == args.section]
+        flat = section.reshape(-1, 3)
+        centre = flat.mean(axis=0)
+        _, _, axes = np.linalg.svd(flat - centre)
+        uv = (section - centre) @ axes[:2].T
+        ax = fig.add_subplot(1, columns, columns)
+        from matplotlib.collections import PolyCollection
+        ax.add_collection(PolyCollection(uv, facecolors=(0.55, 0.75, 0.95), edgecolors="k", linewidths=0.6))
+        ax.autoscale()
+        ax.set_aspect("equal")
+        ax.set_xlabel("u (mm)")
+        ax.set_ylabel("v (mm)")
+        ax.set_title(f"cross-section: boundary id {args.section} ({len(section)} quads)")
     fig.tight_layout()
     fig.savefig(args.png)
 
