@@ -11,6 +11,7 @@
 #include "dtwire/calibrate/fit_file.hpp"
 #include "dtwire/calibrate/fit_output.hpp"
 #include "dtwire/calibrate/fitter.hpp"
+#include "dtwire/calibrate/synthesize.hpp"
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/version.hpp"
@@ -22,49 +23,15 @@ std::atomic<bool> stop_requested{false};
 extern "C" void request_stop(int) { stop_requested = true; }
 
 // Simulated curves at the parameters' reference values (else initial values), written as
-// target CSVs with optional Gaussian noise (relative to each channel's range), thinned to at
-// most `points` rows. For demonstrations and tests of the fit; the files say so.
+// target CSVs with optional Gaussian noise. For demonstrations and tests; the files say so.
 void synthesize_targets(const calibrate::FitDefinition& def, const std::filesystem::path& dir,
                         double noise, std::uint64_t seed, std::size_t points) {
   calibrate::ParameterValues values;
   for (const auto& p : def.parameters) values[p.name] = p.reference.value_or(p.initial);
   std::filesystem::create_directories(dir);
   std::mt19937_64 generator(seed);
-  const auto gaussian = [&] {  // Box-Muller on the raw generator output (portable)
-    const double u1 = (static_cast<double>(generator() >> 11) + 0.5) * 0x1.0p-53;
-    const double u2 = static_cast<double>(generator() >> 11) * 0x1.0p-53;
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
-  };
   for (std::size_t e = 0; e < def.experiments.size(); ++e) {
-    const auto& experiment = def.experiments[e];
-    const Curve simulated = experiment.simulator->simulate(values);
-    const std::size_t stride = std::max<std::size_t>(1, (simulated.size() + points - 2) / (points - 1));
-    Curve out;
-    // The abscissa, the path's own channels (context for plots), then the compared channels.
-    std::vector<std::string> quantities{experiment.abscissa};
-    for (const char* path_channel : {"displacement", "rotation", "strain"})
-      if (simulated.has(path_channel) && path_channel != experiment.abscissa) quantities.push_back(path_channel);
-    for (const auto& c : experiment.channels) quantities.push_back(c.quantity);
-    for (const auto& quantity : quantities) {
-      const Channel& channel = simulated.channel(quantity);
-      std::vector<double> v;
-      for (std::size_t i = 0; i < simulated.size(); i += stride) v.push_back(channel.values[i]);
-      if ((simulated.size() - 1) % stride) v.push_back(channel.values.back());
-      const bool compared = std::any_of(experiment.channels.begin(), experiment.channels.end(),
-                                        [&](const calibrate::ChannelWeight& c) { return c.quantity == quantity; });
-      if (compared && noise > 0) {
-        const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-        const double sigma = noise * (*hi - *lo);
-        for (double& x : v) x += sigma * gaussian();
-      }
-      // Lengths in mm, like laboratory files.
-      if (channel.unit.dimension == Dimension::Length) {
-        for (double& x : v) x /= find_unit("mm")->to_si / channel.unit.to_si;
-        out.add_channel(quantity, *find_unit("mm"), v);
-      } else {
-        out.add_channel(quantity, channel.unit, v);
-      }
-    }
+    Curve out = calibrate::synthesize_target(def.experiments[e], values, noise, generator, points);
     out.set_metadata("source", "synthetic: dtwire fit --synthesize, simulator " + def.simulator + " law " +
                                    def.law + " at the reference parameter values of " +
                                    def.file.filename().string());

@@ -379,8 +379,22 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   result.cost = starts[*best].cost;
   result.residual_variance = 2.0 * result.cost / static_cast<double>(m - n);
 
-  // Covariance of z from the Jacobian at the optimum, then to SI and scaled by s^2.
+  // Jacobian and residuals at the optimum (z space; with a robust loss, as corrected by it).
   CeresProblem problem(evaluator, options, z);
+  ceres::CRSMatrix crs;
+  std::vector<double> r;
+  double cost = 0;
+  problem.problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, &r, nullptr, &crs);
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
+  for (int row = 0; row < crs.num_rows; ++row)
+    for (int k = crs.rows[static_cast<std::size_t>(row)]; k < crs.rows[static_cast<std::size_t>(row) + 1]; ++k)
+      J(row, crs.cols[static_cast<std::size_t>(k)]) = crs.values[static_cast<std::size_t>(k)];
+
+  // Covariance: C = (J^T J)^-1 from ceres::Covariance (dense SVD), scaled by the residual
+  // variance. Curves are weighted by the user, not necessarily by their noise, so the variance
+  // is estimated per curve channel g (s_g^2 = sum r_g^2 / its share of the m - n degrees of
+  // freedom) and combined as C (sum_g s_g^2 J_g^T J_g) C (the grouped sandwich estimator); with
+  // equal s_g this is the classical s^2 (J^T J)^-1.
   ceres::Covariance::Options covariance_options;
   covariance_options.algorithm_type = ceres::DENSE_SVD;
   covariance_options.null_space_rank = -1;  // pseudo-inverse: drop directions below the threshold
@@ -391,11 +405,26 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   if (covariance.Compute(blocks, problem.problem.get())) {
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> cz(n, n);
     covariance.GetCovarianceBlock(z.data(), z.data(), cz.data());
+    const Eigen::MatrixXd C = cz;
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    const double dof_share = static_cast<double>(m - n) / static_cast<double>(m);
+    Eigen::Index begin = 0;
+    for (const auto& experiment : evaluator.experiments())
+      for (std::size_t c = 0; c < experiment.channels.size(); ++c) {
+        const auto size = static_cast<Eigen::Index>(experiment.target.size());
+        double ss = 0;
+        for (Eigen::Index i = begin; i < begin + size; ++i) ss += r[static_cast<std::size_t>(i)] * r[static_cast<std::size_t>(i)];
+        const double variance = ss / (dof_share * static_cast<double>(size));
+        const auto Jg = J.middleRows(begin, size);
+        meat += variance * Jg.transpose() * Jg;
+        begin += size;
+      }
+    const Eigen::MatrixXd cov_z = C * meat * C;
     Eigen::MatrixXd cov(n, n), corr(n, n);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j)
-        cov(i, j) = result.residual_variance * cz(i, j) * parameters[i].effective_scale() *
-                    parameters[j].effective_scale();
+        cov(i, j) = cov_z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
+                    parameters[i].effective_scale() * parameters[j].effective_scale();
     for (std::size_t i = 0; i < n; ++i) result.sigma.push_back(std::sqrt(std::max(cov(i, i), 0.0)));
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) {
@@ -419,13 +448,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   }
 
   // Identifiability: singular values of the Jacobian with unit-norm columns.
-  ceres::CRSMatrix crs;
-  double cost = 0;
-  problem.problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, &crs);
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int r = 0; r < crs.num_rows; ++r)
-    for (int k = crs.rows[static_cast<std::size_t>(r)]; k < crs.rows[static_cast<std::size_t>(r) + 1]; ++k)
-      jacobian(r, crs.cols[static_cast<std::size_t>(k)]) = crs.values[static_cast<std::size_t>(k)];
+  Eigen::MatrixXd jacobian = J;
   for (Eigen::Index j = 0; j < jacobian.cols(); ++j) {
     const double norm = jacobian.col(j).norm();
     if (norm > 0) jacobian.col(j) /= norm;

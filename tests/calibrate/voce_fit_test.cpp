@@ -5,11 +5,13 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 
 #include "dtwire/calibrate/fitter.hpp"
 #include "dtwire/calibrate/voce_bar.hpp"
 #include "dtwire/core/error.hpp"
+#include "coverage.hpp"
 #include "synthetic.hpp"
 
 namespace dtwire::calibrate {
@@ -25,7 +27,8 @@ std::vector<ParameterDefinition> voce_parameters() {
           {"b_1", "1", 10.0, 0.5, 200.0, 0.0, std::nullopt}};
 }
 
-std::vector<Experiment> voce_experiments(std::shared_ptr<const Simulator> override_simulator = nullptr) {
+std::vector<Experiment> voce_experiments(std::shared_ptr<const Simulator> override_simulator = nullptr,
+                                         std::uint64_t seed = 100) {
   std::vector<Experiment> out;
   const std::vector<std::vector<double>> paths{{0.0, 0.04}, {0.0, 0.01, 0.004, 0.03}, {0.0, 0.005, -0.005}};
   for (std::size_t i = 0; i < paths.size(); ++i) {
@@ -33,7 +36,7 @@ std::vector<Experiment> voce_experiments(std::shared_ptr<const Simulator> overri
     Experiment e;
     e.name = "path" + std::to_string(i);
     e.simulator = override_simulator ? override_simulator : simulator;
-    e.target = test::noisy(simulator->simulate(kTruth), "stress", kNoisePa, 100 + i);
+    e.target = test::noisy(simulator->simulate(kTruth), "stress", kNoisePa, seed + i);
     e.abscissa = "strain";
     e.channels = {{"stress", 1.0, 0.0}};
     out.push_back(e);
@@ -67,6 +70,26 @@ TEST(VoceFit, RecoversKnownParametersWithinTwoSigma) {
     EXPECT_NEAR(q.rmse, kNoisePa, 0.25 * kNoisePa) << q.experiment;
     EXPECT_GT(q.r_squared, 0.99) << q.experiment;
   }
+}
+
+// The covariance is honest: over 40 noise realisations, the fraction of the 160 estimates
+// within 2 sigma of the truth is >= 0.88 (0.95 expected; 0.88 is 4 binomial standard deviations
+// below) and the RMS of z = (estimate - truth) / sigma lies in [0.8, 1.25] (1 expected).
+TEST(VoceFit, TwoSigmaCoverageOverNoiseRealisations) {
+  test::Coverage coverage;
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    ProblemEvaluator evaluator(voce_experiments(nullptr, 1000 * seed), voce_parameters(), serial_evaluation());
+    const FitResult result = run_fit(evaluator, FitOptions{});
+    ASSERT_TRUE(result.completed);
+    ASSERT_FALSE(result.sigma.empty());
+    for (std::size_t i = 0; i < result.values.size(); ++i)
+      coverage.z.push_back((result.values[i] - kTruth.at(result.parameters[i].name)) / result.sigma[i]);
+  }
+  std::cout << "voce fit: " << coverage.z.size() << " estimates, fraction within 2 sigma "
+            << coverage.fraction_within(2.0) << ", RMS z " << coverage.rms() << "\n";
+  EXPECT_GE(coverage.fraction_within(2.0), 0.88);
+  EXPECT_GT(coverage.rms(), 0.8);
+  EXPECT_LT(coverage.rms(), 1.25);
 }
 
 // With an upper bound on sigma_y0 below the truth, the estimate stays inside the bounds and

@@ -2,7 +2,8 @@
 // Bounded nonlinear least squares with Ceres (Levenberg-Marquardt) on the scaled parameters,
 // robust losses, multi-start from a Latin hypercube, a checkpoint after every iteration that a
 // later run resumes from (ending where an uninterrupted fit ends), and the covariance of the
-// estimate (ceres::Covariance, dense SVD) scaled by the residual variance.
+// estimate: (J^T J)^-1 from ceres::Covariance (dense SVD), scaled by the residual variance of
+// each curve channel (grouped sandwich; the classical s^2 (J^T J)^-1 when all are equal).
 #include <Eigen/Core>
 #include <atomic>
 #include <cstdint>
@@ -48,12 +49,12 @@ struct FitResult {
   bool completed = false;  // false: interrupted, resume from the checkpoint
   std::vector<ParameterDefinition> parameters;
   std::vector<double> values;                 // SI
-  std::optional<Eigen::MatrixXd> covariance;  // SI, scaled by the residual variance
+  std::optional<Eigen::MatrixXd> covariance;  // SI, scaled by the residual variances
   std::optional<Eigen::MatrixXd> correlation;
   std::vector<double> sigma;                  // sqrt(diag covariance); empty without covariance
   std::vector<double> singular_values;        // of the column-normalised Jacobian, descending
   double cost = 0.0;
-  double residual_variance = 0.0;  // 2 cost / (m - n)
+  double residual_variance = 0.0;  // pooled: 2 cost / (m - n)
   std::size_t residual_count = 0;
   std::size_t best_start = 0;
   std::vector<StartSummary> starts;

@@ -1,0 +1,149 @@
+// Fit definition files: a valid file reads back; bad files give InputError at file:line with
+// the field named.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "dtwire/calibrate/fit_file.hpp"
+#include "dtwire/core/error.hpp"
+
+namespace dtwire::calibrate {
+namespace {
+
+class FitFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("dtwire_fit_file_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    std::ofstream(dir_ / "target.csv") << "strain_1,stress_MPa\n0,0\n0.001,200\n0.01,320\n0.02,350\n";
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::filesystem::path write(const std::string& text) {
+    const auto path = dir_ / "fit.toml";
+    std::ofstream(path) << text;
+    return path;
+  }
+  // The InputError of reading `text`; fails the test if there is none.
+  InputError error_of(const std::string& text) {
+    try {
+      read_fit_file(write(text));
+    } catch (const InputError& error) {
+      return error;
+    }
+    ADD_FAILURE() << "no InputError for:\n" << text;
+    return InputError("", "");
+  }
+
+  std::filesystem::path dir_;
+};
+
+// Line numbers below count from 1 in this text.
+const std::string kValid =
+    "title = \"voce\"\n"                          // 1
+    "[simulator]\n"                               // 2
+    "kind = \"voce_bar\"\n"                       // 3
+    "[fit]\n"                                     // 4
+    "loss = \"cauchy\"\n"                         // 5
+    "starts = 2\n"                                // 6
+    "[[parameter]]\n"                             // 7
+    "name = \"E_Pa\"\n"                           // 8
+    "unit = \"Pa\"\n"                             // 9
+    "initial = 150e9\n"                           // 10
+    "lower = 50e9\n"                              // 11
+    "upper = 400e9\n"                             // 12
+    "[[experiment]]\n"                            // 13
+    "name = \"mono\"\n"                           // 14
+    "target = \"target.csv\"\n"                   // 15
+    "abscissa = \"strain\"\n"                     // 16
+    "channels = [{quantity = \"stress\", weight = 2}]\n"  // 17
+    "path_strain_1 = [0, 0.02]\n";                // 18
+
+std::string replace_line(const std::string& text, int line, const std::string& replacement) {
+  std::string out;
+  int current = 1;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = text.find('\n', start);
+    const std::string row = text.substr(start, end - start);
+    out += (current == line ? replacement : row) + "\n";
+    ++current;
+    start = end + 1;
+  }
+  return out;
+}
+
+TEST_F(FitFileTest, ValidFileReads) {
+  const FitDefinition def = read_fit_file(write(kValid));
+  EXPECT_EQ(def.simulator, "voce_bar");
+  EXPECT_EQ(def.fit.loss, LossKind::Cauchy);
+  EXPECT_EQ(def.fit.starts, 2);
+  ASSERT_EQ(def.parameters.size(), 1u);
+  EXPECT_EQ(def.parameters[0].initial, 150e9);
+  ASSERT_EQ(def.experiments.size(), 1u);
+  EXPECT_EQ(def.experiments[0].channels[0].weight, 2.0);
+  EXPECT_EQ(def.experiments[0].target.si("stress").back(), 350e6);
+}
+
+TEST_F(FitFileTest, SyntaxErrorNamesLine) {
+  const InputError e = error_of(replace_line(kValid, 10, "initial = = 150e9"));
+  EXPECT_EQ(e.line(), 10);
+  EXPECT_NE(std::string(e.what()).find("fit.toml"), std::string::npos);
+}
+
+TEST_F(FitFileTest, UnknownFieldNamesLineAndField) {
+  const InputError e = error_of(replace_line(kValid, 11, "lowr = 50e9"));
+  EXPECT_EQ(e.line(), 11);
+  EXPECT_NE(std::string(e.what()).find("parameter[1].lowr"), std::string::npos) << e.what();
+}
+
+TEST_F(FitFileTest, InitialOutsideBoundsNamesLine) {
+  const InputError e = error_of(replace_line(kValid, 10, "initial = 500e9"));
+  EXPECT_EQ(e.line(), 10);
+  EXPECT_NE(std::string(e.what()).find("parameter[1].initial"), std::string::npos) << e.what();
+}
+
+TEST_F(FitFileTest, BadLossNamesLine) {
+  const InputError e = error_of(replace_line(kValid, 5, "loss = \"l1\""));
+  EXPECT_EQ(e.line(), 5);
+  EXPECT_NE(std::string(e.what()).find("fit.loss"), std::string::npos) << e.what();
+}
+
+TEST_F(FitFileTest, WrongTypeNamesLine) {
+  const InputError e = error_of(replace_line(kValid, 6, "starts = \"two\""));
+  EXPECT_EQ(e.line(), 6);
+  EXPECT_NE(std::string(e.what()).find("expected an integer"), std::string::npos) << e.what();
+}
+
+TEST_F(FitFileTest, MissingChannelInTargetNamesLine) {
+  const InputError e = error_of(replace_line(kValid, 17, "channels = [\"force\"]"));
+  EXPECT_EQ(e.line(), 17);
+  EXPECT_NE(std::string(e.what()).find("no channel 'force'"), std::string::npos) << e.what();
+}
+
+TEST_F(FitFileTest, MissingTargetFileIsAnInputError) {
+  const InputError e = error_of(replace_line(kValid, 15, "target = \"absent.csv\""));
+  EXPECT_NE(std::string(e.what()).find("absent.csv"), std::string::npos) << e.what();
+}
+
+TEST_F(FitFileTest, BadTargetCsvNamesItsOwnLine) {
+  std::ofstream(dir_ / "target.csv") << "strain_1,stress_MPa\n0,0\n0.001,abc\n0.01,320\n";
+  const InputError e = error_of(kValid);
+  EXPECT_EQ(e.line(), 3);
+  EXPECT_NE(std::string(e.what()).find("target.csv"), std::string::npos) << e.what();
+}
+
+TEST_F(FitFileTest, BadPathUnitNamesLine) {
+  std::string text = replace_line(kValid, 3, "kind = \"law_replay\"\nlaw = \"thesis\"");
+  // After the insertion the path line is 19.
+  text = replace_line(text, 19, "path_displacement_furlong = [0, 1]");
+  const InputError e = error_of(text);
+  EXPECT_EQ(e.line(), 19);
+  EXPECT_NE(std::string(e.what()).find("path_displacement_furlong"), std::string::npos) << e.what();
+}
+
+}  // namespace
+}  // namespace dtwire::calibrate
