@@ -1,5 +1,5 @@
 // The C ABI bundle: the contact-law shared library and its header (built by dtwire_contact),
-// copied next to a README with compile and link instructions.
+// and the example program, copied next to a README with compile and link instructions.
 #include <ostream>
 #include <system_error>
 
@@ -32,6 +32,10 @@ std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out
   };
   const bool have_library = copy(library);
   const bool have_header = copy(header);
+  std::vector<std::string> examples;
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(DTWIRE_CONTACT_EXAMPLE_DIR, error))
+    if (entry.path().extension() == ".c" && copy(entry.path())) examples.push_back(entry.path().filename().string());
   const std::string library_name = library.filename().string();
   write_file_atomically(out / "README.md", [&](std::ostream& os) {
     os << "# dtwire contact laws: C ABI\n\n"
@@ -42,8 +46,12 @@ std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out
        << (have_header ? "(copied here)" : "(NOT FOUND: this build has no C header yet)") << "\n\n"
        << "Compile and link a DEM code against it (from this folder):\n\n"
           "```sh\n"
-          "cc -std=c11 -I. my_dem.c -L. -ldtwire_contact -Wl,-rpath,'$ORIGIN' -o my_dem\n"
-          "```\n\n"
+          "cc -std=c11 -I. my_dem.c -L. -ldtwire_contact -Wl,-rpath,'$ORIGIN' -o my_dem\n";
+    for (const std::string& example : examples)
+      os << "cc -std=c11 -I. " << example << " -L. -ldtwire_contact -lm -Wl,-rpath,'$ORIGIN' -o "
+         << std::filesystem::path(example).stem().string() << " && ./" << std::filesystem::path(example).stem().string()
+         << "   # the example program\n";
+    os << "```\n\n"
           "The header documents the functions (create a bond from a law name and named SI\n"
           "parameters, update it with a generalised displacement increment, read forces, energy\n"
           "and failure); see docs/dem_driver_export.md and the dem_export documentation of the\n"

@@ -3,7 +3,8 @@
 //   <wire_type>_parameters.{h5,json,csv}  parameter tables, SI, names carry their unit
 //   <wire_type>_wirepm_yade.py           a YADE script (yade -n -x) building the WirePM material
 //                                        and running the two-node pull-unload-reload-break path
-//   c_abi/                               the contact-law shared library, its C header, README
+//   c_abi/                               the contact-law shared library, its C header, the example
+//                                        program and a README
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -29,7 +30,7 @@ std::string yade_wirepm_script(const ParameterMap& wirepm_parameters, const Path
 void write_yade_script(const ParameterMap& wirepm_parameters, const PathOptions& options,
                        const std::filesystem::path& script);
 
-// Copies the contact-law library and header (if built) to `out` and writes README.md with
+// Copies the contact-law library, header and example program (if present) to `out` and writes README.md with
 // compile and link instructions. Returns the files written.
 std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out);
 

@@ -1,0 +1,101 @@
+// `dtwire dem driver` and `dtwire export` end to end: files written, exit codes, messages.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/results_store.hpp"
+
+namespace {
+
+const std::string kData = std::string(DTWIRE_SOURCE_DIR) + "/experiments/data/";
+
+struct Outcome {
+  int exit_code;
+  std::string output;  // stdout and stderr
+};
+
+Outcome shell_in(const std::filesystem::path& dir, const std::string& line) {
+  const std::string command = "cd '" + dir.string() + "' && " + line + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[4096];
+  while (pipe && fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pipe ? pclose(pipe) : -1;
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+Outcome run_in(const std::filesystem::path& dir, const std::string& arguments) {
+  return shell_in(dir, "'" + std::string(DTWIRE_EXECUTABLE) + "' " + arguments);
+}
+
+std::filesystem::path scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("dtwire_dem_cli_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+void write_text(const std::filesystem::path& file, const std::string& text) { std::ofstream(file) << text; }
+
+TEST(DemCli, DriverRunsEveryPathOnTheThesisParameterFile) {
+  const auto dir = scratch("driver");
+  const Outcome r = run_in(dir, "dem driver --law thesis --params '" + kData +
+                                    "macroelement_thesis_params.json' --wire-type single_wire --path all --steps 200 --out out");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* path : {"axial_pull", "compression", "bending_spin", "pull_spin", "cycles", "free_oscillation"}) {
+    const dtwire::Curve curve = dtwire::read_csv(dir / "out" / (std::string(path) + ".csv"));
+    EXPECT_TRUE(curve.has("moment_y") && curve.has("axial_force") && curve.has("external_work")) << path;
+  }
+  EXPECT_EQ(dtwire::read_results(dir / "out" / "driver.h5").curves.size(), 6u);
+}
+
+TEST(DemCli, BadInputExitsWithTwoAndSaysWhere) {
+  const auto dir = scratch("bad");
+  write_text(dir / "broken.json", "{\"law\": \"wirepm\", \"parameters\": {\"diameter_m\": true}}");
+  Outcome r = run_in(dir, "dem driver --params broken.json --path axial_pull --out out");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("broken.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("parameters.diameter_m"), std::string::npos) << r.output;
+  write_text(dir / "flat.json", "{\"law\": \"wirepm\", \"parameters\": {\"diameter_m\": 0.0027, \"reference_length_m\": 0.06}}");
+  r = run_in(dir, "dem driver --params flat.json --backbone '" + kData + "sw_2.7mm_dem_backbone.csv' --path spiral --out out");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--path"), std::string::npos) << r.output;
+  r = run_in(dir, "dem driver --params flat.json --path all --out out");  // no backbone
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("backbone"), std::string::npos) << r.output;
+  r = run_in(dir, "dem driver --law thesis --params flat.json --path all --out out");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("field 'law'"), std::string::npos) << r.output;
+  EXPECT_EQ(run_in(dir, "dem").exit_code, 2);
+}
+
+TEST(DemCli, ExportWritesTablesScriptAndTheCAbiBundle) {
+  const auto dir = scratch("export");
+  write_text(dir / "flat.json", "{\"law\": \"wirepm\", \"wire_type\": \"sw\", \"parameters\": {\"diameter_m\": 0.0027, "
+                                "\"reference_length_m\": 0.06}}");
+  Outcome r = run_in(dir, "export --params flat.json --backbone '" + kData + "sw_2.7mm_dem_backbone.csv' --out out");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* file : {"sw_parameters.h5", "sw_parameters.json", "sw_parameters.csv", "sw_wirepm_yade.py",
+                           "c_abi/README.md", "c_abi/dtwire_contact.h", "c_abi/libdtwire_contact.so"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "out" / file)) << file;
+  // The bundled example program builds against the copied header and library and runs.
+  if (std::filesystem::exists(dir / "out" / "c_abi" / "contact_example.c")) {
+    r = shell_in(dir / "out" / "c_abi",
+               "cc -std=c11 -I. contact_example.c -L. -ldtwire_contact -lm "
+               "-Wl,-rpath,\"$PWD\" -o example && ./example > example.log");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+  }
+  // The thesis file has no WirePM set: tables only, and the command says so.
+  r = run_in(dir, "export --params '" + kData + "macroelement_thesis_params.json' --out thesis");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("single_wire: no YADE script"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "thesis" / "double_twist_parameters.json"));
+  r = run_in(dir, "export --params '" + kData + "macroelement_thesis_params.json' --wire-type gabion --out thesis");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("gabion"), std::string::npos) << r.output;
+}
+
+}  // namespace
