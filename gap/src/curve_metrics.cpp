@@ -140,4 +140,38 @@ double frechet_distance(const ForceCurve& model, const Comparison& comparison,
   return previous.back();
 }
 
+double partial_curve_mapping(const ForceCurve& model, const Comparison& comparison,
+                             std::size_t samples, std::size_t offsets) {
+  struct Path {
+    std::vector<double> s, x, y;
+  };
+  auto path = [&](const ForceCurve& c) {
+    Path p;
+    p.x.resize(c.size());
+    p.y.resize(c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      p.x[i] = c.u[i] / comparison.u_scale;
+      p.y[i] = c.f[i] / comparison.f_scale;
+    }
+    p.s = arc_length(p.x, p.y, 1.0, 1.0);
+    return p;
+  };
+  Path a = path(model), b = path(comparison.lab);
+  if (a.s.back() < b.s.back()) std::swap(a, b);  // a is the longer curve
+  const double slack = a.s.back() - b.s.back();
+  const std::vector<double> along = linspace(0.0, b.s.back(), std::max<std::size_t>(samples, 2));
+  double best = INFINITY;
+  for (std::size_t k = 0; k < std::max<std::size_t>(offsets, 1); ++k) {
+    const double shift = offsets > 1 ? slack * static_cast<double>(k) / static_cast<double>(offsets - 1) : 0.0;
+    double sum = 0.0;
+    for (double s : along) {
+      const double dx = interpolate_clamped(a.s, a.x, s + shift) - interpolate_clamped(b.s, b.x, s);
+      const double dy = interpolate_clamped(a.s, a.y, s + shift) - interpolate_clamped(b.s, b.y, s);
+      sum += std::hypot(dx, dy);
+    }
+    best = std::min(best, sum / static_cast<double>(along.size()));
+  }
+  return best;
+}
+
 }  // namespace dtwire::gap

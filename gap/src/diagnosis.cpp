@@ -91,6 +91,7 @@ RankedEffect rank_entry(const Context& ctx, const EffectFit& fit) {
   const auto forces = model_forces_at_lab(model, first);
   r.gap_after_by_segment = segment_gaps(ctx.where, first, forces);
   r.frechet_after = frechet_distance(model, first);
+  r.pcm_after = partial_curve_mapping(model, first);
   r.plausibility = 1.0;
   for (const AppliedEffect& a : fit.effects)
     r.plausibility *= plausibility(*a.effect, a.params, ctx.problem.scale);
@@ -231,6 +232,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   d.gap_before = mean_gap(d.sim, ctx.problem.labs);
   ctx.gap_before = d.gap_before;
   d.frechet_before = frechet_distance(d.sim, first);
+  d.pcm_before = partial_curve_mapping(d.sim, first);
   d.where = locate_gap(first, ctx.sim_forces_first, name_regions(first.lab), d.noise_sigma_N);
   ctx.where = d.where;
   const EffectFit baseline = evaluate_fit(ctx.problem, {});

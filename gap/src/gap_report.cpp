@@ -63,6 +63,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                        {"plausibility", r.plausibility},
                        {"region_match", r.region_match},
                        {"frechet_after", r.frechet_after},
+                       {"pcm_after", r.pcm_after},
                        {"gap_after_by_region", r.gap_after_by_segment},
                        {"qualifies", r.qualifies}});
   nlohmann::json labs = nlohmann::json::array();
@@ -87,6 +88,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                         {"cause_reason", d.reason},
                         {"noise_sigma_N", d.noise_sigma_N},
                         {"frechet_before", d.frechet_before},
+                        {"pcm_before", d.pcm_before},
                         {"effective_sample_size", d.effective_sample_size},
                         {"lag1_autocorrelation", d.lag1_autocorrelation},
                         {"compression", d.compression},
@@ -107,7 +109,8 @@ std::string diagnosis_markdown(const Diagnosis& d) {
   for (const ForceCurve& lab : d.labs) s << " `" << lab.source << "`";
   s << ".\n\n"
     << "- gap before (area between curves on normalised axes): " << d.gap_before
-    << "; discrete Frechet distance " << d.frechet_before << "\n"
+    << "; discrete Frechet distance " << d.frechet_before << "; partial curve mapping "
+    << d.pcm_before << "\n"
     << "- noise floor: " << d.noise_floor << " (load noise " << d.noise_sigma_N << " N"
     << (d.scatter_gap >= 0 ? ", scatter between the laboratory curves " + std::to_string(d.scatter_gap) : std::string())
     << ")\n"
@@ -129,9 +132,14 @@ std::string diagnosis_markdown(const Diagnosis& d) {
       << " | " << g.direction << " |\n";
   s << "\n| effect | gap after | shrink | score | dAICc | plausibility | region match |\n"
     << "|---|---|---|---|---|---|---|\n";
-  for (const RankedEffect& r : d.ranking)
+  constexpr std::size_t kShown = 10;  // the JSON has them all
+  for (std::size_t k = 0; k < d.ranking.size() && k < kShown; ++k) {
+    const RankedEffect& r = d.ranking[k];
     s << "| " << r.effect << " | " << r.gap_after << " | " << r.shrink << " | " << r.score << " | "
       << r.delta_aicc << " | " << r.plausibility << " | " << r.region_match << " |\n";
+  }
+  if (d.ranking.size() > kShown)
+    s << "\n(" << d.ranking.size() - kShown << " more candidates in the JSON)\n";
   return s.str();
 }
 

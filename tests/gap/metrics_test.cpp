@@ -109,3 +109,27 @@ TEST(GapRegions, ShiftedCurveGapIsAHorizontalOffsetInHardening) {
 
 }  // namespace
 }  // namespace dtwire::gap
+
+namespace dtwire::gap {
+namespace {
+
+TEST(GapMetrics, PartialCurveMappingIgnoresTheTestEnd) {
+  const ForceCurve full = line(1000.0, 0.0, 0.01, 201);
+  ForceCurve part;
+  part.source = "part";
+  for (std::size_t i = 0; i < 121; ++i) {  // the first 60 % of the same line
+    part.u.push_back(full.u[i]);
+    part.f.push_back(full.f[i]);
+  }
+  // Exact sub-curve: 0 up to interpolation round-off.
+  EXPECT_NEAR(partial_curve_mapping(full, make_comparison(part)), 0.0, 1e-9);
+  // A 0.5 N vertical offset is 0.5/6 on axes normalised by the 6 N peak of the part; sliding
+  // forward along the 45-degree line only moves the points apart, so the best match is the
+  // unshifted one at exactly the offset (round-off tolerance).
+  ForceCurve shifted = full;
+  for (double& f : shifted.f) f += 0.5;
+  EXPECT_NEAR(partial_curve_mapping(shifted, make_comparison(part)), 0.5 / 6.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace dtwire::gap

@@ -39,6 +39,13 @@ double normalised_area(const ForceCurve& model, const Comparison& comparison);
 double frechet_distance(const ForceCurve& model, const Comparison& comparison,
                         std::size_t max_points = 400);
 
+// Partial curve mapping (after Witowski et al. 2012, LS-OPT): on the normalised axes, the shorter
+// curve (by arc length) is slid along the longer one; at each of `offsets` shifts the mean
+// distance between points at equal arc length is taken; the result is the smallest mean. A
+// curve that is an exact part of the other scores 0, whatever the test end.
+double partial_curve_mapping(const ForceCurve& model, const Comparison& comparison,
+                             std::size_t samples = 200, std::size_t offsets = 60);
+
 // Clamped linear interpolation on a non-decreasing abscissa (repeated values allowed).
 double interpolate_clamped(const std::vector<double>& x, const std::vector<double>& y, double xq);
 

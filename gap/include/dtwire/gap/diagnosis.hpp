@@ -28,6 +28,7 @@ struct RankedEffect {
   double plausibility = 1.0;
   double region_match = 0.0;  // 1 when the effect changes the curve where the gap is
   double frechet_after = 0.0;
+  double pcm_after = 0.0;
   std::vector<double> gap_after_by_segment;  // per entry of Diagnosis::where
   bool qualifies = false;  // beats the noise floor and the information criterion
 };
@@ -46,6 +47,7 @@ struct Diagnosis {
   double noise_floor = 0.0;
   double gap_before = 0.0;
   double frechet_before = 0.0;
+  double pcm_before = 0.0;  // partial curve mapping
   double effective_sample_size = 0.0;
   double lag1_autocorrelation = 0.0;
   bool compression = false;  // a curve was given in compression; reported as magnitudes
