@@ -30,8 +30,9 @@ def main(data_path, png_path):
         lo, hi = sorted((region["from_mm"], region["to_mm"]))
         ax.axvspan(lo, hi, color=REGION_COLOURS.get(name, "#d9d9d9"),
                    alpha=0.15 + 0.45 * region["share"], lw=0, label=label)
-        ax.text(0.5 * (lo + hi), 1.0, f"{region['share']:.0%}", transform=ax.get_xaxis_transform(),
-                ha="center", va="bottom", fontsize=7)
+        if region["share"] >= 0.03:  # small shares would only overprint their neighbours
+            ax.text(0.5 * (lo + hi), 1.0, f"{region['share']:.0%}",
+                    transform=ax.get_xaxis_transform(), ha="center", va="bottom", fontsize=7)
     for i, lab in enumerate(data["labs"]):
         ax.plot(lab["displacement_mm"], lab["force_N"], ".", ms=2, color="0.35",
                 label="laboratory" if i == 0 else None)
