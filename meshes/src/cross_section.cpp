@@ -31,7 +31,7 @@ class PointSet {
 
 Resolution resolution(int level, double diameter) {
   const int block = 2 << level;  // 2, 4, 8, 16
-  return {block, std::max(1, block / 2), std::max(1, block / 4), 1.5 * diameter / block};
+  return {block, std::max(1, block / 2), std::max(1, block / 4), 1.5 * diameter / block, level == 0 ? 0.3 : 0.15};
 }
 
 double area_preserving_radius_factor(int boundary_segments) {

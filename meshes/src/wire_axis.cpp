@@ -19,7 +19,7 @@ Station flipped(const Station& station) { return {station.point, -station.tangen
 AxisPiece reversed(const AxisPiece& piece) {
   auto at = piece.at;
   const double length = piece.length;
-  return {[at, length](double s) { return flipped(at(length - s)); }, length, piece.part};
+  return {[at, length](double s) { return flipped(at(length - s)); }, length, piece.part, piece.min_layers};
 }
 
 AxisPiece straight_piece(const Station& start, double length, WirePart part) {
@@ -44,7 +44,7 @@ SampledAxis sample_axis(const std::vector<AxisPiece>& pieces, double cell_length
   SampledAxis axis;
   for (const AxisPiece& piece : pieces) {
     if (piece.length <= 0) continue;
-    const int layers = std::max(1, static_cast<int>(std::ceil(piece.length / cell_length - 1e-9)));
+    const int layers = std::max(piece.min_layers, static_cast<int>(std::ceil(piece.length / cell_length - 1e-9)));
     for (int k = axis.stations.empty() ? 0 : 1; k <= layers; ++k)
       axis.stations.push_back(piece.at(piece.length * k / layers));
     axis.layer_part.insert(axis.layer_part.end(), layers, piece.part);

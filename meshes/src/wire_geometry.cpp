@@ -26,6 +26,10 @@ double helix_rate(const MeshParameters& p) { return p.half_turns * kPi / p.twist
 AxisPiece helix_piece(const MeshParameters& p, double phase) {
   const double radius = helix_radius(p), rate = helix_rate(p);
   const double stretch = std::sqrt(1 + radius * radius * rate * rate);  // ds / dz
+  // The section follows the principal normal, which turns about the axis by the torsion
+  // integral, rate L / stretch, against a rotation-minimising frame.
+  const double section_turn = rate * p.twist_length / stretch;
+  const int min_layers = static_cast<int>(std::ceil(section_turn / resolution(p.level, p.diameter).max_section_turn));
   return {[=](double s) {
             const double z = s / stretch, theta = rate * z + phase;
             const Vec3 radial{std::cos(theta), std::sin(theta), 0};
@@ -33,7 +37,7 @@ AxisPiece helix_piece(const MeshParameters& p, double phase) {
                            (1 / stretch) * Vec3{-radius * rate * radial.y, radius * rate * radial.x, 1},
                            -radial};  // principal normal: towards the twist axis and the other wire
           },
-          p.twist_length * stretch, WirePart::Free};
+          p.twist_length * stretch, WirePart::Free, min_layers};
 }
 
 // The bend and the straight arm leaving `start` (tangent pointing away from the twist).

@@ -13,6 +13,9 @@ struct Resolution {
   int radial_cells;   // cells across each curved block (core side to the steel surface)
   int coating_cells;  // cells across the coating ring
   double axial_cell_length;  // target cell length along the wire axis
+  // Largest turn of the section about the axis between two stations (rad): the twisted
+  // cells of a helix lose about turn^2 / 6 of their volume.
+  double max_section_turn;
 };
 Resolution resolution(int level, double diameter);
 

@@ -22,6 +22,7 @@ struct AxisPiece {
   std::function<Station(double)> at;  // arc length 0..length from the piece start
   double length;
   WirePart part;
+  int min_layers = 1;  // e.g. to bound the section turn per layer along a helix
 };
 
 Station flipped(const Station& station);  // same frame, tangent reversed, v kept right-handed
@@ -38,7 +39,7 @@ struct SampledAxis {
   std::vector<WirePart> layer_part;  // part of the cell layer between station k and k + 1
   double length = 0;                 // exact axis length
 };
-// Each piece gets ceil(length / cell_length) (at least 1) equal layers.
+// Each piece gets max(ceil(length / cell_length), min_layers) equal layers.
 SampledAxis sample_axis(const std::vector<AxisPiece>& pieces, double cell_length);
 
 // Sweeps the section along the axis and appends hexes, end faces and lateral faces of wire
