@@ -56,11 +56,6 @@ std::vector<double> draw_params(const std::string& effect, const ForceCurve& sim
   return {};
 }
 
-struct Injection {
-  std::string truth;
-  std::vector<AppliedEffect> effects;
-};
-
 SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effects,
                          std::mt19937& rng, unsigned seed) {
   const ForceCurve& sim = base.curve;
