@@ -10,13 +10,14 @@
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/driver.hpp"
 #include "dtwire/dem/export_params.hpp"
+#include "dtwire/version.hpp"
 
 namespace dtwire::app {
 namespace {
 
 struct DriverOptions {
   std::string law;
-  std::string params;
+  std::string params = std::string(kSourceDir) + "/experiments/data/macroelement_thesis_params.json";
   std::string wire_type;
   std::string backbone;
   std::string path = "all";
@@ -26,8 +27,9 @@ struct DriverOptions {
   std::string out;
 };
 
-int run_driver_command(const DriverOptions& o, const std::string& command_line) {
-  dem::ParameterSet set = dem::select_wire_type(dem::read_parameter_file(o.params), o.wire_type, o.params);
+// One parameter set on the chosen path(s), written to `out`.
+void drive_set(const DriverOptions& o, dem::ParameterSet set, const std::filesystem::path& out,
+               const std::string& command_line) {
   if (!o.backbone.empty()) dem::add_backbone(set, dem::read_backbone_csv(o.backbone));
   if (!o.law.empty() && !set.law.empty() && o.law != set.law)
     throw InputError(o.params, "field 'law': the file says '" + set.law + "' but --law is '" + o.law + "'");
@@ -49,19 +51,31 @@ int run_driver_command(const DriverOptions& o, const std::string& command_line) 
   } catch (const std::invalid_argument& e) {
     // Unknown law, bad law parameters or an unknown path name.
     const std::string message = e.what();
-    throw InputError(message.rfind("unknown path", 0) == 0 ? "--path" : o.params, message);
+    throw InputError(message.rfind("unknown path", 0) == 0 ? "--path" : o.params,
+                     (set.wire_type == "default" ? "" : set.wire_type + ": ") + message);
   }
   std::vector<std::filesystem::path> inputs{o.params};
   if (!o.backbone.empty()) inputs.emplace_back(o.backbone);
   if (std::filesystem::path(o.path).extension() == ".csv") inputs.emplace_back(o.path);
-  dem::write_driver_results(runs, law, parameters, o.out, make_provenance(command_line, inputs));
+  dem::write_driver_results(runs, law, parameters, out, make_provenance(command_line, inputs));
   for (const dem::DriverRun& run : runs) {
     const auto& broken = run.history.channel("broken").values;
-    std::cout << run.path_name << ": " << run.history.size() << " samples"
-              << (broken.back() > 0.5 ? ", bond broken" : "") << " -> "
-              << (std::filesystem::path(o.out) / (run.path_name + ".csv")).string() << "\n";
+    std::cout << set.wire_type << " " << run.path_name << ": " << run.history.size() << " samples"
+              << (broken.back() > 0.5 ? ", bond broken" : "") << " -> " << (out / (run.path_name + ".csv")).string()
+              << "\n";
   }
-  std::cout << "all histories: " << (std::filesystem::path(o.out) / "driver.h5").string() << "\n";
+  std::cout << "all histories: " << (out / "driver.h5").string() << "\n";
+}
+
+int run_driver_command(const DriverOptions& o, const std::string& command_line) {
+  const std::vector<dem::ParameterSet> sets = dem::read_parameter_file(o.params);
+  if (!o.wire_type.empty() || sets.size() == 1) {
+    drive_set(o, dem::select_wire_type(sets, o.wire_type, o.params), o.out, command_line);
+    return 0;
+  }
+  // Several sets and none chosen: every set, each in its own folder.
+  for (const dem::ParameterSet& set : sets)
+    drive_set(o, set, std::filesystem::path(o.out) / set.wire_type, command_line);
   return 0;
 }
 
@@ -77,9 +91,10 @@ void add_dem_command(CLI::App& root, CommandSet& commands) {
       "driver", "Replay load paths on a contact law between two nodes; write force, moment and energy histories");
   driver->add_option("--law", options->law, "Contact law: thesis, macro3d, wirepm, parallel_bond (default: the file's 'law')");
   driver->add_option("--params", options->params, "Parameter file (.json; thesis, flat or calibrate format)")
-      ->required()
+      ->capture_default_str()
       ->check(CLI::ExistingFile);
-  driver->add_option("--wire-type", options->wire_type, "Which set of a multi-set file (e.g. single_wire, double_twist)");
+  driver->add_option("--wire-type", options->wire_type,
+                     "Which set of a multi-set file (e.g. single_wire); default: every set, in <out>/<wire type>/");
   driver->add_option("--backbone", options->backbone, "WirePM backbone CSV (strain_1,stress_Pa)")->check(CLI::ExistingFile);
   driver->add_option("--path", options->path,
                      "axial_pull, compression, bending_spin, pull_spin, cycles, free_oscillation, all, or FILE.csv")

@@ -50,6 +50,11 @@ TEST(DemCli, DriverRunsEveryPathOnTheThesisParameterFile) {
     EXPECT_TRUE(curve.has("moment_y") && curve.has("axial_force") && curve.has("external_work")) << path;
   }
   EXPECT_EQ(dtwire::read_results(dir / "out" / "driver.h5").curves.size(), 6u);
+  // Default parameter file (the thesis sets) and no --wire-type: every set in its own folder.
+  const Outcome all_sets = run_in(dir, "dem driver --law thesis --path axial_pull --steps 50 --out sets");
+  ASSERT_EQ(all_sets.exit_code, 0) << all_sets.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "sets" / "single_wire" / "axial_pull.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "sets" / "double_twist" / "axial_pull.csv"));
 }
 
 TEST(DemCli, BadInputExitsWithTwoAndSaysWhere) {
