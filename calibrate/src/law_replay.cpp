@@ -5,6 +5,8 @@
 
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
+#include "dtwire/dem/driver.hpp"
+#include "dtwire/dem/paths.hpp"
 
 namespace dtwire::calibrate {
 
@@ -32,31 +34,36 @@ Curve LawReplaySimulator::simulate(const ParameterValues& parameters) const {
   } catch (const std::invalid_argument& error) {
     throw ComputationError(std::string("law rejected the parameters: ") + error.what());
   }
+  // The waypoints as a sampled path for dem_export's two-node driver (dem::replay_path), one
+  // sample per increment; time is the pseudo-time of the legs.
   const auto& u = path_.displacement_m;
   const auto& w = path_.rotation_rad;
-  std::vector<double> time{0.0}, du{u.front()}, rot{w.front()}, force{0.0}, moment{0.0};
   const int steps = path_.increments_per_leg;
-  for (std::size_t leg = 1; leg < u.size(); ++leg) {
-    dem::Vector6 increment = dem::Vector6::Zero();
-    increment(0) = (u[leg] - u[leg - 1]) / steps;
-    increment(4) = (w[leg] - w[leg - 1]) / steps;
+  dem::LoadPath sampled;
+  sampled.name = "fit_path";
+  sampled.samples.push_back(dem::PathSample{});
+  for (std::size_t leg = 1; leg < u.size(); ++leg)
     for (int i = 1; i <= steps; ++i) {
-      bond->update(increment);
-      const dem::Vector6 f = bond->forces();
-      if (!f.allFinite()) throw ComputationError(law_ + ": non-finite forces");
-      time.push_back(static_cast<double>(leg - 1) + static_cast<double>(i) / steps);
-      du.push_back(u[leg - 1] + (u[leg] - u[leg - 1]) * i / steps);
-      rot.push_back(w[leg - 1] + (w[leg] - w[leg - 1]) * i / steps);
-      force.push_back(f(0));
-      moment.push_back(f(4));
+      const double t = static_cast<double>(i) / steps;
+      dem::PathSample sample;
+      sample.time = static_cast<double>(leg - 1) + t;
+      sample.displacement(0) = u[leg - 1] + (u[leg] - u[leg - 1]) * t;
+      sample.displacement(4) = w[leg - 1] + (w[leg] - w[leg - 1]) * t;
+      sampled.samples.push_back(sample);
     }
-  }
+  const Curve history = dem::replay_path(*bond, sampled);
   Curve curve;
-  curve.add_channel("time", *find_unit("s"), time);
-  curve.add_channel("displacement", *find_unit("m"), du);
-  curve.add_channel("rotation", *find_unit("rad"), rot);
-  curve.add_channel("force", *find_unit("N"), force);
-  curve.add_channel("moment", *find_unit("Nm"), moment);
+  const auto copy = [&](const char* from, const char* to) {
+    const Channel& c = history.channel(from);
+    for (double v : c.values)
+      if (!std::isfinite(v)) throw ComputationError(law_ + ": non-finite " + from);
+    curve.add_channel(to, c.unit, c.values);
+  };
+  copy("time", "time");
+  copy("axial_displacement", "displacement");
+  copy("rotation_y", "rotation");
+  copy("axial_force", "force");
+  copy("moment_y", "moment");
   return curve;
 }
 

@@ -1,11 +1,11 @@
 #pragma once
-// DEM-bond simulator: replays a load path (axial displacement u and bending rotation theta_y
-// of the bond's moving node, piecewise linear between waypoints) on a dtwire::dem::ContactLaw
-// and returns the force and moment curves. This is the fit (3) simulator: macro-element
-// parameters from curves, without FE in the loop.
-// Curve channels: time_s (pseudo-time: leg k runs from k-1 to k s, a monotone abscissa for paths
-// along which neither displacement nor rotation is monotone), displacement_m, rotation_rad,
-// force_N, moment_Nm.
+// DEM-bond simulator for fit (3), macro-element parameters from curves without FE in the loop:
+// replays a load path (axial displacement u and bending rotation theta_y of the bond's moving
+// node, piecewise linear between waypoints) on a dtwire::dem::ContactLaw through dem_export's
+// two-node driver (dem::replay_path) and returns the force and moment curves.
+// Curve channels, in the driver's units: time (pseudo-time: leg k runs from k-1 to k s, a
+// monotone abscissa for paths along which neither u nor theta_y is monotone), displacement,
+// rotation, force, moment (the driver's axial_displacement, rotation_y, axial_force, moment_y).
 #include <string>
 #include <vector>
 
