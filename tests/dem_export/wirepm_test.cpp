@@ -1,5 +1,7 @@
 // WirePM against hand-computed values of the 2.7 mm single-wire backbone
 // (experiments/data/sw_2.7mm_dem_backbone.csv; Bertrand et al. 2008, Thoeni et al. 2013).
+// Forces are piecewise linear in the elongation, so the tolerances are round-off: 1e-9 of the
+// force scale unless stated otherwise next to the assertion.
 #include <gtest/gtest.h>
 
 #include <cmath>
