@@ -95,6 +95,37 @@ TEST(VoceFit, TwoSigmaCoverageOverNoiseRealisations) {
   EXPECT_LT(coverage.rms(), 1.4);
 }
 
+// A robust loss resists outliers: 5 points of the monotonic curve shifted by +150 MPa (75
+// noise sigmas) bias sigma_y0 under least squares by more than 1 % (measured 1.6 %); with the
+// Huber loss (bend at 3 noise sigmas) and with the Cauchy loss the estimate stays within
+// 0.2 % of the truth (measured 0.04 % and 0.01 %).
+TEST(VoceFit, RobustLossResistsOutliers) {
+  auto experiments = voce_experiments();
+  std::vector<double> stress = experiments[0].target.channel("stress").values;
+  for (std::size_t i = 20; i < 60; i += 8) stress[i] += 150e6;
+  Curve target;
+  target.add_channel("strain", *find_unit("1"), experiments[0].target.channel("strain").values);
+  target.add_channel("stress", *find_unit("Pa"), stress);
+  experiments[0].target = target;
+  // Residual of one point: sqrt(1/n) * error / range; the loss bends at 3 noise sigmas.
+  const double range = *std::max_element(stress.begin(), stress.end()) - *std::min_element(stress.begin(), stress.end());
+  const double noise_residual = std::sqrt(1.0 / static_cast<double>(stress.size())) * kNoisePa / range;
+  const double truth = kTruth.at("sigma_y0_Pa");
+  std::vector<double> errors;
+  for (LossKind loss : {LossKind::Squared, LossKind::Huber, LossKind::Cauchy}) {
+    ProblemEvaluator evaluator(experiments, voce_parameters(), serial_evaluation());
+    FitOptions options;
+    options.loss = loss;
+    options.loss_scale = 3.0 * noise_residual;
+    const FitResult result = run_fit(evaluator, options);
+    errors.push_back(std::abs(result.values[1] - truth));
+  }
+  std::cout << "sigma_y0 error: squared " << errors[0] << ", huber " << errors[1] << ", cauchy " << errors[2] << " Pa\n";
+  EXPECT_GT(errors[0], 0.01 * truth);
+  EXPECT_LT(errors[1], 0.002 * truth);
+  EXPECT_LT(errors[2], 0.002 * truth);
+}
+
 // With an upper bound on sigma_y0 below the truth, the estimate stays inside the bounds and
 // the fit says the parameter ended at a bound.
 TEST(VoceFit, BoundsAreRespected) {
