@@ -82,8 +82,9 @@ void add_kind(CLI::App& mesh, CommandSet& commands, meshes::WireKind kind) {
     if (!(dt ? field.double_twist : field.single_wire)) continue;
     options->values[field.name] = meshes::user_value(defaults, field);
     const std::string unit = field.unit == "1" ? "" : " (" + field.unit + ")";
-    options->given[field.name] =
-        command->add_option("--" + field.name, options->values[field.name], field.help + unit)->capture_default_str();
+    CLI::Option* option = command->add_option("--" + field.name, options->values[field.name], field.help + unit);
+    option->capture_default_str()->type_name(field.integer ? "INT" : "FLOAT");
+    options->given[field.name] = option;
   }
   command->add_option("-o,--out", options->msh, "Mesh file to write (gmsh MSH 2.2, coordinates in m)");
   command->add_option("--vtu", options->vtu, "VTU preview for ParaView");

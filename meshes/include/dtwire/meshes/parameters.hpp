@@ -56,8 +56,8 @@ double user_value(const MeshParameters& parameters, const ParameterField& field)
 
 // Throws InputError at the field's location (or naming the field) when the parameters cannot
 // give a valid mesh: d <= 0, n < 1, level outside 0..3, gap < 0 or so large the wires do not
-// touch, arms too short for bend and grip. Geometric clashes (arms crossing the twist) are
-// checked when the DT axis paths are built (double_twist.hpp).
+// touch, bend tighter than the wire. Arms too short for bend and grip and arms crossing the
+// twist are checked when the DT axis paths are built (wire_geometry.hpp).
 void validate(const MeshParameters& parameters, const FieldLocations& locations = {});
 
 // The InputError for `field` at its location.
