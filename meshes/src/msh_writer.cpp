@@ -45,7 +45,7 @@ void write_msh(const HexMesh& mesh, const std::filesystem::path& path) {
   // gmsh picks the format from the extension, so the temporary name keeps ".msh".
   std::filesystem::path temporary = path;
   temporary.replace_filename("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) + ".msh");
-  {
+  try {
     GmshSession session;
     gmsh::model::add("dtwire");
     // All nodes live on a node-only carrier entity (tag 1000): regions share nodes.
@@ -66,6 +66,11 @@ void write_msh(const HexMesh& mesh, const std::filesystem::path& path) {
     gmsh::option::setNumber("Mesh.Binary", 0);
     gmsh::option::setNumber("Mesh.SaveAll", 0);
     gmsh::write(temporary.string());
+  } catch (...) {
+    // The gmsh API reports errors as exceptions of its own types (std::string in 4.8).
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error(path.string() + ": gmsh could not write the mesh file");
   }
   std::error_code error;
   std::filesystem::rename(temporary, path, error);
