@@ -28,6 +28,8 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Imperfection centre (mm)", "30", Patterns::Double(), "z of the smallest radius");
   prm.declare_entry("Imperfection half width (mm)", "30", Patterns::Double(0.0),
                     "Half width of the cosine radius profile");
+  prm.declare_entry("Mesh distortion", "0", Patterns::Double(0.0, 0.4),
+                    "Random shift of interior vertices, fraction of the local cell size");
   prm.leave_subsection();
 
   prm.enter_subsection("Material");
@@ -56,7 +58,10 @@ void declare(ParameterHandler& prm) {
                     "z = 0: clamped (u = 0), axial (u_z = 0), symmetry (mid-plane: u_z = 0, "
                     "curve displacement and energies doubled)");
   prm.declare_entry("Top end", "clamped", Patterns::Selection("clamped|axial"),
-                    "z = length: u_z from the load path; clamped also fixes u_x = u_y = 0");
+                    "z = length: the load-path displacement; clamped also fixes the other components, "
+                    "axial leaves them free");
+  prm.declare_entry("Load direction", "axial", Patterns::Selection("axial|lateral"),
+                    "axial: top u_z prescribed (tension, compression); lateral: top u_x (cantilever)");
   prm.declare_entry("Load path (mm)", "0:0, 1:1", Patterns::Anything(),
                     "pseudo-time:top displacement pairs, piecewise linear (unload/reload/cycles)");
   prm.leave_subsection();
@@ -81,6 +86,8 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Fields", "true", Patterns::Bool(), "write VTU/PVTU fields");
   prm.declare_entry("Field interval", "0", Patterns::Integer(0), "every n steps; the last always");
   prm.leave_subsection();
+
+  contact::declare_contact_parameters(prm);  // contact (issue 5)
 }
 
 std::vector<std::pair<double, double>> parse_pairs(const std::string& text, const std::string& file,
@@ -149,6 +156,7 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.geometry.imperfection = prm.get_double("Imperfection");
   p.geometry.imperfection_centre = prm.get_double("Imperfection centre (mm)") * 1e-3;
   p.geometry.imperfection_half_width = prm.get_double("Imperfection half width (mm)") * 1e-3;
+  p.geometry.mesh_distortion = prm.get_double("Mesh distortion");
   prm.leave_subsection();
 
   prm.enter_subsection("Material");
@@ -182,6 +190,9 @@ Parameters read_parameters(const std::filesystem::path& file) {
   prm.enter_subsection("Boundary conditions");
   p.load.bottom = end_condition(prm.get("Bottom end"));
   p.load.top = end_condition(prm.get("Top end"));
+  p.load.direction = prm.get("Load direction") == "lateral" ? LoadDirection::lateral : LoadDirection::axial;
+  if (p.load.direction == LoadDirection::lateral && (p.geometry.quarter || p.load.bottom != EndCondition::clamped))
+    throw InputError(name, "Load direction = lateral needs Cross section = full and Bottom end = clamped");
   for (const auto& [t, u] : parse_pairs(prm.get("Load path (mm)"), name, "Load path (mm)"))
     p.load.path.emplace_back(t, u * 1e-3);
   if (p.load.path.size() < 2 || p.load.path.front().first != 0.0 || p.load.path.front().second != 0.0)
@@ -215,6 +226,9 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.output.fields = prm.get_bool("Fields");
   p.output.field_interval = prm.get_integer("Field interval");
   prm.leave_subsection();
+  std::vector<double> knots;  // contact (issue 5)
+  for (const auto& k : p.load.path) knots.push_back(k.first);
+  p.contact = contact::parse_contact_parameters(prm, name, knots);
   return p;
 }
 

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "contact/contact_parameters.hpp"  // contact (issue 5)
 #include "hardening.hpp"
 
 namespace dtwire::fem {
@@ -19,6 +20,7 @@ struct GeometryParameters {
   double imperfection = 0.0;     // relative radius reduction at the imperfection centre
   double imperfection_centre = 30e-3;      // m
   double imperfection_half_width = 30e-3;  // m, cosine profile
+  double mesh_distortion = 0.0;            // random interior-vertex shift, fraction of cell size
 };
 
 struct MaterialParameters {
@@ -33,10 +35,12 @@ struct FormulationParameters {
 };
 
 enum class EndCondition { clamped, axial, symmetry };
+enum class LoadDirection { axial, lateral };  // top displacement along z, or along x
 
 struct LoadParameters {
   EndCondition bottom = EndCondition::clamped;  // z = 0
-  EndCondition top = EndCondition::clamped;     // z = length, carries the prescribed u_z
+  EndCondition top = EndCondition::clamped;     // z = length, carries the prescribed displacement
+  LoadDirection direction = LoadDirection::axial;
   std::vector<std::pair<double, double>> path;  // (pseudo-time, top displacement in m)
 };
 
@@ -69,6 +73,7 @@ struct Parameters {
   SteppingParameters stepping;
   NewtonParameters newton;
   OutputParameters output;
+  contact::ContactParameters contact;  // contact (issue 5): rigid tools, none by default
 };
 
 // Throws InputError naming the file (and line, when deal.II reports it) and what was expected.

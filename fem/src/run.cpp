@@ -12,6 +12,7 @@
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/version.hpp"
+#include "contact/contact_curve.hpp"  // contact (issue 5)
 #include "solver.hpp"
 
 namespace dtwire::fem {
@@ -55,6 +56,11 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
   c.add_channel_si("plastic_dissipation", Dimension::Energy, d, *find_unit("J"));
   c.add_channel_si("elastic_energy", Dimension::Energy, e, *find_unit("J"));
   c.add_channel_si("neck_radius", Dimension::Length, r, *find_unit("mm"));
+  if (!records.empty() && records.front().contact.enabled) {  // contact (issue 5)
+    std::vector<contact::ContactRecord> contacts;
+    for (const auto& s : records) contacts.push_back(s.contact);
+    contact::add_contact_channels(c, contacts);
+  }
   c.set_metadata("source", "dtwire run " + options.parameter_file.filename().string());
   c.set_metadata("model", std::string("finite-strain J2 plasticity, ") +
                               (p.formulation.fbar ? "F-bar" : "plain displacement") + " Q" +

@@ -29,6 +29,7 @@
 #include <sstream>
 
 #include "dtwire/core/error.hpp"
+#include "contact/rigid_tool_contact.hpp"  // contact (issue 5)
 #include "fbar_element.hpp"
 #include "wire_mesh.hpp"
 
@@ -94,18 +95,23 @@ struct WireSolver::Impl {
   J2LogPlasticity material;
   std::filesystem::path field_directory;
 
-  IndexSet owned, relevant, top_axial_dofs;
+  IndexSet owned, relevant, top_loaded_dofs;
   AffineConstraints<double> homogeneous, predictor;
   PETScWrappers::MPI::SparseMatrix matrix;
   PETScWrappers::MPI::Vector solution, rhs, internal_force, increment;
-  PETScWrappers::MPI::Vector ghosted;  // solution with ghost entries, for assembly
+  PETScWrappers::MPI::Vector ghosted;  // solution with ghost entries
+  std::vector<double> relevant_values;  // plain copy of `ghosted`: PETSc element reads are not thread-safe
   std::vector<QuadraturePointRecord> points;
   double elastic_energy = 0.0, dissipation = 0.0;
+  std::unique_ptr<contact::RigidToolContact> rigid_contact;  // contact (issue 5): null without tools
 
   SolverStatistics stats;
   std::vector<std::string> written_fields;
   std::vector<std::pair<double, std::string>> pvd_records;
 
+  FEValuesExtractors::Scalar loaded_component() const {
+    return FEValuesExtractors::Scalar(prm.load.direction == LoadDirection::lateral ? 0 : 2);
+  }
   double force_multiplier() const { return prm.geometry.quarter ? 4.0 : 1.0; }
   double length_multiplier() const { return prm.load.bottom == EndCondition::symmetry ? 2.0 : 1.0; }
 
@@ -115,8 +121,12 @@ struct WireSolver::Impl {
   void commit();
   double reaction() const;
   double neck_radius() const;
-  bool solve_step(double t_old, double t_new, unsigned& iterations, std::string& reason);
+  bool solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
+                  unsigned& iterations, std::string& reason);
   void write_fields(unsigned step, double time);
+  // contact (issue 5): solve_step inside the augmented-Lagrange (Uzawa) loop.
+  bool solve_contact_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
+                          const PETScWrappers::MPI::Vector& start, unsigned& iterations, std::string& reason);
 };
 
 void WireSolver::Impl::setup() {
@@ -140,9 +150,11 @@ void WireSolver::Impl::setup() {
   increment.reinit(owned, comm);
   ghosted.reinit(owned, relevant, comm);
 
-  const FEValuesExtractors::Scalar uz(2);
-  top_axial_dofs = DoFTools::extract_boundary_dofs(dof_handler, fe.component_mask(uz), {kTop});
+  top_loaded_dofs = DoFTools::extract_boundary_dofs(dof_handler, fe.component_mask(loaded_component()), {kTop});
   points.assign(triangulation.n_active_cells() * quadrature.size(), QuadraturePointRecord{});
+  if (prm.contact.enabled())  // contact (issue 5)
+    rigid_contact = std::make_unique<contact::RigidToolContact>(prm.contact, prm.material.young, dof_handler, kBottom,
+                                                                kTop, comm);
   log << "mesh: " << stats.cells << " cells, " << stats.dofs << " dofs, " << stats.ranks << " MPI rank(s), "
       << MultithreadInfo::n_threads() << " thread(s) per rank, element "
       << (prm.formulation.fbar ? "F-bar" : "plain displacement") << " Q" << prm.formulation.degree << "\n";
@@ -155,10 +167,11 @@ void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double top
   const ComponentMask all(3, true), z_only = fe.component_mask(uz);
   const auto zero = Functions::ZeroFunction<3>(3);
   Vector<double> top_value(3);
-  top_value[2] = top_increment;
+  top_value[loaded_component().component] = top_increment;
   const Functions::ConstantFunction<3> top(top_value);
   VectorTools::interpolate_boundary_values(dof_handler, kTop, top, c,
-                                           prm.load.top == EndCondition::clamped ? all : z_only);
+                                           prm.load.top == EndCondition::clamped ? all
+                                                                                 : fe.component_mask(loaded_component()));
   VectorTools::interpolate_boundary_values(dof_handler, kBottom, zero, c,
                                            prm.load.bottom == EndCondition::clamped ? all : z_only);
   if (prm.geometry.quarter) {
@@ -171,6 +184,11 @@ void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double top
 AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstraints<double>& constraints) {
   Timer timer;
   ghosted = solution;
+  relevant_values.resize(relevant.n_elements());
+  {
+    std::size_t k = 0;
+    for (const auto i : relevant) relevant_values[k++] = ghosted[i];
+  }
   if (with_matrix) matrix = 0.0;
   rhs = 0.0;
   internal_force = 0.0;
@@ -194,7 +212,7 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
       geo.weight[q] = scratch.values.JxW(q);
     }
     scratch.u.resize(n_dofs);
-    for (unsigned i = 0; i < n_dofs; ++i) scratch.u[i] = ghosted[copy.dofs[i]];
+    for (unsigned i = 0; i < n_dofs; ++i) scratch.u[i] = relevant_values[relevant.index_within_set(copy.dofs[i])];
     const std::size_t first = cell->active_cell_index() * n_q;
     scratch.history.resize(n_q);
     for (unsigned q = 0; q < n_q; ++q) scratch.history[q] = points[first + q].committed;
@@ -240,6 +258,9 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
   WorkStream::run(CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.begin_active()),
                   CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.end()), worker, copier,
                   ScratchData(fe, quadrature), CopyData());
+  if (rigid_contact &&  // contact (issue 5): tool tractions on the contact boundary faces
+      !rigid_contact->assemble(relevant, relevant_values, with_matrix, constraints, matrix, rhs, internal_force))
+    failed = true;
   if (with_matrix) matrix.compress(VectorOperation::add);
   rhs.compress(VectorOperation::add);
   internal_force.compress(VectorOperation::add);
@@ -260,11 +281,12 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
 
 void WireSolver::Impl::commit() {
   for (auto& p : points) p.committed = p.trial;
+  if (rigid_contact) rigid_contact->commit();  // contact (issue 5)
 }
 
 double WireSolver::Impl::reaction() const {
   double local = 0.0;
-  for (const auto i : top_axial_dofs)
+  for (const auto i : top_loaded_dofs)
     if (owned.is_element(i)) local += internal_force[i];
   return Utilities::MPI::sum(local, comm) * force_multiplier();
 }
@@ -292,21 +314,29 @@ double WireSolver::Impl::neck_radius() const {
   return Utilities::MPI::min(smallest, comm);
 }
 
-// Newton-Raphson for one load step. Iteration 0 applies the boundary increment through
-// inhomogeneous constraints (linearised predictor, as in deal.II step-44); later iterations are
-// homogeneous. Backtracking line search (from iteration 2 on, when the residual did not drop).
-bool WireSolver::Impl::solve_step(double t_old, double t_new, unsigned& iterations, std::string& reason) {
+// Newton-Raphson for one load step. The start is either the previous step's increment, scaled
+// (`extrapolation`, within one load-path segment; boundary values set exactly), or the
+// linearised predictor: iteration 0 applies the boundary increment through inhomogeneous
+// constraints (as in deal.II step-44). Backtracking line search when the residual did not drop.
+bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
+                                  unsigned& iterations, std::string& reason) {
   const double increment_value = path_displacement(prm.load, t_new) - path_displacement(prm.load, t_old);
   make_constraints(predictor, increment_value);
+  const unsigned first_free = extrapolation ? 0 : 1;  // first iteration with homogeneous constraints
+  if (extrapolation) {
+    increment = *extrapolation;
+    predictor.distribute(increment);
+    solution.add(1.0, increment);
+  }
   const double floor = 1e-14 * prm.material.young * prm.geometry.diameter * prm.geometry.diameter;
   PETScWrappers::MPI::Vector previous(owned, comm), previous_increment(owned, comm);
   double previous_residual = 0.0;
   std::ostringstream history;
   history << std::scientific << std::setprecision(2);
   for (unsigned it = 0; it <= prm.newton.maximum_iterations; ++it) {
-    const auto& constraints = it == 0 ? predictor : homogeneous;
+    const auto& constraints = it < first_free ? predictor : homogeneous;
     AssemblyOutcome a = assemble(true, constraints);
-    if (it >= 2 && prm.newton.line_search && (!a.ok || a.residual > (1.0 - 1e-4) * previous_residual)) {
+    if (it > first_free && prm.newton.line_search && (!a.ok || a.residual > (1.0 - 1e-4) * previous_residual)) {
       double step = 1.0;
       for (unsigned ls = 0; ls < prm.newton.maximum_line_search_steps; ++ls) {
         step *= 0.5;
@@ -323,7 +353,7 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, unsigned& iteratio
       log << "    newton:" << history.str() << "\n";
       return false;
     }
-    if (it > 0) {
+    if (it >= first_free) {
       const double relative = a.residual / std::max(a.force_scale, floor);
       history << " " << relative;
       if (a.residual <= prm.newton.relative_tolerance * std::max(a.force_scale, floor)) {
@@ -331,7 +361,7 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, unsigned& iteratio
         log << "    newton (relative residual):" << history.str() << "\n";
         return true;
       }
-      if (it >= 2 && a.residual > 1e6 * previous_residual) break;
+      if (it > first_free && a.residual > 1e6 * previous_residual) break;
     }
     Timer timer;
     SolverControl control(1, 0.0);
@@ -354,6 +384,32 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, unsigned& iteratio
   log << "    newton (relative residual):" << history.str() << "\n";
   return false;
 }
+
+// ---- contact (issue 5) ----
+// Augmented Lagrangian by Uzawa iterations around Newton (Simo & Laursen 1992): after each
+// converged solve the multipliers take the converged pressures and the step is solved again
+// from its start (the converged increment as predictor), until the largest penetration is
+// below the gap tolerance or the augmentation budget is spent. Friction history stays at the
+// committed state throughout.
+bool WireSolver::Impl::solve_contact_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
+                                          const PETScWrappers::MPI::Vector& start, unsigned& iterations,
+                                          std::string& reason) {
+  if (rigid_contact) rigid_contact->begin_step(t_old, t_new);
+  if (!solve_step(t_old, t_new, extrapolation, iterations, reason)) return false;
+  if (!rigid_contact) return true;
+  PETScWrappers::MPI::Vector converged(owned, comm);
+  while (rigid_contact->augment()) {
+    converged = solution;
+    converged -= start;
+    solution = start;
+    unsigned more = 0;
+    log << "    augmentation " << rigid_contact->augmentations() << "\n";
+    if (!solve_step(t_old, t_new, &converged, more, reason)) return false;
+    iterations += more;
+  }
+  return true;
+}
+// ---- end contact ----
 
 void WireSolver::Impl::write_fields(unsigned step, double time) {
   if (field_directory.empty()) return;
@@ -425,13 +481,17 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
   s.commit();
   StepRecord record;
   record.neck_radius = s.neck_radius();
+  if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
+                                                                s.force_multiplier() * s.length_multiplier());
   on_step(record);
   const unsigned interval = s.prm.output.fields ? s.prm.output.field_interval : 0;
   if (interval > 0) s.write_fields(0, 0.0);
 
   double t = 0.0, dt = stepping.initial_step;
   unsigned step = 0;
-  PETScWrappers::MPI::Vector saved(s.owned, s.comm);
+  PETScWrappers::MPI::Vector saved(s.owned, s.comm), last_step(s.owned, s.comm), scaled(s.owned, s.comm);
+  double last_dt = 0.0, last_knot = -1.0;
+  bool retry = false;
   s.log << std::setprecision(6);
   while (t < t_end - tiny) {
     double knot = t_end;
@@ -444,8 +504,19 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
     std::string reason;
     s.log << "step " << step + 1 << ": t = " << t << " -> " << t + dt_try << " (dt = " << dt_try
           << "), top displacement " << path_displacement(s.prm.load, t + dt_try) * 1e3 << " mm\n";
-    if (s.solve_step(t, t + dt_try, iterations, reason)) {
+    // Extrapolate the previous increment only inside the same load-path segment, not on a retry.
+    const bool extrapolate = !retry && last_dt > 0.0 && knot == last_knot;
+    if (extrapolate) {
+      scaled = last_step;
+      scaled *= dt_try / last_dt;
+    }
+    if (s.solve_contact_step(t, t + dt_try, extrapolate ? &scaled : nullptr, saved, iterations, reason)) {
       s.commit();
+      last_step = s.solution;
+      last_step -= saved;
+      last_dt = dt_try;
+      last_knot = knot;
+      retry = false;
       t = std::abs(t + dt_try - knot) <= tiny ? knot : t + dt_try;
       ++step;
       ++s.stats.steps;
@@ -458,6 +529,8 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       record.elastic_energy = s.elastic_energy * s.force_multiplier() * s.length_multiplier();
       record.neck_radius = s.neck_radius();
       record.iterations = iterations;
+      if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
+                                                                    s.force_multiplier() * s.length_multiplier());
       s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "
             << record.neck_radius * 1e3 << " mm\n";
       on_step(record);
@@ -470,6 +543,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       }
     } else {
       s.solution = saved;
+      retry = true;
       ++s.stats.cutbacks;
       const double reduced = dt_try * stepping.cutback_factor;
       s.log << "  step failed (" << reason << "): cut back dt " << dt_try << " -> " << reduced << "\n";

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "contact/contact_record.hpp"  // contact (issue 5)
 #include "parameters.hpp"
 
 namespace dtwire::fem {
@@ -24,6 +25,7 @@ struct StepRecord {
   double elastic_energy = 0.0;       // J
   double neck_radius = 0.0;          // m, smallest deformed radius in the imperfection plane
   unsigned iterations = 0;
+  contact::ContactRecord contact;  // contact (issue 5): enabled only with tools in the .prm
 };
 
 struct SolverStatistics {

@@ -40,12 +40,15 @@ void make_wire_mesh(const GeometryParameters& g, dealii::Triangulation<3>& targe
   GridGenerator::flatten_triangulation(disc, flat);
   Triangulation<3> wire;
   GridGenerator::extrude_triangulation(flat, g.axial_cells + 1, g.length, wire);
+  const double sides = (g.quarter ? 8.0 : 4.0) * std::pow(2.0, g.radial_refinements);
+  const double area_scale = std::sqrt(2.0 * M_PI / (sides * std::sin(2.0 * M_PI / sides)));
   GridTools::transform(
       [&](const Point<3>& p) {
-        const double s = wire_radius(g, p[2]) / R;
+        const double s = area_scale * wire_radius(g, p[2]) / R;
         return Point<3>(p[0] * s, p[1] * s, p[2]);
       },
       wire);
+  if (g.mesh_distortion > 0.0) GridTools::distort_random(g.mesh_distortion, wire, true, 20261122);
 
   const double tol = 1e-9 * R;
   for (const auto& cell : wire.active_cell_iterators())

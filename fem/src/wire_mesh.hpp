@@ -2,6 +2,10 @@
 // Hexahedral mesh of a straight round wire along z (0..length): a 2D disc (or quarter disc)
 // refined with its circular boundary, extruded, then scaled radially by the imperfection
 // profile r(z) = R (1 - delta (1 + cos(pi (z - zc) / w)) / 2) for |z - zc| < w.
+// The cross-section is a regular polygon (its vertices on the circle after refinement); it is
+// scaled by sqrt(2 pi / (n sin(2 pi / n))) so that its area equals pi R^2 exactly (second
+// moment of area then within 0.014 % of pi R^4 / 4 from n = 16 sides on).
+// Optional random distortion of the interior vertices (patch tests).
 // Boundary ids: 0 lateral surface, 1 bottom (z = 0), 2 top (z = length), 3 plane x = 0,
 // 4 plane y = 0 (quarter section).
 #include <deal.II/grid/tria.h>

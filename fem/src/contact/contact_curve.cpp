@@ -1,0 +1,31 @@
+#include "contact_curve.hpp"
+
+#include <functional>
+#include <string>
+
+#include "dtwire/core/units.hpp"
+
+namespace dtwire::fem::contact {
+
+void add_contact_channels(Curve& curve, const std::vector<ContactRecord>& records) {
+  const auto channel = [&](const std::string& name, Dimension dimension, const char* unit,
+                           const std::function<double(const ContactRecord&)>& value) {
+    std::vector<double> v;
+    for (const auto& r : records) v.push_back(value(r));
+    curve.add_channel_si(name, dimension, v, *find_unit(unit));
+  };
+  channel("contact_normal_force", Dimension::Force, "N", [](const ContactRecord& r) { return r.normal_force; });
+  channel("contact_friction_force", Dimension::Force, "N", [](const ContactRecord& r) { return r.friction_force; });
+  const char* axes[] = {"x", "y", "z"};
+  for (std::size_t tool = 0; tool < records.front().tool_forces.size(); ++tool)
+    for (unsigned k = 0; k < 3; ++k)
+      channel("tool" + std::to_string(tool + 1) + "_force_" + axes[k], Dimension::Force, "N",
+              [tool, k](const ContactRecord& r) { return r.tool_forces[tool][k]; });
+  channel("friction_dissipation", Dimension::Energy, "J", [](const ContactRecord& r) { return r.friction_dissipation; });
+  channel("contact_max_pressure", Dimension::Stress, "MPa", [](const ContactRecord& r) { return r.max_pressure; });
+  channel("contact_max_slip", Dimension::Length, "mm", [](const ContactRecord& r) { return r.max_slip; });
+  channel("contact_max_penetration", Dimension::Length, "mm",
+          [](const ContactRecord& r) { return r.max_penetration; });
+}
+
+}  // namespace dtwire::fem::contact

@@ -1,0 +1,133 @@
+#include "contact_parameters.hpp"
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "dtwire/core/error.hpp"
+
+namespace dtwire::fem::contact {
+namespace {
+
+namespace Patterns = dealii::Patterns;
+
+std::array<double, 3> parse_vector(const std::string& text, const std::string& file, const std::string& entry) {
+  std::istringstream in(text);
+  std::array<double, 3> v{};
+  for (auto& x : v)
+    if (!(in >> x) || !std::isfinite(x))
+      throw InputError(file, "Contact: '" + entry + "': expected three numbers, found '" + text + "'");
+  std::string rest;
+  if (in >> rest) throw InputError(file, "Contact: '" + entry + "': expected three numbers, found '" + text + "'");
+  return v;
+}
+
+std::array<double, 3> unit(std::array<double, 3> v, const std::string& file, const std::string& entry) {
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(n > 0.0)) throw InputError(file, "Contact: '" + entry + "': expected a non-zero direction");
+  for (auto& x : v) x /= n;
+  return v;
+}
+
+}  // namespace
+
+void declare_contact_parameters(dealii::ParameterHandler& prm) {
+  prm.enter_subsection("Contact");
+  prm.declare_entry("Boundary id", "0", Patterns::Integer(0, 255),
+                    "wire boundary in contact with the tools (0: lateral surface)");
+  prm.declare_entry("Friction coefficient", "0", Patterns::Double(0.0), "Coulomb mu");
+  prm.declare_entry("Normal penalty factor", "10", Patterns::Double(0.0),
+                    "epsilon_N = factor * E / h, h the smallest contact face size");
+  prm.declare_entry("Tangential penalty factor", "10", Patterns::Double(0.0), "epsilon_T = factor * E / h");
+  prm.declare_entry("Augmentations", "0", Patterns::Integer(0),
+                    "augmented-Lagrange (Uzawa) updates per load step; 0: pure penalty");
+  prm.declare_entry("Gap tolerance (mm)", "1e-3", Patterns::Double(0.0),
+                    "penetration accepted without a further augmentation");
+  for (unsigned i = 1; i <= kMaximumTools; ++i) {
+    prm.enter_subsection("Tool " + std::to_string(i));
+    prm.declare_entry("Shape", "none", Patterns::Selection("none|plane|cylinder"), "rigid analytic tool");
+    prm.declare_entry("Point (mm)", "0 0 0", Patterns::Anything(), "plane: a point on it; cylinder: on its axis");
+    prm.declare_entry("Direction", "0 0 1", Patterns::Anything(),
+                      "plane: outward normal (towards the wire); cylinder: axis");
+    prm.declare_entry("Radius (mm)", "0", Patterns::Double(0.0), "cylinder");
+    prm.declare_entry("Path (mm)", "0: 0 0 0", Patterns::Anything(),
+                      "comma-separated 'pseudo-time: dx dy dz' tool displacements, piecewise linear");
+    prm.leave_subsection();
+  }
+  prm.leave_subsection();
+}
+
+ContactParameters parse_contact_parameters(dealii::ParameterHandler& prm, const std::string& file,
+                                           const std::vector<double>& knot_times) {
+  ContactParameters c;
+  prm.enter_subsection("Contact");
+  c.boundary_id = prm.get_integer("Boundary id");
+  c.friction = prm.get_double("Friction coefficient");
+  c.normal_penalty_factor = prm.get_double("Normal penalty factor");
+  c.tangential_penalty_factor = prm.get_double("Tangential penalty factor");
+  c.maximum_augmentations = prm.get_integer("Augmentations");
+  c.gap_tolerance = prm.get_double("Gap tolerance (mm)") * 1e-3;
+  for (unsigned i = 1; i <= kMaximumTools; ++i) {
+    const std::string name = "Tool " + std::to_string(i);
+    prm.enter_subsection(name);
+    const std::string shape = prm.get("Shape");
+    if (shape != "none") {
+      ToolParameters t;
+      t.shape = shape == "plane" ? ToolShape::plane : ToolShape::cylinder;
+      t.point = parse_vector(prm.get("Point (mm)"), file, name + "/Point (mm)");
+      for (auto& x : t.point) x *= 1e-3;
+      t.direction = unit(parse_vector(prm.get("Direction"), file, name + "/Direction"), file, name + "/Direction");
+      t.radius = prm.get_double("Radius (mm)") * 1e-3;
+      if (t.shape == ToolShape::cylinder && !(t.radius > 0.0))
+        throw InputError(file, "Contact: '" + name + "/Radius (mm)': expected a positive radius for a cylinder");
+      std::stringstream list(prm.get("Path (mm)"));
+      std::string item;
+      while (std::getline(list, item, ',')) {
+        const auto colon = item.find(':');
+        const std::string entry = name + "/Path (mm)";
+        double time = 0.0;
+        try {
+          if (colon == std::string::npos) throw std::invalid_argument("no colon");
+          time = std::stod(item.substr(0, colon));
+        } catch (const std::exception&) {
+          throw InputError(file, "Contact: '" + entry + "': expected 'time: dx dy dz' items, found '" + item + "'");
+        }
+        auto d = parse_vector(item.substr(colon + 1), file, entry);
+        for (auto& x : d) x *= 1e-3;
+        if (!t.path.empty() && !(time > t.path.back().first))
+          throw InputError(file, "Contact: '" + entry + "': pseudo-times must increase strictly");
+        t.path.emplace_back(time, d);
+      }
+      if (t.path.empty() || t.path.front().first != 0.0)
+        throw InputError(file, "Contact: '" + name + "/Path (mm)': expected a first item at pseudo-time 0");
+      for (const auto& knot : t.path) {
+        if (knot_times.empty() || knot.first > knot_times.back()) continue;
+        bool found = false;
+        for (const double k : knot_times) found = found || std::abs(k - knot.first) <= 1e-12 * (1.0 + std::abs(k));
+        if (!found)
+          throw InputError(file, "Contact: '" + name + "/Path (mm)': pseudo-time " + std::to_string(knot.first) +
+                                     " is not a knot of 'Load path (mm)' (add it there so that a step ends on it)");
+      }
+      c.tools.push_back(t);
+    }
+    prm.leave_subsection();
+  }
+  prm.leave_subsection();
+  return c;
+}
+
+std::array<double, 3> tool_displacement(const ToolParameters& tool, double t) {
+  const auto& path = tool.path;
+  if (t <= path.front().first) return path.front().second;
+  for (std::size_t i = 1; i < path.size(); ++i)
+    if (t <= path[i].first) {
+      const double s = (t - path[i - 1].first) / (path[i].first - path[i - 1].first);
+      std::array<double, 3> d{};
+      for (unsigned k = 0; k < 3; ++k) d[k] = path[i - 1].second[k] + s * (path[i].second[k] - path[i - 1].second[k]);
+      return d;
+    }
+  return path.back().second;
+}
+
+}  // namespace dtwire::fem::contact

@@ -1,0 +1,52 @@
+#pragma once
+// The `subsection Contact` of a .prm file: rigid analytic tools in contact with one boundary of
+// the wire, their prescribed displacement paths, penalty, friction and augmentation settings.
+// Values in SI here; the file uses mm and MPa.
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "contact_kernel.hpp"
+
+namespace dealii {
+class ParameterHandler;
+}
+
+namespace dtwire::fem::contact {
+
+constexpr unsigned kMaximumTools = 4;
+
+struct ToolParameters {
+  ToolShape shape = ToolShape::plane;
+  std::array<double, 3> point{};      // m, at pseudo-time 0
+  std::array<double, 3> direction{};  // unit: plane outward normal, cylinder axis
+  double radius = 0.0;                // m
+  // (pseudo-time, tool displacement in m), piecewise linear; constant after the last knot.
+  std::vector<std::pair<double, std::array<double, 3>>> path;
+};
+
+struct ContactParameters {
+  unsigned boundary_id = 0;             // wire boundary that touches the tools (0: lateral surface)
+  double friction = 0.0;                // Coulomb mu
+  double normal_penalty_factor = 10.0;  // epsilon_N = factor E / h, h the smallest contact face size
+  double tangential_penalty_factor = 10.0;
+  unsigned maximum_augmentations = 0;   // Uzawa updates per step (0: pure penalty)
+  double gap_tolerance = 1e-6;          // m, largest penetration accepted without augmenting
+  std::vector<ToolParameters> tools;    // empty: no contact
+  bool keep_samples = false;            // not in the .prm: per-point samples in the step records
+
+  bool enabled() const { return !tools.empty(); }
+};
+
+void declare_contact_parameters(dealii::ParameterHandler& prm);
+// Reads the subsection; throws InputError naming `file` and the entry on bad values. Every
+// tool-path knot inside the load path must also be a knot of the load path (`knot_times`), so
+// that load steps land on it.
+ContactParameters parse_contact_parameters(dealii::ParameterHandler& prm, const std::string& file,
+                                           const std::vector<double>& knot_times);
+
+// Tool displacement (m) at pseudo-time t.
+std::array<double, 3> tool_displacement(const ToolParameters& tool, double t);
+
+}  // namespace dtwire::fem::contact

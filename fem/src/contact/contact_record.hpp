@@ -1,0 +1,39 @@
+#pragma once
+// Contact results of a converged load step (part of the solver's StepRecord). Light header:
+// deal.II tensors only.
+#include <array>
+#include <vector>
+
+#include "contact_kernel.hpp"
+
+namespace dtwire::fem::contact {
+
+// One active contact point (this rank's points only), for tests and field output.
+struct ContactSample {
+  unsigned tool = 0;
+  Vector3 reference_position, position;  // m
+  double weight = 0.0;                    // reference area (m^2)
+  double pressure = 0.0;                  // Pa
+  double gap = 0.0;                       // m
+  double slip = 0.0;                      // m, accumulated
+  bool slipping = false;
+};
+
+// Contact results of a converged step. Totals are summed over MPI ranks and multiplied by the
+// symmetry multipliers of the model (so that they refer to the whole wire, like StepRecord).
+struct ContactRecord {
+  bool enabled = false;
+  double normal_force = 0.0;           // N, sum of p dA over all tools
+  double friction_force = 0.0;         // N, |sum of t_T dA|
+  std::vector<std::array<double, 3>> tool_forces;  // N, force of the wire on each tool (modelled part x multiplier)
+  double friction_dissipation = 0.0;   // J, accumulated
+  double active_area = 0.0;            // m^2, reference area with p > 0
+  double max_pressure = 0.0;           // Pa
+  double max_slip = 0.0;               // m, accumulated, largest over the points
+  double max_penetration = 0.0;        // m
+  unsigned augmentations = 0;          // Uzawa updates in this step
+  std::array<double, 3> bottom_reaction{}, top_reaction{};  // N, all components at the wire ends
+  std::vector<ContactSample> samples;  // filled when keep_samples is set
+};
+
+}  // namespace dtwire::fem::contact

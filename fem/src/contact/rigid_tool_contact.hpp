@@ -1,0 +1,76 @@
+#pragma once
+// Frictional contact of the wire with rigid analytic tools, assembled at the Gauss points of
+// the wire's contact boundary faces (segment-to-analytic-surface; Wriggers 2006, sec. 9.1).
+// Each (face quadrature point, tool) pair carries its own history (tangential traction, slip,
+// augmented multiplier), committed only when a load step has converged. The solver calls:
+// begin_step() before each step, assemble() inside every residual/tangent assembly (adds to
+// the element contributions before compress), augment() after a converged Newton solve (Uzawa:
+// true means "multipliers updated, solve the step again"), commit() with the material history.
+#include <deal.II/base/index_set.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+
+#include <array>
+#include <vector>
+
+#include "contact_kernel.hpp"
+#include "contact_parameters.hpp"
+#include "contact_record.hpp"
+
+namespace dtwire::fem::contact {
+
+class RigidToolContact {
+ public:
+  // `young` and the smallest contact face size set the penalties (epsilon = factor E / h).
+  RigidToolContact(const ContactParameters& parameters, double young, const dealii::DoFHandler<3>& dof_handler,
+                   unsigned bottom_id, unsigned top_id, MPI_Comm comm);
+
+  void begin_step(double t_old, double t_new);
+  // Returns false if a point cannot be evaluated (on a cylinder axis).
+  bool assemble(const dealii::IndexSet& relevant, const std::vector<double>& relevant_values, bool with_matrix,
+                const dealii::AffineConstraints<double>& constraints, dealii::PETScWrappers::MPI::SparseMatrix& matrix,
+                dealii::PETScWrappers::MPI::Vector& rhs, dealii::PETScWrappers::MPI::Vector& internal_force);
+  bool augment();
+  void commit();
+  ContactRecord record(const dealii::PETScWrappers::MPI::Vector& internal_force, double force_scale,
+                       double contact_scale) const;
+
+  const ContactLaw& law() const { return law_; }
+  unsigned augmentations() const { return augmentations_; }
+
+ private:
+  struct Face {
+    std::vector<dealii::types::global_dof_index> dofs;
+    unsigned first_point = 0, n_points = 0;
+  };
+  struct Point {
+    Vector3 reference;            // X
+    Vector3 committed_position;   // x at the last converged step
+    Vector3 position;             // x at the last assembly
+    double weight = 0.0;          // reference area
+    std::vector<double> shape;    // cell shape values at this point (dofs_per_cell)
+  };
+  struct PairState {  // one (point, tool) pair
+    ContactHistory committed;
+    double multiplier = 0.0;  // trial augmented multiplier of this step
+    ContactResponse last;     // response at the last assembly
+    double slip = 0.0;        // accumulated, including the last assembly
+  };
+
+  ContactParameters parameters_;
+  ContactLaw law_;
+  MPI_Comm comm_;
+  std::vector<unsigned> component_;  // component of each cell dof
+  std::vector<Face> faces_;
+  std::vector<Point> points_;
+  std::vector<PairState> pairs_;     // points x tools
+  std::vector<ToolGeometry> tools_;  // at the end of the current step
+  std::vector<Vector3> tool_increment_;
+  std::array<dealii::IndexSet, 3> bottom_dofs_, top_dofs_;
+  double dissipation_ = 0.0;  // committed, this rank, modelled part
+  unsigned augmentations_ = 0;
+};
+
+}  // namespace dtwire::fem::contact

@@ -1,0 +1,54 @@
+// Serial vs 2 MPI ranks: `dtwire run` on a small necking bar (plastic, past the load maximum)
+// gives the same curve to 1e-8 relative. Runs the dtwire executable through mpirun.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "dtwire/core/csv.hpp"
+
+namespace {
+
+const char* kPrm =
+    "subsection Geometry\n set Diameter (mm) = 12.826\n set Length (mm) = 26.667\n set Cross section = quarter\n"
+    " set Radial refinements = 1\n set Axial cells = 8\n set Imperfection = 0.018\n"
+    " set Imperfection centre (mm) = 0\n set Imperfection half width (mm) = 26.667\nend\n"
+    "subsection Material\n set Young modulus (MPa) = 206900\n set Poisson ratio = 0.29\n set Hardening law = voce\n"
+    " set Yield stress (MPa) = 450\n set Saturation stress (MPa) = 715\n set Saturation rate = 16.93\n"
+    " set Hardening modulus (MPa) = 129.24\nend\n"
+    "subsection Boundary conditions\n set Bottom end = symmetry\n set Top end = axial\n"
+    " set Load path (mm) = 0:0, 1:4, 1.2:3.6\nend\n"
+    "subsection Load stepping\n set Initial step = 0.05\n set Maximum step = 0.1\nend\n"
+    "subsection Output\n set Fields = true\nend\n";
+
+TEST(Mpi, TwoRanksReproduceTheSerialCurve) {
+  const auto dir = std::filesystem::temp_directory_path() / "dtwire_fem_mpi_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto prm = dir / "bar.prm";
+  std::ofstream(prm) << kPrm;
+  const std::string exe = DTWIRE_EXE;
+  const std::string serial = exe + " run " + prm.string() + " -q --out " + (dir / "serial").string();
+  const std::string parallel = "mpirun --allow-run-as-root --oversubscribe -np 2 " + exe + " run " + prm.string() +
+                               " -q --out " + (dir / "parallel").string();
+  ASSERT_EQ(std::system(serial.c_str()), 0) << serial;
+  ASSERT_EQ(std::system(parallel.c_str()), 0) << parallel;
+  const dtwire::Curve a = dtwire::read_csv(dir / "serial" / "curve.csv");
+  const dtwire::Curve b = dtwire::read_csv(dir / "parallel" / "curve.csv");
+  ASSERT_EQ(a.size(), b.size());
+  for (const char* q : {"displacement", "force", "plastic_dissipation", "elastic_energy", "neck_radius"}) {
+    const auto x = a.si(q), y = b.si(q);
+    double scale = 0, diff = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      scale = std::max(scale, std::abs(x[i]));
+      diff = std::max(diff, std::abs(x[i] - y[i]));
+    }
+    EXPECT_LE(diff, 1e-8 * scale) << q;  // 1e-8 relative to the channel's largest value
+    std::cout << q << ": max |serial - 2 ranks| / max |serial| = " << diff / scale << "\n";
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "parallel" / "fields" / "fields.pvd"));
+}
+
+}  // namespace
