@@ -84,7 +84,7 @@ RankedEffect rank_entry(const Context& ctx, const EffectFit& fit) {
   r.effect = joined_name(fit.effects);
   r.fitted = fit.effects;
   r.parameters = fit.parameter_count;
-  const ForceCurve model = apply_effects(ctx.problem.sim, fit.effects, ctx.problem.scale);
+  const ForceCurve model = augment(ctx.problem.sim, fit.effects, ctx.problem.scale, ctx.problem.runner);
   r.gap_after = mean_gap(model, ctx.problem.labs);
   r.shrink = ctx.gap_before > 0 ? 1.0 - r.gap_after / ctx.gap_before : 0.0;
   const Comparison& first = ctx.problem.labs.front();
@@ -200,6 +200,11 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   Context ctx;
   ctx.problem.sim = d.sim;
   ctx.problem.scale = curve_scale(d.sim);
+  if (options.model) {
+    ctx.problem.runner = [runner = options.model](const std::vector<AppliedEffect>& effects) {
+      return oriented(runner(effects));
+    };
+  }
   for (const ForceCurve& lab : d.labs) ctx.problem.labs.push_back(make_comparison(lab));
   const Comparison& first = ctx.problem.labs.front();
 
@@ -239,17 +244,14 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   const double baseline_mse = baseline.weighted_sse / static_cast<double>(d.labs.size());
 
   std::vector<const EffectSpec*> candidates;
-  if (options.effects.empty()) {
-    for (const EffectSpec& e : effect_catalogue()) {
-      if (e.needs_model) d.not_tested.push_back(e.name);
-      else candidates.push_back(&e);
-    }
-  } else {
-    for (const std::string& name : options.effects) {
-      const EffectSpec& e = find_effect(name);
-      if (e.needs_model) d.not_tested.push_back(e.name);
-      else candidates.push_back(&e);
-    }
+  std::vector<const EffectSpec*> requested;
+  if (options.effects.empty())
+    for (const EffectSpec& e : effect_catalogue()) requested.push_back(&e);
+  else
+    for (const std::string& name : options.effects) requested.push_back(&find_effect(name));
+  for (const EffectSpec* e : requested) {
+    if (e->needs_model && !options.model) d.not_tested.push_back(e->name);
+    else candidates.push_back(e);
   }
 
   std::mt19937 rng(options.seed);
@@ -318,7 +320,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
                                                  : "reduces the gap most, but not to the noise floor";
   }
   const RankedEffect* shown = cause ? cause : (d.ranking.empty() ? nullptr : &d.ranking.front());
-  d.best_model = shown ? apply_effects(d.sim, shown->fitted, ctx.problem.scale) : d.sim;
+  d.best_model = shown ? augment(d.sim, shown->fitted, ctx.problem.scale, ctx.problem.runner) : d.sim;
 
   // Predictive check: the cause fitted on the first curve, applied to the second.
   if (d.labs.size() < 2) {
@@ -331,7 +333,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
     std::vector<const EffectSpec*> effects;
     for (const AppliedEffect& a : cause->fitted) effects.push_back(a.effect);
     const EffectFit fit = fit_effects(one, effects, {params_of(*cause)}, 1, rng);
-    const ForceCurve model = apply_effects(d.sim, fit.effects, ctx.problem.scale);
+    const ForceCurve model = augment(d.sim, fit.effects, ctx.problem.scale, ctx.problem.runner);
     d.predictive.done = true;
     d.predictive.effect = cause->effect;
     d.predictive.fitted_on = d.labs[0].source;

@@ -150,7 +150,7 @@ std::vector<double> search_grid(const FitProblem& problem, const Layout& layout,
 EffectFit evaluate_fit(const FitProblem& problem, std::vector<AppliedEffect> effects) {
   EffectFit fit;
   for (const AppliedEffect& a : effects) fit.parameter_count += static_cast<int>(a.params.size());
-  const ForceCurve model = apply_effects(problem.sim, effects, problem.scale);
+  const ForceCurve model = augment(problem.sim, effects, problem.scale, problem.runner);
   for (const Comparison& c : problem.labs) {
     const auto r = normalised_residual(model_forces_at_lab(model, c), c);
     for (std::size_t i = 0; i < r.size(); ++i) {

@@ -145,23 +145,38 @@ std::vector<EffectSpec> make_catalogue() {
     };
     c.push_back(e);
   }
-  const std::vector<std::pair<const char*, const char*>> model_only = {
-      {"wire_friction", "friction between the wires of the double twist"},
-      {"twist_tightening", "initial gap/slack of the interweavement closing under load"},
-      {"residual_stress", "plasticity left by twisting the wires"},
-      {"shear_failure", "failure by combined tension and shear at the SW/DT junction"},
-      {"coating_slip", "sliding between steel and PVC sheath"},
-      {"geometry_imperfection", "diameter, lay and initial kink (decisive in compression)"}};
+  // Model-only effects: FE-level parameters for the --model mode (bounds, plausible range).
+  struct ModelOnly {
+    const char* name;
+    const char* description;
+    ParameterSpec parameter;
+    double neutral;
+  };
+  const std::vector<ModelOnly> model_only = {
+      {"wire_friction", "Coulomb friction between the wires of the double twist",
+       {"friction_1", 0.0, 1.0, 0.1, 0.4, {}}, 0.0},
+      {"twist_tightening", "initial gap of the interweavement closing under load",
+       {"initial_gap_mm", 0.0, 2.0, 0.0, 0.5, {}}, 0.0},
+      {"residual_stress", "plasticity left by twisting, as a fraction of the twisting strain",
+       {"twist_plasticity_1", 0.0, 1.0, 0.0, 1.0, {}}, 0.0},
+      {"shear_failure", "failure by combined tension and shear at the SW/DT junction",
+       {"shear_strength_ratio_1", 0.3, 1.0, 0.5, 0.8, {}}, 1.0},
+      {"coating_slip", "sliding between steel and PVC sheath (interface shear strength)",
+       {"interface_strength_MPa", 0.0, 20.0, 0.5, 5.0, {}}, 20.0},
+      {"geometry_imperfection", "diameter, lay and initial kink (decisive in compression)",
+       {"diameter_scale_1", 0.9, 1.1, 0.97, 1.03, {}}, 1.0}};
   int order = 10;
-  for (const auto& [name, description] : model_only) {
+  for (const ModelOnly& m : model_only) {
     EffectSpec e;
-    e.name = name;
-    e.description = description;
+    e.name = m.name;
+    e.description = m.description;
     e.needs_model = true;
     e.order = order++;
-    e.parameters = [](const CurveScale&) { return std::vector<ParameterSpec>{}; };
-    e.apply = [n = std::string(name)](const ForceCurve&, const std::vector<double>&,
-                                      const CurveScale&) -> ForceCurve {
+    e.magnitude = 0;
+    e.neutral = m.neutral;
+    e.parameters = [p = m.parameter](const CurveScale&) { return std::vector<ParameterSpec>{p}; };
+    e.apply = [n = std::string(m.name)](const ForceCurve&, const std::vector<double>&,
+                                        const CurveScale&) -> ForceCurve {
       throw std::logic_error("effect " + n + " needs the FE model (--model)");
     };
     c.push_back(e);
@@ -216,6 +231,16 @@ ForceCurve apply_effects(const ForceCurve& sim, std::vector<AppliedEffect> effec
   ForceCurve out = sim;
   for (const AppliedEffect& a : effects) out = a.effect->apply(out, a.params, scale);
   return out;
+}
+
+ForceCurve augment(const ForceCurve& sim, const std::vector<AppliedEffect>& effects,
+                   const CurveScale& scale, const ModelRunner& runner) {
+  std::vector<AppliedEffect> model_effects, curve_effects;
+  for (const AppliedEffect& a : effects)
+    (a.effect->needs_model ? model_effects : curve_effects).push_back(a);
+  if (model_effects.empty()) return apply_effects(sim, curve_effects, scale);
+  if (!runner) throw std::logic_error("model-only effects need a ModelRunner (--model)");
+  return apply_effects(runner(model_effects), curve_effects, scale);
 }
 
 double plausibility(const EffectSpec& effect, const std::vector<double>& params,

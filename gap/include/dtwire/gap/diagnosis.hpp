@@ -15,6 +15,8 @@ struct DiagnosisOptions {
   bool try_pairs = true;
   unsigned seed = 1;
   std::size_t random_starts = 3;
+  // --model mode: with a runner, model-only effects are candidates too (else "not tested").
+  ModelRunner model;
 };
 
 struct RankedEffect {

@@ -13,6 +13,7 @@ struct FitProblem {
   ForceCurve sim;
   CurveScale scale;
   std::vector<Comparison> labs;  // residuals of all curves are stacked
+  ModelRunner runner;            // --model mode only
 };
 
 struct EffectFit {

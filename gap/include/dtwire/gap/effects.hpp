@@ -1,8 +1,9 @@
 #pragma once
 // The catalogue of candidate unmodelled effects. Each is a parametrised augmentation of a
 // simulated force-displacement curve with bounds (for the fit) and a plausible range (for the
-// ranking). Effects that need the FE model re-run (`needs_model`) are declared here so that the
-// --model mode can plug them in; in --sim mode they are listed as not tested.
+// ranking). Effects that need the FE model re-run (`needs_model`) are declared here with their
+// FE-level parameters, so that the --model mode plugs in through a ModelRunner; in --sim mode
+// they are listed as not tested.
 #include <functional>
 #include <string>
 #include <vector>
@@ -47,6 +48,16 @@ struct AppliedEffect {
   const EffectSpec* effect;
   std::vector<double> params;
 };
+
+// --model mode: re-runs the FE experiment with the given model-only effects (`needs_model`)
+// switched on at the given parameters and returns its curve (oriented like the simulation).
+// Curve-mode effects are applied by gap on top of it.
+using ModelRunner = std::function<ForceCurve(const std::vector<AppliedEffect>&)>;
+
+// The simulation with `effects`: model-only ones through `runner` (which must be set when there
+// are any), then the curve-mode ones by apply_effects.
+ForceCurve augment(const ForceCurve& sim, const std::vector<AppliedEffect>& effects,
+                   const CurveScale& scale, const ModelRunner& runner);
 
 // Applies the effects in catalogue order (strain_rate, ductile_damage, gauge_length,
 // machine_compliance, grip_slip, initial_slack).
