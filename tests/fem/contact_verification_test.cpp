@@ -141,10 +141,16 @@ TEST(ContactVerification, CapstanOverRigidCylinder) {
 // plane (quarter model, so it is squeezed between two plates). Half-width a^2 = 4 P' R /
 // (pi E*), peak pressure p0 = 2 P' / (pi a), P' the force per unit length (Johnson 1985,
 // sec. 4.2). The half-width comes from the pressure's second moment: for the Hertz
-// distribution int p x^2 / int p = a^2 / 4.
-double hertz_half_width_error(unsigned refinements, double* peak_error, double* approach_ratio) {
-  const double R = 10.0, L = 0.25, E = 200000.0, nu = 0.3, press = 0.17;
-  const double sides = 8.0 * std::pow(2.0, refinements);
+// distribution int p x^2 / int p = a^2 / 4. The plate's approach to the cylinder centre is half
+// the diametral compression of a cylinder between two plates,
+//   Delta = 2 P' (1 - nu^2) / (pi E) (2 ln(4R/a) - 1)   (Johnson 1985, ch. 5).
+struct HertzErrors {
+  double half_width = 0.0, approach = 0.0, peak = 0.0;  // FE / closed form - 1
+};
+
+HertzErrors hertz_errors(unsigned refinements, double press = 0.17) {
+  const double R = 10.0, L = 0.25, E = 200000.0, nu = 0.3;
+  const double sides = 8.0 * std::pow(2.0, refinements);  // plane touches the top vertex at zero travel
   const double vertex_radius = R * std::sqrt(2.0 * kPi / (sides * std::sin(2.0 * kPi / sides)));
   std::ostringstream prm;
   prm.precision(12);
@@ -158,7 +164,7 @@ double hertz_half_width_error(unsigned refinements, double* peak_error, double* 
          "  set Minimum step = 1e-4\nend\n"
          "subsection Newton\n  set Relative tolerance = 1e-9\nend\n"
          "subsection Output\n  set Fields = false\nend\n"
-         "subsection Contact\n  set Augmentations = 5\n  set Gap tolerance (mm) = 1e-5\n"
+         "subsection Contact\n  set Augmentations = 5\n  set Gap tolerance (mm) = 1e-4\n"
          "  subsection Tool 1\n    set Shape = plane\n    set Point (mm) = 0 "
       << vertex_radius << " 0\n    set Direction = 0 -1 0\n    set Path (mm) = 0: 0 0 0, 1: 0 " << -press
       << " 0\n  end\nend\n";
@@ -174,22 +180,28 @@ double hertz_half_width_error(unsigned refinements, double* peak_error, double* 
   const double E_star = E / (1.0 - nu * nu);                            // MPa, rigid plane
   const double a_hertz = std::sqrt(4.0 * P * R / (kPi * E_star));      // mm
   const double p0 = 2.0 * P / (kPi * a_hertz);                         // MPa
-  if (peak_error) *peak_error = c.max_pressure * 1e-6 / p0 - 1.0;
-  // Approach of the plate to the cylinder centre, Johnson (1985) eq. 5.36 form
-  // 2P'(1 - nu^2) / (pi E) (2 ln(4R/a) - 1): reported, not asserted (see docs/fem_contact.md).
-  const double johnson = 2.0 * P / (kPi * E_star) * (2.0 * std::log(4.0 * R / a_hertz) - 1.0);
-  const double approach = press - (vertex_radius - R) - c.max_penetration * 1e3;
-  if (approach_ratio) *approach_ratio = approach / johnson;
-  std::cout << "[hertz r" << refinements << "] P' = " << P << " N/mm, a_FE = " << a_fe << " mm, a_Hertz = " << a_hertz
-            << " mm, p_max/p0 = " << c.max_pressure * 1e-6 / p0 << ", approach/Johnson = " << approach / johnson
+  const double johnson = P / (kPi * E_star) * (2.0 * std::log(4.0 * R / a_hertz) - 1.0);  // mm, one plate
+  const double approach = press - c.max_penetration * 1e3;  // first touch at zero tool travel
+  HertzErrors e;
+  e.half_width = a_fe / a_hertz - 1.0;
+  e.approach = approach / johnson - 1.0;
+  e.peak = c.max_pressure * 1e-6 / p0 - 1.0;
+  std::cout << "[hertz r" << refinements << "] " << records.back().contact.samples.size() << " contact points, P' = " << P
+            << " N/mm, a_FE = " << a_fe << " mm, a_Hertz = " << a_hertz << " mm (a/R = " << a_hertz / R
+            << "), approach " << approach << " mm vs " << johnson << " mm, p_max/p0 = " << 1.0 + e.peak
             << ", penetration " << c.max_penetration * 1e3 << " mm\n";
-  return a_fe / a_hertz - 1.0;
+  return e;
 }
 
+// Two meshes (arc segment 0.49 and 0.25 mm; a ~ 1 mm): the finer one is asserted, the trend is
+// printed. The peak pressure is sampled at Gauss points and only printed.
 TEST(ContactVerification, HertzCylinderOnPlanePlaneStrain) {
-  double peak = 0.0, approach = 0.0;
-  const double error = hertz_half_width_error(5, &peak, &approach);
-  EXPECT_LT(std::abs(error), 0.05);  // half-width within 5 %
+  const HertzErrors coarse = hertz_errors(4);
+  const HertzErrors fine = hertz_errors(5);
+  std::cout << "[hertz] half-width error " << coarse.half_width << " -> " << fine.half_width << ", approach error "
+            << coarse.approach << " -> " << fine.approach << "\n";
+  EXPECT_LT(std::abs(fine.half_width), 0.05);  // half-width within 5 %
+  EXPECT_LT(std::abs(fine.approach), 0.05);    // approach within 5 %
 }
 
 }  // namespace
