@@ -8,10 +8,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dtwire/calibrate/command_simulator.hpp"
 #include "dtwire/calibrate/law_replay.hpp"
 #include "dtwire/calibrate/voce_bar.hpp"
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
+#include "dtwire/core/provenance.hpp"
 #include "dtwire/core/units.hpp"
 
 namespace dtwire::calibrate {
@@ -184,25 +186,45 @@ FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets
 
   const toml::table& sim_table = table_at(root, "simulator", name);
   const Table sim(sim_table, "simulator", name);
-  sim.only({"kind", "law", "fixed_parameters_file", "fixed_parameters_section", "fixed"});
+  sim.only({"kind", "law", "fixed_parameters_file", "fixed_parameters_section", "fixed", "program",
+            "arguments", "result", "work_directory"});
   def.simulator = sim.text("kind");
+  if (def.simulator != "law_replay" && def.simulator != "voce_bar" && def.simulator != "command")
+    sim.fail(sim.get("kind"), "kind", "expected law_replay, command or voce_bar, found '" + def.simulator + "'");
+  if (sim.has("fixed_parameters_file")) {
+    const auto path = resolve(sim.text("fixed_parameters_file"));
+    def.fixed = read_fixed_json(path, sim.text("fixed_parameters_section", ""), sim);
+    def.inputs.push_back(path);
+  }
+  if (const toml::node* fixed = sim.get("fixed")) {
+    if (!fixed->is_table()) sim.fail(fixed, "fixed", "expected a table of name = number");
+    const Table fixed_table(*fixed->as_table(), "simulator.fixed", name);
+    for (const auto& [key, value] : *fixed->as_table())
+      def.fixed[std::string(key.str())] = fixed_table.number_of(&value, std::string(key.str()));
+  }
+  CommandSpecification command;
   if (def.simulator == "law_replay") {
     def.law = sim.text("law");
-    if (sim.has("fixed_parameters_file")) {
-      const auto path = resolve(sim.text("fixed_parameters_file"));
-      def.fixed = read_fixed_json(path, sim.text("fixed_parameters_section", ""), sim);
-      def.inputs.push_back(path);
+  } else if (def.simulator == "command") {
+    def.law = sim.text("law", "command");
+    const std::string program = sim.text("program", "dtwire");
+    command.program = program == "dtwire" ? dtwire_executable() : std::filesystem::path(program);
+    const toml::node* arguments = sim.get("arguments");
+    if (!arguments || !arguments->is_array())
+      sim.fail(arguments, "arguments", "expected an array of strings, e.g. [\"run\", \"{input}\", \"--out\", \"{output}\", \"-q\"]");
+    for (const toml::node& a : *arguments->as_array()) {
+      if (!a.is_string()) sim.fail(&a, "arguments", "expected strings");
+      command.arguments.push_back(a.as_string()->get());
     }
-    if (const toml::node* fixed = sim.get("fixed")) {
-      if (!fixed->is_table()) sim.fail(fixed, "fixed", "expected a table of name = number");
-      const Table fixed_table(*fixed->as_table(), "simulator.fixed", name);
-      for (const auto& [key, value] : *fixed->as_table())
-        def.fixed[std::string(key.str())] = fixed_table.number_of(&value, std::string(key.str()));
-    }
-  } else if (def.simulator == "voce_bar") {
-    def.law = "voce_bar";
+    command.result = sim.text("result", "curve.csv");
+    command.work_directory =
+        sim.has("work_directory")
+            ? resolve(sim.text("work_directory"))
+            : std::filesystem::temp_directory_path() / "dtwire-fit-runs" /
+                  sha256_text(std::filesystem::absolute(file).string()).substr(0, 16);
+    command.fixed = def.fixed;
   } else {
-    sim.fail(sim.get("kind"), "kind", "expected law_replay or voce_bar, found '" + def.simulator + "'");
+    def.law = "voce_bar";
   }
 
   if (root.contains("fit")) {
@@ -261,7 +283,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets
     const toml::table& raw = *node.as_table();
     const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
     x.only({"name", "target", "abscissa", "arc_length", "channels", "weight", "branch_tolerance",
-            "increments_per_leg"},
+            "increments_per_leg", "input_template"},
            "path_");
     Experiment e;
     e.name = x.text("name");
@@ -315,6 +337,27 @@ FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets
         x.fail(nullptr, "path_rotation", "displacement and rotation waypoints must have the same length, >= 2");
       path.increments_per_leg = increments;
       e.simulator = std::make_shared<LawReplaySimulator>(def.law, def.fixed, path);
+    } else if (def.simulator == "command") {
+      const auto template_file = resolve(x.text("input_template"));
+      std::ifstream in(template_file);
+      if (!in) x.fail(x.get("input_template"), "input_template", "cannot open " + template_file.string());
+      std::ostringstream text;
+      text << in.rdbuf();
+      CommandSpecification spec = command;
+      spec.input_template = text.str();
+      spec.input_name = template_file.stem().string();  // "sw_tension.prm.in" -> "sw_tension.prm"
+      if (spec.input_name.empty()) spec.input_name = "input";
+      def.inputs.push_back(template_file);
+      auto simulator = std::make_shared<CommandSimulator>(spec);
+      // Every placeholder must have a value (a parameter or a fixed value).
+      ParameterValues probe;
+      for (const auto& p : def.parameters) probe[p.name] = p.initial;
+      try {
+        simulator->instantiate(probe);
+      } catch (const ComputationError& error) {
+        x.fail(x.get("input_template"), "input_template", template_file.string() + ": " + error.what());
+      }
+      e.simulator = simulator;
     } else {
       std::vector<double> strain;
       if (x.has("path_strain_1")) strain = x.numbers("path_strain_1");

@@ -15,7 +15,7 @@ namespace dtwire::calibrate {
 struct FitDefinition {
   std::filesystem::path file;
   std::string title;
-  std::string simulator;  // "law_replay" or "voce_bar"
+  std::string simulator;  // "law_replay", "command" or "voce_bar"
   std::string law;        // law_replay: contact law name; written to parameters.json
   std::string wire_type;  // written to parameters.json ("single_wire", "double_twist", ...)
   dem::ParameterMap fixed;  // law parameters that are not fitted
