@@ -15,9 +15,10 @@
 namespace dtwire::fem {
 
 struct ElementGeometry {
-  // grad[q][i]: Grad of vector shape function i at quadrature point q (reference configuration),
-  // a 3x3 tensor (e_c (x) Grad N_a for FE_Q systems).
-  std::vector<std::vector<Tensor2>> grad;
+  // Vector-valued Lagrange elements: shape function i has one nonzero component,
+  // component[i], and Grad phi_i = e_c (x) shape_grad[q][i] (reference configuration).
+  std::vector<unsigned> component;
+  std::vector<std::vector<dealii::Tensor<1, 3>>> shape_grad;
   std::vector<double> weight;  // JxW at each quadrature point
 };
 

@@ -196,7 +196,6 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
   bool failed = false;
   const unsigned n_q = quadrature.size();
   const unsigned n_dofs = fe.n_dofs_per_cell();
-  const FEValuesExtractors::Vector displacement(0);
   const bool fbar = prm.formulation.fbar;
 
   auto worker = [&](const typename DoFHandler<3>::active_cell_iterator& cell, ScratchData& scratch, CopyData& copy) {
@@ -204,11 +203,13 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
     copy.dofs.resize(n_dofs);
     cell->get_dof_indices(copy.dofs);
     auto& geo = scratch.geometry;
-    geo.grad.resize(n_q);
+    geo.component.resize(n_dofs);
+    for (unsigned i = 0; i < n_dofs; ++i) geo.component[i] = fe.system_to_component_index(i).first;
+    geo.shape_grad.resize(n_q);
     geo.weight.resize(n_q);
     for (unsigned q = 0; q < n_q; ++q) {
-      geo.grad[q].resize(n_dofs);
-      for (unsigned i = 0; i < n_dofs; ++i) geo.grad[q][i] = scratch.values[displacement].gradient(i, q);
+      geo.shape_grad[q].resize(n_dofs);
+      for (unsigned i = 0; i < n_dofs; ++i) geo.shape_grad[q][i] = scratch.values.shape_grad(i, q);
       geo.weight[q] = scratch.values.JxW(q);
     }
     scratch.u.resize(n_dofs);

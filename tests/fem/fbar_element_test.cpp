@@ -41,19 +41,17 @@ ElementGeometry distorted_hex() {
     for (unsigned v = 0; v < 8; ++v) jac += dealii::outer_product(x[v], shape_grad_ref(v, xi));
     detJ = dealii::determinant(jac);
     const Tensor2 inv = dealii::invert(jac);
-    std::vector<Tensor2> g(24);
-    for (unsigned v = 0; v < 8; ++v) {
-      const dealii::Tensor<1, 3> grad = shape_grad_ref(v, xi) * inv;
-      for (unsigned c = 0; c < 3; ++c)
-        for (unsigned d = 0; d < 3; ++d) g[3 * v + c][c][d] = grad[d];
-    }
+    std::vector<dealii::Tensor<1, 3>> g(24);
+    for (unsigned v = 0; v < 8; ++v)
+      for (unsigned c = 0; c < 3; ++c) g[3 * v + c] = shape_grad_ref(v, xi) * inv;
     return g;
   };
   ElementGeometry geo;
+  for (unsigned i = 0; i < 24; ++i) geo.component.push_back(i % 3);
   const double gp[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
   for (unsigned q = 0; q < 8; ++q) {
     double detJ = 0;
-    geo.grad.push_back(gradients({gp[q & 1], gp[(q >> 1) & 1], gp[(q >> 2) & 1]}, detJ));
+    geo.shape_grad.push_back(gradients({gp[q & 1], gp[(q >> 1) & 1], gp[(q >> 2) & 1]}, detJ));
     geo.weight.push_back(detJ / 8.0);
   }
   return geo;
