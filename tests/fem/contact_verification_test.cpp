@@ -9,6 +9,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/fem/run.hpp"
 #include "parameters.hpp"
 #include "solver.hpp"
 
@@ -95,6 +98,45 @@ TEST(ContactVerification, CoulombSlidingBlock) {
   std::cout << "[sliding block] N = " << N << " N, T/(mu N) = " << T / (mu * N)
             << ", dissipation / (mu N s) = " << dissipated / (mu * mean_N * tool_travel)
             << ", first full slip at tool travel " << (first_slip->time - 1.0) * 0.05 << " mm\n";
+}
+
+// `dtwire run` on the sliding-block .prm: the curve CSV carries the contact channels, finite,
+// with the friction force at mu times the normal force at the end.
+TEST(ContactVerification, RunWritesContactChannels) {
+  const auto dir = std::filesystem::temp_directory_path() / "dtwire_contact_test_run";
+  std::filesystem::remove_all(dir);
+  RunOptions options;
+  options.parameter_file = std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/verification/contact_sliding_block.prm";
+  options.output_directory = dir;
+  options.command_line = "test contact run";
+  options.echo = false;
+  const RunSummary summary = run_experiment(options);
+  const Curve curve = read_csv(summary.curve_csv);
+  for (const char* name : {"contact_normal_force", "contact_friction_force", "tool1_force_y", "tool1_force_z",
+                           "tool2_force_y", "friction_dissipation", "contact_max_pressure", "contact_max_slip",
+                           "contact_max_penetration"}) {
+    ASSERT_TRUE(curve.has(name)) << name;
+    for (const double v : curve.si(name)) ASSERT_TRUE(std::isfinite(v)) << name;
+  }
+  const double N = curve.si("tool1_force_y").back(), T = -curve.si("tool1_force_z").back();
+  EXPECT_NEAR(T / (0.3 * N), 1.0, 0.01);  // mu = 0.3 in the .prm, within 1 %
+  EXPECT_GT(curve.si("friction_dissipation").back(), 0.0);
+}
+
+// A tool path knot that the load path does not have is an input error naming the entry.
+TEST(ContactVerification, ToolKnotOutsideLoadPathIsRejected) {
+  const auto dir = std::filesystem::temp_directory_path() / "dtwire_contact_test_knot";
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "knot.prm";
+  std::ofstream(file) << "subsection Boundary conditions\n  set Load path (mm) = 0:0, 1:0\nend\n"
+                         "subsection Contact\n  subsection Tool 1\n    set Shape = plane\n"
+                         "    set Path (mm) = 0: 0 0 0, 0.5: 0 -0.1 0, 1: 0 0 0\n  end\nend\n";
+  try {
+    read_parameters(file);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Tool 1/Path (mm)"), std::string::npos) << e.what();
+  }
 }
 
 // (b) Capstan: a 1 x 1 mm strip, 120 mm long, clamped at both ends, lifted over a rigid
