@@ -16,7 +16,10 @@ CommandSpecification shell(const std::string& script) {
   spec.arguments = {"-c", script};
   spec.input_template = "displacement_m,force_N\n0,0\n1,{a_N}\n2,{b_N}\n";
   spec.input_name = "input.csv";
-  spec.work_directory = std::filesystem::temp_directory_path() / "dtwire_command_simulator_test";
+  // One fresh folder per test: failed runs keep their directory for diagnosis.
+  spec.work_directory = std::filesystem::temp_directory_path() / "dtwire_command_simulator_test" /
+                        ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  std::filesystem::remove_all(spec.work_directory);
   spec.fixed = {{"b_N", 7.0}};
   return spec;
 }
@@ -27,7 +30,8 @@ TEST(CommandSimulator, FillsTemplateRunsProgramReadsResult) {
   const CommandSimulator simulator(shell("cp {input} {output}/curve.csv"));
   const Curve curve = simulator.simulate({{"a_N", 0.1}});
   EXPECT_EQ(curve.channel("force").values, (std::vector<double>{0.0, 0.1, 7.0}));
-  EXPECT_TRUE(std::filesystem::is_empty(std::filesystem::temp_directory_path() / "dtwire_command_simulator_test"));
+  EXPECT_TRUE(std::filesystem::is_empty(std::filesystem::temp_directory_path() / "dtwire_command_simulator_test" /
+                                        "FillsTemplateRunsProgramReadsResult"));
 }
 
 TEST(CommandSimulator, NonZeroExitIsAComputationError) {
