@@ -53,7 +53,7 @@ std::filesystem::path write_campaign_report(const Campaign& campaign,
     if (outcome == outcomes.end()) continue;
     md << "## " << step.name << "\n\n";
     if (!step.description.empty()) md << step.description << "\n\n";
-    if (outcome->status == StepStatus::Unavailable) {
+    if (outcome->status == StepStatus::Unavailable || outcome->status == StepStatus::Blocked) {
       md << "Not run: " << outcome->message << ".\n\n";
       continue;
     }

@@ -45,6 +45,13 @@ std::string fingerprint(const std::vector<std::string>& command, const std::vect
   return sha256_text(text);
 }
 
+// True if `path` lies inside `folder` (both made absolute, lexically normalised).
+bool is_within(const std::filesystem::path& path, const std::filesystem::path& folder) {
+  const auto p = std::filesystem::absolute(path).lexically_normal().string();
+  const auto f = std::filesystem::absolute(folder).lexically_normal().string();
+  return p.compare(0, f.size(), f) == 0;
+}
+
 bool outputs_exist(const std::vector<std::string>& outputs) {
   return std::all_of(outputs.begin(), outputs.end(),
                      [](const std::string& o) { return std::filesystem::exists(o); });
@@ -58,6 +65,7 @@ std::string status_name(StepStatus status) {
     case StepStatus::Skipped: return "up to date";
     case StepStatus::Failed: return "failed";
     case StepStatus::Unavailable: return "not available yet";
+    case StepStatus::Blocked: return "blocked";
   }
   return "unknown";
 }
@@ -87,10 +95,19 @@ std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOp
     for (const auto& a : step.command) command.push_back(expand(a, options.out, campaign_dir));
     for (const auto& a : step.inputs) inputs.push_back(expand(a, options.out, campaign_dir));
     for (const auto& a : step.outputs) outputs.push_back(expand(a, options.out, campaign_dir));
-    for (const auto& input : inputs)
-      if (!std::filesystem::exists(input))
-        throw InputError(campaign.file.string(), "step '" + step.name + "': input " + input +
+    const auto missing = std::find_if(inputs.begin(), inputs.end(), [](const std::string& input) {
+      return !std::filesystem::exists(input);
+    });
+    if (missing != inputs.end()) {
+      if (!is_within(*missing, options.out))
+        throw InputError(campaign.file.string(), "step '" + step.name + "': input " + *missing +
                                                      " does not exist");
+      outcome.status = StepStatus::Blocked;
+      outcome.message = "input " + *missing + " was not produced by an earlier step";
+      std::cerr << progress << ": blocked, " << outcome.message << "\n";
+      outcomes.push_back(outcome);
+      continue;
+    }
     for (const auto& output : outputs)
       std::filesystem::create_directories(std::filesystem::path(output).parent_path());
     const std::string hash = fingerprint(command, inputs);

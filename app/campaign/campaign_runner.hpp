@@ -11,7 +11,8 @@
 
 namespace dtwire::app {
 
-enum class StepStatus { Done, Skipped, Failed, Unavailable };
+// Blocked: an input that an earlier step should have written is missing.
+enum class StepStatus { Done, Skipped, Failed, Unavailable, Blocked };
 
 struct StepOutcome {
   std::string name;

@@ -42,15 +42,16 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     }
     const auto outcomes = run_campaign(campaign, run_options);
     const auto report = write_campaign_report(campaign, outcomes, run_options.out);
-    std::size_t failed = 0, unavailable = 0;
+    std::size_t failed = 0, unavailable = 0, blocked = 0;
     for (const auto& o : outcomes) {
       failed += o.status == StepStatus::Failed;
       unavailable += o.status == StepStatus::Unavailable;
+      blocked += o.status == StepStatus::Blocked;
     }
     std::cout << "campaign " << campaign.name << ": " << outcomes.size() << " step(s), " << failed
-              << " failed, " << unavailable << " not available yet; report: " << report.string()
-              << "\n";
-    return failed ? kExitFailure : 0;
+              << " failed, " << blocked << " blocked, " << unavailable
+              << " not available yet; report: " << report.string() << "\n";
+    return failed || blocked ? kExitFailure : 0;
   });
 }
 

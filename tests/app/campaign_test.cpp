@@ -85,3 +85,33 @@ TEST(Campaign, RunsStepsResumesAndReportsUnavailableOnes) {
 
 }  // namespace
 }  // namespace dtwire::app
+
+namespace dtwire::app {
+namespace {
+
+TEST(Campaign, StepWhoseProducedInputIsMissingIsBlockedNotAnError) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_blocked";
+  std::filesystem::remove_all(out);
+  const auto file = write_temp("dtwire_blocked.toml",
+                               "name = \"b\"\n[[step]]\nname = \"needs_earlier\"\n"
+                               "command = [\"campaign\", \"--help\"]\n"
+                               "inputs = [\"{out}/never_written.csv\"]\n");
+  const auto outcomes = run_campaign(read_campaign(file), {out, false, {}});
+  ASSERT_EQ(outcomes.size(), 1u);
+  EXPECT_EQ(outcomes[0].status, StepStatus::Blocked);
+  EXPECT_NE(outcomes[0].message.find("never_written.csv"), std::string::npos);
+  std::filesystem::remove_all(out);
+}
+
+TEST(Campaign, MissingInputOutsideTheOutputFolderIsAnInputError) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_missing";
+  const auto file = write_temp("dtwire_missing.toml",
+                               "name = \"m\"\n[[step]]\nname = \"a\"\n"
+                               "command = [\"campaign\", \"--help\"]\n"
+                               "inputs = [\"{campaign}/no_such_input.prm\"]\n");
+  EXPECT_THROW(run_campaign(read_campaign(file), {out, false, {}}), InputError);
+  std::filesystem::remove_all(out);
+}
+
+}  // namespace
+}  // namespace dtwire::app
