@@ -50,8 +50,8 @@ SymTensor2 symmetric_part(const Tensor2& t) {
 
 }  // namespace
 
-J2LogPlasticity::J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening)
-    : elastic_(elastic), hardening_(std::move(hardening)) {
+J2LogPlasticity::J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening, FailureParameters failure)
+    : elastic_(elastic), hardening_(std::move(hardening)), failure_(failure) {
   if (!(elastic_.young > 0) || !(elastic_.poisson > -1.0) || !(elastic_.poisson < 0.5))
     throw std::invalid_argument("elastic constants: need E > 0 and -1 < nu < 0.5");
 }
@@ -120,6 +120,13 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
   r.state.plastic_dissipation =
       committed.plastic_dissipation + hardening_.flow_stress(alpha_n + dgamma) * dgamma;
   r.state.plastic_metric_inverse = symmetric_part(F_inv * Tensor2(from_principal(s, b_e)) * F_inv_T);
+  r.state.damage = committed.damage;
+  if (dgamma > 0.0 && failure_.enabled()) {
+    const double q = std::sqrt(1.5) * 2.0 * G * dev_norm * shrink;
+    const double eta = K * volumetric / q;
+    const double strain_to_failure = failure_.d1 + failure_.d2 * std::exp(failure_.d3 * eta);
+    r.state.damage += dgamma / std::max(strain_to_failure, 1e-6);
+  }
   if (!with_tangent) return r;
 
   // Algorithmic modulus D = d tau / d eps_tr (de Souza Neto et al. 2008, eq. 7.120, in log space).

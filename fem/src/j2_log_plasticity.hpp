@@ -26,6 +26,14 @@ struct PlasticState {
   SymTensor2 plastic_metric_inverse = dealii::unit_symmetric_tensor<3>();
   double equivalent_plastic_strain = 0.0;
   double plastic_dissipation = 0.0;  // J per reference volume, accumulated
+  double damage = 0.0;               // ductile failure indicator, failure at 1
+};
+
+// Uncoupled ductile failure indicator (Johnson & Cook 1985, EFM 21): D = sum d(alpha) / eps_f,
+// eps_f = d1 + d2 exp(d3 eta) with eta the stress triaxiality. Off when d1 = d2 = 0.
+struct FailureParameters {
+  double d1 = 0.0, d2 = 0.0, d3 = 0.0;
+  bool enabled() const { return d1 != 0.0 || d2 != 0.0; }
 };
 
 struct StressUpdate {
@@ -39,7 +47,7 @@ struct StressUpdate {
 
 class J2LogPlasticity {
  public:
-  J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening);
+  J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening, FailureParameters failure = {});
 
   // Stress at deformation gradient F from the committed history. Throws std::domain_error if
   // det F <= 0 (the caller cuts the load step back).
@@ -53,6 +61,7 @@ class J2LogPlasticity {
 
   ElasticParameters elastic_;
   IsotropicHardening hardening_;
+  FailureParameters failure_;
 };
 
 // Stress invariants for output: von Mises, triaxiality (mean / von Mises), Lode parameter

@@ -45,6 +45,10 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Swift exponent", "0.2", Patterns::Double(0.0), "swift: n");
   prm.declare_entry("Hardening table", "", Patterns::Anything(),
                     "table: comma-separated plastic_strain:true_stress_MPa pairs");
+  prm.declare_entry("Failure d1", "0", Patterns::Double(), "Johnson-Cook eps_f = d1 + d2 exp(d3 eta); 0, 0: off");
+  prm.declare_entry("Failure d2", "0", Patterns::Double(), "");
+  prm.declare_entry("Failure d3", "0", Patterns::Double(), "");
+  prm.declare_entry("Stop at failure", "true", Patterns::Bool(), "end the run when the indicator reaches 1");
   prm.leave_subsection();
 
   prm.enter_subsection("Formulation");
@@ -164,6 +168,10 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.material.poisson = prm.get_double("Poisson ratio");
   auto& h = p.material.hardening;
   h.law = parse_hardening_law(prm.get("Hardening law"));
+  p.material.failure.d1 = prm.get_double("Failure d1");
+  p.material.failure.d2 = prm.get_double("Failure d2");
+  p.material.failure.d3 = prm.get_double("Failure d3");
+  p.material.stop_at_failure = prm.get_bool("Stop at failure");
   h.yield_stress = prm.get_double("Yield stress (MPa)") * 1e6;
   h.linear_modulus = prm.get_double("Hardening modulus (MPa)") * 1e6;
   h.saturation_stress = prm.get_double("Saturation stress (MPa)") * 1e6;

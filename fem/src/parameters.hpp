@@ -8,6 +8,7 @@
 
 #include "contact/contact_parameters.hpp"  // contact (issue 5)
 #include "hardening.hpp"
+#include "j2_log_plasticity.hpp"
 
 namespace dtwire::fem {
 
@@ -27,6 +28,8 @@ struct MaterialParameters {
   double young = 200e9;  // Pa
   double poisson = 0.3;
   HardeningParameters hardening;
+  FailureParameters failure;
+  bool stop_at_failure = true;
 };
 
 struct FormulationParameters {

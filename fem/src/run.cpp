@@ -3,6 +3,7 @@
 #include <deal.II/base/mpi.h>
 
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -41,6 +42,21 @@ class TeeBuffer : public std::streambuf {
   std::streambuf* b_;
 };
 
+// Failure mode at the point where the indicator first reached 1: necking-driven when the
+// stress state there is axisymmetric tension raised by a neck (Lode parameter > 0.5, triaxiality
+// > 0.38), shear-driven when the Lode parameter is near 0 (|xi| < 0.5), otherwise uniform tension.
+std::string failure_mode(const StepRecord& r) {
+  if (std::abs(r.damage_lode) < 0.5) return "shear-driven";
+  if (r.damage_lode > 0.5 && r.damage_triaxiality > 0.38) return "necking-driven";
+  return "uniform tension";
+}
+
+const StepRecord* first_failure(const std::vector<StepRecord>& records) {
+  for (const auto& r : records)
+    if (r.damage >= 1.0) return &r;
+  return nullptr;
+}
+
 Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& options, const Parameters& p) {
   std::vector<double> u, f, d, e, r;
   for (const auto& s : records) {
@@ -56,6 +72,18 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
   c.add_channel_si("plastic_dissipation", Dimension::Energy, d, *find_unit("J"));
   c.add_channel_si("elastic_energy", Dimension::Energy, e, *find_unit("J"));
   c.add_channel_si("neck_radius", Dimension::Length, r, *find_unit("mm"));
+  if (p.material.failure.enabled()) {
+    std::vector<double> damage;
+    for (const auto& s : records) damage.push_back(s.damage);
+    c.add_channel_si("damage", Dimension::Dimensionless, damage, *find_unit("1"));
+    if (const StepRecord* f = first_failure(records)) {
+      std::ostringstream text;
+      text << failure_mode(*f) << " at displacement " << f->displacement * 1e3 << " mm, force " << f->force
+           << " N, z = " << f->damage_z * 1e3 << " mm, r = " << f->damage_r * 1e3 << " mm, triaxiality "
+           << f->damage_triaxiality << ", Lode parameter " << f->damage_lode;
+      c.set_metadata("failure", text.str());
+    }
+  }
   if (!records.empty() && records.front().contact.enabled) {  // contact (issue 5)
     std::vector<contact::ContactRecord> contacts;
     for (const auto& s : records) contacts.push_back(s.contact);
@@ -134,6 +162,13 @@ RunSummary run_experiment(const RunOptions& options) {
   results.parameters.push_back({"steps", static_cast<double>(st.steps), "1", std::nullopt});
   results.parameters.push_back({"newton_iterations", static_cast<double>(st.newton_iterations), "1", std::nullopt});
   results.parameters.push_back({"mpi_ranks", static_cast<double>(st.ranks), "1", std::nullopt});
+  if (const StepRecord* f = first_failure(records)) {
+    results.parameters.push_back({"failure_displacement", f->displacement, "m", std::nullopt});
+    results.parameters.push_back({"failure_force", f->force, "N", std::nullopt});
+    results.parameters.push_back({"failure_triaxiality", f->damage_triaxiality, "1", std::nullopt});
+    results.parameters.push_back({"failure_lode_parameter", f->damage_lode, "1", std::nullopt});
+    log << "failure: " << curve.metadata("failure") << "\n";
+  }
   const auto files = solver.field_files();
   for (std::size_t i = 0; i < files.size(); ++i)
     results.fields.emplace_back(i == 0 ? "pvd" : "step_" + std::to_string(i - 1), "fields/" + files[i]);

@@ -82,7 +82,8 @@ struct WireSolver::Impl {
         fe(FE_Q<3>(p.formulation.degree), 3),
         dof_handler(triangulation),
         quadrature(p.formulation.degree + 1),
-        material(ElasticParameters{p.material.young, p.material.poisson}, IsotropicHardening(p.material.hardening)),
+        material(ElasticParameters{p.material.young, p.material.poisson}, IsotropicHardening(p.material.hardening),
+                 p.material.failure),
         field_directory(std::move(fields)) {}
 
   Parameters prm;
@@ -121,6 +122,7 @@ struct WireSolver::Impl {
   void commit();
   double reaction() const;
   double neck_radius() const;
+  void record_damage(StepRecord& record) const;
   bool solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                   unsigned& iterations, std::string& reason);
   void write_fields(unsigned step, double time);
@@ -290,6 +292,36 @@ double WireSolver::Impl::reaction() const {
   for (const auto i : top_loaded_dofs)
     if (owned.is_element(i)) local += internal_force[i];
   return Utilities::MPI::sum(local, comm) * force_multiplier();
+}
+
+void WireSolver::Impl::record_damage(StepRecord& record) const {
+  const unsigned n_q = quadrature.size();
+  struct {
+    double value;
+    int rank;
+  } local{-1.0, static_cast<int>(Utilities::MPI::this_mpi_process(comm))}, global{};
+  double where[4] = {0, 0, 0, 0};  // triaxiality, Lode, z, r
+  for (const auto& cell : triangulation.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    for (unsigned q = 0; q < n_q; ++q) {
+      const auto& p = points[cell->active_cell_index() * n_q + q];
+      if (p.committed.damage <= local.value) continue;
+      local.value = p.committed.damage;
+      const StressInvariants inv = stress_invariants(p.cauchy);
+      const Point<3> x = cell->center();
+      where[0] = inv.triaxiality;
+      where[1] = inv.lode_parameter;
+      where[2] = x[2];
+      where[3] = std::hypot(x[0], x[1]);
+    }
+  }
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
+  MPI_Bcast(where, 4, MPI_DOUBLE, global.rank, comm);
+  record.damage = std::max(global.value, 0.0);
+  record.damage_triaxiality = where[0];
+  record.damage_lode = where[1];
+  record.damage_z = where[2];
+  record.damage_r = where[3];
 }
 
 double WireSolver::Impl::neck_radius() const {
@@ -530,12 +562,22 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       record.elastic_energy = s.elastic_energy * s.force_multiplier() * s.length_multiplier();
       record.neck_radius = s.neck_radius();
       record.iterations = iterations;
+      s.record_damage(record);
       if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
                                                                     s.force_multiplier() * s.length_multiplier());
       s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "
             << record.neck_radius * 1e3 << " mm\n";
       on_step(record);
       if (interval > 0 && step % interval == 0) s.write_fields(step, t);
+      if (s.prm.material.failure.enabled() && record.damage >= 1.0) {
+        s.log << "  ductile failure indicator reached " << record.damage << " at z = " << record.damage_z * 1e3
+              << " mm, r = " << record.damage_r * 1e3 << " mm (triaxiality " << record.damage_triaxiality
+              << ", Lode parameter " << record.damage_lode << ")\n";
+        if (s.prm.material.stop_at_failure) {
+          s.log << "  stopping at failure (Stop at failure = true)\n";
+          break;
+        }
+      }
       if (iterations <= stepping.easy_iterations && dt < stepping.maximum_step) {
         const double grown = std::min(stepping.maximum_step, dt * stepping.growth_factor);
         s.log << "  easy step (" << iterations << " <= " << stepping.easy_iterations << " iterations): dt "

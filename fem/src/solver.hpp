@@ -25,6 +25,9 @@ struct StepRecord {
   double elastic_energy = 0.0;       // J
   double neck_radius = 0.0;          // m, smallest deformed radius in the imperfection plane
   unsigned iterations = 0;
+  // Ductile failure indicator: its largest value and, at that point, triaxiality, Lode
+  // parameter, height z and distance from the axis (reference configuration, m).
+  double damage = 0.0, damage_triaxiality = 0.0, damage_lode = 0.0, damage_z = 0.0, damage_r = 0.0;
   contact::ContactRecord contact;  // contact (issue 5): enabled only with tools in the .prm
 };
 

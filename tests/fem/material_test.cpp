@@ -174,3 +174,25 @@ TEST(Hardening, RejectsNonIncreasingTable) {
 
 }  // namespace
 }  // namespace dtwire::fem
+
+namespace dtwire::fem {
+namespace {
+
+// Johnson-Cook indicator in uniaxial tension (triaxiality 1/3 throughout): D = alpha / eps_f(1/3).
+TEST(FailureIndicator, UniaxialDamageIsPlasticStrainOverStrainToFailure) {
+  HardeningParameters h;
+  h.law = HardeningLaw::linear;
+  h.yield_stress = 400e6;
+  h.linear_modulus = 1e9;
+  const FailureParameters jc{0.05, 3.44, -2.12};
+  const J2LogPlasticity m(ElasticParameters{200e9, 0.3}, IsotropicHardening(h), jc);
+  PlasticState state;
+  double mu = 1.0;
+  for (int n = 1; n <= 20; ++n) state = uniaxial(m, std::exp(0.01 * n), state, mu).state;
+  const double strain_to_failure = 0.05 + 3.44 * std::exp(-2.12 / 3.0);
+  // Tolerance: the lateral-equilibrium iteration leaves eta = 1/3 to ~1e-10.
+  EXPECT_NEAR(state.damage, state.equivalent_plastic_strain / strain_to_failure, 1e-9);
+}
+
+}  // namespace
+}  // namespace dtwire::fem
