@@ -150,3 +150,51 @@ TEST(ContactKernel, TangentMatchesFiniteDifferencesOnCylinder) {
 
 }  // namespace
 }  // namespace dtwire::fem::contact
+
+namespace dtwire::fem::contact {
+namespace {
+
+// Plate z = 0 (outward normal +z) with a groove of radius 2 along x through the origin.
+ToolGeometry grooved_plate() {
+  ToolGeometry t;
+  t.shape = ToolShape::grooved_plate;
+  t.point = vec(0, 0, 0);
+  t.direction = vec(0, 0, 1);
+  t.groove_axis = vec(1, 0, 0);
+  t.radius = 2.0;
+  return t;
+}
+
+TEST(ContactKernel, GroovedPlateGapAndNormal) {
+  const auto tool = grooved_plate();
+  // On the flat part, beside the groove.
+  auto p = tool.project(vec(5.0, 3.0, -0.1));
+  EXPECT_NEAR(p.gap, -0.1, 1e-14);
+  EXPECT_NEAR(p.normal[2], 1.0, 1e-14);
+  // Inside the channel, clear of the wall: open.
+  p = tool.project(vec(5.0, 0.5, -1.0));
+  EXPECT_GT(p.gap, 0.0);
+  // Pressed into the groove wall at 45 degrees below the plate: normal towards the axis.
+  const double s = std::sqrt(0.5);
+  p = tool.project(vec(1.0, 2.1 * s, -2.1 * s));
+  EXPECT_NEAR(p.gap, -0.1, 1e-12);
+  EXPECT_NEAR(p.normal[1], -s, 1e-12);
+  EXPECT_NEAR(p.normal[2], s, 1e-12);
+  EXPECT_NEAR(tool.project(vec(0.0, 0.0, 0.0)).gap, 2.0, 1e-14);  // on the groove axis
+}
+
+TEST(ContactKernel, TangentMatchesFiniteDifferencesOnGrooveWall) {
+  const auto tool = grooved_plate();
+  const double s = std::sqrt(0.5);
+  const Vector3 n = vec(0.0, -s, s);
+  const Vector3 x = vec(1.0, 2.02 * s, -2.02 * s);  // gap -0.02 on the wall
+  const Vector3 along = vec(1, 0, 0), around = vec(0, s, s);
+  ContactHistory h;
+  h.tangential_traction = 0.2 * along - 0.1 * around + 0.05 * n;
+  EXPECT_LT(tangent_error(tool, law(0.3), h, x, x - 0.002 * along, false), 1e-6);
+  EXPECT_LT(tangent_error(tool, law(0.3), h, x, x - 0.05 * along + 0.03 * around, true), 1e-6);
+  EXPECT_LT(tangent_error(tool, law(0.0), h, x, x - 0.05 * along, false), 1e-6);
+}
+
+}  // namespace
+}  // namespace dtwire::fem::contact

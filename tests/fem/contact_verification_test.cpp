@@ -112,7 +112,7 @@ TEST(ContactVerification, RunWritesContactChannels) {
   options.echo = false;
   const RunSummary summary = run_experiment(options);
   const Curve curve = read_csv(summary.curve_csv);
-  for (const char* name : {"contact_normal_force", "contact_friction_force", "tool1_force_y", "tool1_force_z",
+  for (const char* name : {"contact_normal_force", "contact_friction_force", "tool1_displacement_z", "tool1_force_y", "tool1_force_z",
                            "tool2_force_y", "friction_dissipation", "contact_max_pressure", "contact_max_slip",
                            "contact_max_penetration"}) {
     ASSERT_TRUE(curve.has(name)) << name;
@@ -244,6 +244,46 @@ TEST(ContactVerification, HertzCylinderOnPlanePlaneStrain) {
             << coarse.approach << " -> " << fine.approach << "\n";
   EXPECT_LT(std::abs(fine.half_width), 0.05);  // half-width within 5 %
   EXPECT_LT(std::abs(fine.approach), 0.05);    // approach within 5 %
+}
+
+// (d) A round wire (D = 2 mm, 16-gon section) squeezed between two grooved clamp plates
+// (groove radius 1.03 mm along the wire, 0.02 mm press), then both plates dragged 1 mm along
+// the wire whose ends are held. At full slip the axial tool force is mu times the summed normal
+// contact force, which exceeds the clamping force: the groove walls wedge the wire.
+TEST(ContactVerification, GroovedClampPlatesSliding) {
+  const double mu = 0.2, groove = 1.03;
+  const double vertex = std::sqrt(2.0 * kPi / (16.0 * std::sin(2.0 * kPi / 16.0)));  // 16-gon, mm
+  const double plate = vertex - groove + 0.002;  // 2 um between the top vertex and the groove bottom
+  std::ostringstream prm;
+  prm << "subsection Geometry\n  set Diameter (mm) = 2\n  set Length (mm) = 10\n  set Cross section = full\n"
+         "  set Radial refinements = 2\n  set Axial cells = 10\nend\n"
+      << elastic_material(200000, 0.3)
+      << "subsection Boundary conditions\n  set Bottom end = clamped\n  set Top end = axial\n"
+         "  set Load path (mm) = 0:0, 1:0, 2:0\nend\n"
+         "subsection Load stepping\n  set Initial step = 0.02\n  set Maximum step = 0.02\n"
+         "  set Minimum step = 1e-5\nend\n"
+         "subsection Newton\n  set Relative tolerance = 1e-9\n  set Maximum iterations = 25\nend\n"
+         "subsection Output\n  set Fields = false\nend\n"
+         "subsection Contact\n  set Friction coefficient = "
+      << mu << "\n";
+  for (const int side : {1, -1})
+    prm << "  subsection Tool " << (side > 0 ? 1 : 2) << "\n    set Shape = grooved plate\n    set Point (mm) = 0 "
+        << side * plate << " 0\n    set Direction = 0 " << -side << " 0\n    set Groove axis = 0 0 1\n"
+        << "    set Radius (mm) = " << groove << "\n    set Path (mm) = 0: 0 0 0, 1: 0 " << -side * 0.02
+        << " 0, 2: 0 " << -side * 0.02 << " 1.0\n  end\n";
+  prm << "end\n";
+  const auto records = run_case("grooved_plates", prm.str());
+  const auto& c = records.back().contact;
+  const double axial = -(c.tool_forces[0][2] + c.tool_forces[1][2]);
+  const double clamp = c.tool_forces[0][1];
+  unsigned slipping = 0;
+  for (const auto& s : c.samples) slipping += s.slipping ? 1 : 0;
+  EXPECT_EQ(slipping, c.samples.size());
+  EXPECT_NEAR(axial / (mu * c.normal_force), 1.0, 0.01);  // Coulomb at slip within 1 %
+  EXPECT_GT(c.normal_force, 2.0 * clamp);                  // inclined groove-wall normals: sum p dA > clamping
+  std::cout << "[grooved plates] clamp " << clamp << " N per plate, sum p dA " << c.normal_force
+            << " N, axial/(mu sum p dA) = " << axial / (mu * c.normal_force) << ", " << c.samples.size()
+            << " contact points\n";
 }
 
 }  // namespace

@@ -18,9 +18,12 @@ void add_contact_channels(Curve& curve, const std::vector<ContactRecord>& record
   channel("contact_friction_force", Dimension::Force, "N", [](const ContactRecord& r) { return r.friction_force; });
   const char* axes[] = {"x", "y", "z"};
   for (std::size_t tool = 0; tool < records.front().tool_forces.size(); ++tool)
-    for (unsigned k = 0; k < 3; ++k)
+    for (unsigned k = 0; k < 3; ++k) {
+      channel("tool" + std::to_string(tool + 1) + "_displacement_" + axes[k], Dimension::Length, "mm",
+              [tool, k](const ContactRecord& r) { return r.tool_displacements[tool][k]; });
       channel("tool" + std::to_string(tool + 1) + "_force_" + axes[k], Dimension::Force, "N",
               [tool, k](const ContactRecord& r) { return r.tool_forces[tool][k]; });
+    }
   channel("friction_dissipation", Dimension::Energy, "J", [](const ContactRecord& r) { return r.friction_dissipation; });
   channel("contact_max_pressure", Dimension::Stress, "MPa", [](const ContactRecord& r) { return r.max_pressure; });
   channel("contact_max_slip", Dimension::Length, "mm", [](const ContactRecord& r) { return r.max_slip; });

@@ -21,6 +21,28 @@ Projection ToolGeometry::project(const Vector3& x) const {
     p.gap = (x - point) * direction;
     return p;  // normal_gradient stays zero
   }
+  if (shape == ToolShape::grooved_plate) {
+    const Vector3 r = x - point;
+    const Vector3 radial = r - (r * groove_axis) * groove_axis;
+    const double rho = radial.norm();
+    const double height = r * direction;
+    if (!(rho > 1e-12 * radius)) {  // on the groove axis: inside the channel, open
+      p.normal = direction;
+      p.gap = radius;
+      return p;
+    }
+    if (height >= radius - rho) {  // the flat part is nearer (or the point is above the plate)
+      p.normal = direction;
+      p.gap = height;
+      return p;
+    }
+    // Groove wall (concave cylinder): the normal points back towards the groove axis.
+    p.normal = -radial / rho;
+    p.gap = radius - rho;
+    p.normal_gradient =
+        -(identity() - outer_product(groove_axis, groove_axis) - outer_product(p.normal, p.normal)) / rho;
+    return p;
+  }
   const Vector3 r = x - point;
   const Vector3 radial = r - (r * direction) * direction;
   const double rho = radial.norm();

@@ -13,7 +13,7 @@ namespace dtwire::fem::contact {
 using Vector3 = dealii::Tensor<1, 3>;
 using Matrix3 = dealii::Tensor<2, 3>;
 
-enum class ToolShape { plane, cylinder };
+enum class ToolShape { plane, cylinder, grooved_plate };
 
 // Closest-point projection of a point x onto the tool surface.
 struct Projection {
@@ -22,12 +22,17 @@ struct Projection {
   Matrix3 normal_gradient;   // d normal / d x (symmetric; zero for a plane)
 };
 
-// A rigid tool in its current (moved) position.
+// A rigid tool in its current (moved) position. A grooved plate is a plane (point, outward
+// normal `direction`) with a circular channel of radius `radius` cut into it, its axis along
+// `groove_axis` (unit, in the plane) through `point`: the solid {h < 0} minus {rho < radius},
+// h the height above the plane and rho the distance from the groove axis. Its gap is
+// max(h, radius - rho): the exact signed distance inside the solid, positive outside.
 struct ToolGeometry {
   ToolShape shape = ToolShape::plane;
-  Vector3 point;      // plane: a point on it; cylinder: a point on the axis
-  Vector3 direction;  // plane: unit outward normal; cylinder: unit axis
-  double radius = 0.0;  // cylinder
+  Vector3 point;      // plane, grooved plate: a point on the surface; cylinder: a point on the axis
+  Vector3 direction;  // plane, grooved plate: unit outward normal; cylinder: unit axis
+  double radius = 0.0;  // cylinder, groove
+  Vector3 groove_axis;  // grooved plate
 
   // Throws std::domain_error for a point on the cylinder axis (no unique normal).
   Projection project(const Vector3& x) const;

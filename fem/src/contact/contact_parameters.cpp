@@ -46,11 +46,14 @@ void declare_contact_parameters(dealii::ParameterHandler& prm) {
                     "penetration accepted without a further augmentation");
   for (unsigned i = 1; i <= kMaximumTools; ++i) {
     prm.enter_subsection("Tool " + std::to_string(i));
-    prm.declare_entry("Shape", "none", Patterns::Selection("none|plane|cylinder"), "rigid analytic tool");
+    prm.declare_entry("Shape", "none", Patterns::Selection("none|plane|cylinder|grooved plate"),
+                      "rigid analytic tool");
     prm.declare_entry("Point (mm)", "0 0 0", Patterns::Anything(), "plane: a point on it; cylinder: on its axis");
     prm.declare_entry("Direction", "0 0 1", Patterns::Anything(),
                       "plane: outward normal (towards the wire); cylinder: axis");
-    prm.declare_entry("Radius (mm)", "0", Patterns::Double(0.0), "cylinder");
+    prm.declare_entry("Radius (mm)", "0", Patterns::Double(0.0), "cylinder; groove of a grooved plate");
+    prm.declare_entry("Groove axis", "1 0 0", Patterns::Anything(),
+                      "grooved plate: direction of the groove, in the plate (perpendicular to Direction)");
     prm.declare_entry("Path (mm)", "0: 0 0 0", Patterns::Anything(),
                       "comma-separated 'pseudo-time: dx dy dz' tool displacements, piecewise linear");
     prm.leave_subsection();
@@ -74,13 +77,23 @@ ContactParameters parse_contact_parameters(dealii::ParameterHandler& prm, const 
     const std::string shape = prm.get("Shape");
     if (shape != "none") {
       ToolParameters t;
-      t.shape = shape == "plane" ? ToolShape::plane : ToolShape::cylinder;
+      t.shape = shape == "plane"      ? ToolShape::plane
+                : shape == "cylinder" ? ToolShape::cylinder
+                                      : ToolShape::grooved_plate;
       t.point = parse_vector(prm.get("Point (mm)"), file, name + "/Point (mm)");
       for (auto& x : t.point) x *= 1e-3;
       t.direction = unit(parse_vector(prm.get("Direction"), file, name + "/Direction"), file, name + "/Direction");
       t.radius = prm.get_double("Radius (mm)") * 1e-3;
-      if (t.shape == ToolShape::cylinder && !(t.radius > 0.0))
-        throw InputError(file, "Contact: '" + name + "/Radius (mm)': expected a positive radius for a cylinder");
+      if (t.shape != ToolShape::plane && !(t.radius > 0.0))
+        throw InputError(file, "Contact: '" + name + "/Radius (mm)': expected a positive radius for " + shape);
+      if (t.shape == ToolShape::grooved_plate) {
+        const std::string entry = name + "/Groove axis";
+        t.groove_axis = unit(parse_vector(prm.get("Groove axis"), file, entry), file, entry);
+        double c = 0.0;
+        for (unsigned k = 0; k < 3; ++k) c += t.groove_axis[k] * t.direction[k];
+        if (std::abs(c) > 1e-9)
+          throw InputError(file, "Contact: '" + name + "/Groove axis': expected a direction perpendicular to Direction");
+      }
       std::stringstream list(prm.get("Path (mm)"));
       std::string item;
       while (std::getline(list, item, ',')) {

@@ -21,7 +21,8 @@ struct ToolParameters {
   ToolShape shape = ToolShape::plane;
   std::array<double, 3> point{};      // m, at pseudo-time 0
   std::array<double, 3> direction{};  // unit: plane outward normal, cylinder axis
-  double radius = 0.0;                // m
+  double radius = 0.0;                // m, cylinder or groove
+  std::array<double, 3> groove_axis{};  // unit, grooved plate (perpendicular to direction)
   // (pseudo-time, tool displacement in m), piecewise linear; constant after the last knot.
   std::vector<std::pair<double, std::array<double, 3>>> path;
 };

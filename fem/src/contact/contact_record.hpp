@@ -25,6 +25,7 @@ struct ContactRecord {
   bool enabled = false;
   double normal_force = 0.0;           // N, sum of p dA over all tools
   double friction_force = 0.0;         // N, |sum of t_T dA|
+  std::vector<std::array<double, 3>> tool_displacements;  // m, prescribed, at the step's end
   std::vector<std::array<double, 3>> tool_forces;  // N, force of the wire on each tool (modelled part x multiplier)
   double friction_dissipation = 0.0;   // J, accumulated
   double active_area = 0.0;            // m^2, reference area with p > 0

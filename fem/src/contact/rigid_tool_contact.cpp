@@ -81,6 +81,7 @@ RigidToolContact::RigidToolContact(const ContactParameters& parameters, double y
 }
 
 void RigidToolContact::begin_step(double t_old, double t_new) {
+  time_ = t_new;
   tools_.clear();
   tool_increment_.clear();
   for (const auto& t : parameters_.tools) {
@@ -89,6 +90,7 @@ void RigidToolContact::begin_step(double t_old, double t_new) {
     g.point = to_vector(t.point) + to_vector(tool_displacement(t, t_new));
     g.direction = to_vector(t.direction);
     g.radius = t.radius;
+    g.groove_axis = to_vector(t.groove_axis);
     tools_.push_back(g);
     tool_increment_.push_back(to_vector(tool_displacement(t, t_new)) - to_vector(tool_displacement(t, t_old)));
   }
@@ -215,6 +217,7 @@ ContactRecord RigidToolContact::record(const PETScWrappers::MPI::Vector& interna
   r.normal_force = sum(r.normal_force) * contact_scale;
   Vector3 t_sum;
   r.tool_forces.assign(n_tools, {});
+  for (const auto& tool : parameters_.tools) r.tool_displacements.push_back(tool_displacement(tool, time_));
   for (unsigned c = 0; c < 3; ++c) {
     t_sum[c] = sum(tangential[c]);
     for (unsigned k = 0; k < n_tools; ++k) r.tool_forces[k][c] = sum(on_tools[k][c]) * contact_scale;

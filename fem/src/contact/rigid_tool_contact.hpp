@@ -68,6 +68,7 @@ class RigidToolContact {
   std::vector<PairState> pairs_;     // points x tools
   std::vector<ToolGeometry> tools_;  // at the end of the current step
   std::vector<Vector3> tool_increment_;
+  double time_ = 0.0;  // pseudo-time at the end of the current step
   std::array<dealii::IndexSet, 3> bottom_dofs_, top_dofs_;
   double dissipation_ = 0.0;  // committed, this rank, modelled part
   unsigned augmentations_ = 0;
