@@ -20,15 +20,20 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Also under mpirun (rank 0 writes the files; samples are then this rank's points only).
 std::vector<StepRecord> run_case(const std::string& name, const std::string& prm_text) {
+  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const auto dir = std::filesystem::temp_directory_path() / ("dtwire_contact_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
   const auto file = dir / (name + ".prm");
-  std::ofstream(file) << prm_text;
+  if (root) {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ofstream(file) << prm_text;
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
   Parameters p = read_parameters(file);
   p.contact.keep_samples = true;
-  std::ofstream log(dir / "run.log");
+  std::ofstream log(root ? dir / "run.log" : std::filesystem::path("/dev/null"));
   WireSolver solver(p, log, {});
   std::vector<StepRecord> records;
   solver.run([&](const StepRecord& r) { records.push_back(r); });
@@ -217,6 +222,8 @@ HertzErrors hertz_errors(unsigned refinements, double press = 0.17) {
     m0 += s.pressure * s.weight;
     m2 += s.pressure * s.weight * s.position[0] * s.position[0];
   }
+  m0 = dealii::Utilities::MPI::sum(m0, MPI_COMM_WORLD);  // samples are per rank
+  m2 = dealii::Utilities::MPI::sum(m2, MPI_COMM_WORLD);
   const double a_fe = 2.0 * std::sqrt(m2 / m0) * 1e3;                  // mm
   const double P = c.normal_force / (2.0 * L * 1e-3) * 1e-3;            // N/mm per contact (quarter x 4 = 2 contacts)
   const double E_star = E / (1.0 - nu * nu);                            // MPa, rigid plane
