@@ -28,6 +28,8 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Imperfection centre (mm)", "30", Patterns::Double(), "z of the smallest radius");
   prm.declare_entry("Imperfection half width (mm)", "30", Patterns::Double(0.0),
                     "Half width of the cosine radius profile");
+  prm.declare_entry("Bow imperfection (mm)", "0", Patterns::Double(),
+                    "Lateral offset at mid-length, shape of the fixed-fixed buckling mode");
   prm.declare_entry("Mesh distortion", "0", Patterns::Double(0.0, 0.4),
                     "Random shift of interior vertices, fraction of the local cell size");
   prm.leave_subsection();
@@ -161,6 +163,9 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.geometry.imperfection_centre = prm.get_double("Imperfection centre (mm)") * 1e-3;
   p.geometry.imperfection_half_width = prm.get_double("Imperfection half width (mm)") * 1e-3;
   p.geometry.mesh_distortion = prm.get_double("Mesh distortion");
+  p.geometry.bow = prm.get_double("Bow imperfection (mm)") * 1e-3;
+  if (p.geometry.bow != 0.0 && p.geometry.quarter)
+    throw InputError(name, "'Bow imperfection (mm)' needs Cross section = full");
   prm.leave_subsection();
 
   prm.enter_subsection("Material");

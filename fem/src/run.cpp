@@ -139,7 +139,7 @@ RunSummary run_experiment(const RunOptions& options) {
   summary.assembly_seconds = st.assembly_seconds;
   summary.solve_seconds = st.solve_seconds;
   for (const auto& r : records)
-    if (r.force > summary.peak_force_N) {
+    if (std::abs(r.force) > std::abs(summary.peak_force_N)) {  // largest magnitude, signed
       summary.peak_force_N = r.force;
       summary.displacement_at_peak_mm = r.displacement * 1e3;
     }

@@ -45,7 +45,8 @@ void make_wire_mesh(const GeometryParameters& g, dealii::Triangulation<3>& targe
   GridTools::transform(
       [&](const Point<3>& p) {
         const double s = area_scale * wire_radius(g, p[2]) / R;
-        return Point<3>(p[0] * s, p[1] * s, p[2]);
+        const double bow = 0.5 * g.bow * (1.0 - std::cos(2.0 * M_PI * p[2] / g.length));
+        return Point<3>(p[0] * s + bow, p[1] * s, p[2]);
       },
       wire);
   if (g.mesh_distortion > 0.0) GridTools::distort_random(g.mesh_distortion, wire, true, 20261122);

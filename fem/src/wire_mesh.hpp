@@ -5,7 +5,8 @@
 // The cross-section is a regular polygon (its vertices on the circle after refinement); it is
 // scaled by sqrt(2 pi / (n sin(2 pi / n))) so that its area equals pi R^2 exactly (second
 // moment of area then within 0.014 % of pi R^4 / 4 from n = 16 sides on).
-// Optional random distortion of the interior vertices (patch tests).
+// Optional lateral bow e (1 - cos(2 pi z / L)) / 2 along x (buckling imperfection) and random
+// distortion of the interior vertices (patch tests).
 // Boundary ids: 0 lateral surface, 1 bottom (z = 0), 2 top (z = length), 3 plane x = 0,
 // 4 plane y = 0 (quarter section).
 #include <deal.II/grid/tria.h>

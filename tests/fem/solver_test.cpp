@@ -40,6 +40,19 @@ Curve run_prm(const std::string& name, const std::string& prm_text, RunSummary* 
 // Area-preserving polygon scale of the mesh cross-section (see wire_mesh.hpp).
 double polygon_scale(double sides) { return std::sqrt(2.0 * M_PI / (sides * std::sin(2.0 * M_PI / sides))); }
 
+// Second moment of area about the y axis (bending in x) of the mesh's regular polygon section
+// (vertices at 45 deg + k 360/n deg, area-preserving scale), by the polygon formula.
+double polygon_second_moment(double diameter, int sides) {
+  const double rho = 0.5 * diameter * polygon_scale(sides);
+  double I = 0;
+  for (int k = 0; k < sides; ++k) {
+    const double a0 = 2 * M_PI * k / sides + M_PI / 4, a1 = 2 * M_PI * (k + 1) / sides + M_PI / 4;
+    const double x0 = rho * std::cos(a0), y0 = rho * std::sin(a0), x1 = rho * std::cos(a1), y1 = rho * std::sin(a1);
+    I += (x0 * y1 - x1 * y0) * (x0 * x0 + x0 * x1 + x1 * x1) / 12.0;
+  }
+  return I;
+}
+
 // Homogeneous uniaxial bar, Hencky J2 with linear hardening: axial first Piola stress at stretch
 // lambda (closed form: ln lambda = alpha + tau / E, tau = sigma_y(alpha)) and the lateral stretch.
 void uniaxial_closed_form(double lambda, double E, double nu, double sy, double H, double& P, double& mu) {
@@ -104,18 +117,36 @@ TEST(Cantilever, TipStiffnessWithinOnePercentOfEulerBernoulli) {
       "subsection Output\n set Fields = false\nend\n";
   const Curve c = run_prm("cantilever", prm);
   const double P = c.si("force").back();
-  // Second moment of area of the regular 8-gon (area-preserving scale), about a diameter.
-  const double n = 8, rho = 0.5 * d * polygon_scale(n);
-  double I = 0;
-  for (int k = 0; k < n; ++k) {
-    const double a0 = 2 * M_PI * k / n + M_PI / 4, a1 = 2 * M_PI * (k + 1) / n + M_PI / 4;
-    const double x0 = rho * std::cos(a0), y0 = rho * std::sin(a0), x1 = rho * std::cos(a1), y1 = rho * std::sin(a1);
-    I += (x0 * y1 - x1 * y0) * (x0 * x0 + x0 * x1 + x1 * x1) / 12.0;
-  }
+  const double I = polygon_second_moment(d, 8);
   const double euler_bernoulli = 3.0 * E * I * w / (L * L * L);
   EXPECT_NEAR(P, euler_bernoulli, 0.01 * euler_bernoulli);  // 1 % (shear deformation ~0.15 %)
   std::cout << "cantilever: P = " << P << " N, 3EIw/L^3 = " << euler_bernoulli << " N, error "
             << (P / euler_bernoulli - 1) * 100 << " %\n";
+}
+
+// Slender elastic fixed-fixed column (d = 1 mm, L = 50 mm) with a bow of L/10000 in the buckling
+// mode, compressed to three times the critical shortening: the force levels off at the buckling
+// load, max force within 5 % of 4 pi^2 E I / L^2. Q2 elements.
+TEST(Buckling, FixedFixedColumnOnsetWithinFivePercentOfEuler) {
+  const double E = 200e9, d = 1e-3, L = 50e-3;
+  const char* prm =
+      "subsection Geometry\n set Diameter (mm) = 1\n set Length (mm) = 50\n set Cross section = full\n"
+      " set Radial refinements = 1\n set Axial cells = 16\n set Bow imperfection (mm) = 0.005\nend\n"
+      "subsection Material\n set Young modulus (MPa) = 200000\n set Poisson ratio = 0.3\n"
+      " set Hardening law = linear\n set Yield stress (MPa) = 1e9\nend\n"
+      "subsection Formulation\n set Element = displacement\n set Polynomial degree = 2\nend\n"
+      "subsection Boundary conditions\n set Bottom end = clamped\n set Top end = clamped\n"
+      " set Load path (mm) = 0:0, 1:-0.15\nend\n"
+      "subsection Load stepping\n set Initial step = 0.05\n set Maximum step = 0.05\nend\n"
+      "subsection Newton\n set Relative tolerance = 1e-8\nend\n"
+      "subsection Output\n set Fields = false\nend\n";
+  const Curve c = run_prm("buckling", prm);
+  double peak = 0;
+  for (double f : c.si("force")) peak = std::max(peak, -f);
+  const double euler = 4 * M_PI * M_PI * E * polygon_second_moment(d, 8) / (L * L);
+  std::cout << "buckling: peak " << peak << " N, 4 pi^2 E I / L^2 = " << euler << " N, error "
+            << (peak / euler - 1) * 100 << " %\n";
+  EXPECT_NEAR(peak, euler, 0.05 * euler);
 }
 
 // Considere estimate for the weakest section: F(alpha) = sigma_y(alpha) A0 exp(-alpha - sigma_y/E)

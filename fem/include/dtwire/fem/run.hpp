@@ -19,7 +19,7 @@ struct RunSummary {
   unsigned ranks = 1;
   std::size_t dofs = 0, cells = 0;
   std::size_t steps = 0, newton_iterations = 0, cutbacks = 0;
-  double peak_force_N = 0.0, displacement_at_peak_mm = 0.0;
+  double peak_force_N = 0.0, displacement_at_peak_mm = 0.0;  // force of largest magnitude (signed)
   double wall_seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0;
   std::filesystem::path curve_csv, results_h5, log;
 };
