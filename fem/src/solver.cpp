@@ -477,6 +477,12 @@ void WireSolver::Impl::write_fields(unsigned step, double time) {
   out.add_data_vector(triaxiality, "triaxiality");
   out.add_data_vector(lode, "lode_parameter");
   out.add_data_vector(rank, "mpi_rank");
+  Vector<float> contact_pressure(n_cells), contact_slip(n_cells);  // contact (issue 5)
+  if (rigid_contact) {
+    rigid_contact->cell_fields(contact_pressure, contact_slip);
+    out.add_data_vector(contact_pressure, "contact_pressure_Pa");
+    out.add_data_vector(contact_slip, "contact_slip_m");
+  }
   out.build_patches();
   std::filesystem::create_directories(field_directory);
   const std::string pvtu = out.write_vtu_with_pvtu_record(field_directory.string() + "/", "fields", step, comm, 5);

@@ -105,17 +105,33 @@ TEST(ContactVerification, CoulombSlidingBlock) {
             << ", first full slip at tool travel " << (first_slip->time - 1.0) * 0.05 << " mm\n";
 }
 
-// `dtwire run` on the sliding-block .prm: the curve CSV carries the contact channels, finite,
-// with the friction force at mu times the normal force at the end.
+// `dtwire run` on the sliding-block .prm (with fields): the curve CSV carries the contact
+// channels, finite, with the friction force at mu times the normal force at the end; the VTU
+// fields carry the contact pressure and slip.
 TEST(ContactVerification, RunWritesContactChannels) {
+  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const auto dir = std::filesystem::temp_directory_path() / "dtwire_contact_test_run";
-  std::filesystem::remove_all(dir);
+  const auto prm = dir / "sliding_block.prm";
+  if (root) {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ifstream in(std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/verification/contact_sliding_block.prm");
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string fields_off = "set Fields = false";
+    std::string s = text.str();
+    ASSERT_NE(s.find(fields_off), std::string::npos);
+    s.replace(s.find(fields_off), fields_off.size(), "set Fields = true");
+    std::ofstream(prm) << s;
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
   RunOptions options;
-  options.parameter_file = std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/verification/contact_sliding_block.prm";
-  options.output_directory = dir;
+  options.parameter_file = prm;
+  options.output_directory = dir / "out";
   options.command_line = "test contact run";
   options.echo = false;
   const RunSummary summary = run_experiment(options);
+  if (!summary.root) return;  // rank 0 wrote the files
   const Curve curve = read_csv(summary.curve_csv);
   for (const char* name : {"contact_normal_force", "contact_friction_force", "tool1_displacement_z", "tool1_force_y", "tool1_force_z",
                            "tool2_force_y", "friction_dissipation", "contact_max_pressure", "contact_max_slip",
@@ -126,6 +142,15 @@ TEST(ContactVerification, RunWritesContactChannels) {
   const double N = curve.si("tool1_force_y").back(), T = -curve.si("tool1_force_z").back();
   EXPECT_NEAR(T / (0.3 * N), 1.0, 0.01);  // mu = 0.3 in the .prm, within 1 %
   EXPECT_GT(curve.si("friction_dissipation").back(), 0.0);
+  bool has_pressure_field = false;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "out" / "fields")) {
+    if (entry.path().extension() != ".vtu") continue;
+    std::ifstream vtu(entry.path());
+    const std::string content((std::istreambuf_iterator<char>(vtu)), std::istreambuf_iterator<char>());
+    has_pressure_field = has_pressure_field || (content.find("contact_pressure_Pa") != std::string::npos &&
+                                                content.find("contact_slip_m") != std::string::npos);
+  }
+  EXPECT_TRUE(has_pressure_field);
 }
 
 // A tool path knot that the load path does not have is an input error naming the entry.

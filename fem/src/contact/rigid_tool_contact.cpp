@@ -48,6 +48,7 @@ RigidToolContact::RigidToolContact(const ContactParameters& parameters, double y
       face.dofs.resize(n_dofs);
       cell->get_dof_indices(face.dofs);
       face.first_point = points_.size();
+      face.cell = cell->active_cell_index();
       face.n_points = face_quadrature.size();
       for (unsigned q = 0; q < face_quadrature.size(); ++q) {
         Point p;
@@ -176,6 +177,17 @@ void RigidToolContact::commit() {
       dissipation_ += pair.last.dissipation * points_[q].weight;
     }
   }
+}
+
+void RigidToolContact::cell_fields(Vector<float>& pressure, Vector<float>& slip) const {
+  const unsigned n_tools = tools_.size();
+  for (const auto& face : faces_)
+    for (unsigned q = face.first_point; q < face.first_point + face.n_points; ++q)
+      for (unsigned k = 0; k < n_tools; ++k) {
+        const PairState& pair = pairs_[q * n_tools + k];
+        pressure[face.cell] = std::max(pressure[face.cell], static_cast<float>(pair.last.pressure));
+        slip[face.cell] = std::max(slip[face.cell], static_cast<float>(pair.committed.slip));
+      }
 }
 
 ContactRecord RigidToolContact::record(const PETScWrappers::MPI::Vector& internal_force, double force_scale,

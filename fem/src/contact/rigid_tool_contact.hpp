@@ -11,6 +11,7 @@
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
+#include <deal.II/lac/vector.h>
 
 #include <array>
 #include <vector>
@@ -36,6 +37,9 @@ class RigidToolContact {
   void commit();
   ContactRecord record(const dealii::PETScWrappers::MPI::Vector& internal_force, double force_scale,
                        double contact_scale) const;
+  // Cell fields for the VTU output (indexed by active cell index; this rank's cells): largest
+  // contact pressure (Pa) and accumulated slip (m) over the cell's contact points.
+  void cell_fields(dealii::Vector<float>& pressure, dealii::Vector<float>& slip) const;
 
   const ContactLaw& law() const { return law_; }
   unsigned augmentations() const { return augmentations_; }
@@ -44,6 +48,7 @@ class RigidToolContact {
   struct Face {
     std::vector<dealii::types::global_dof_index> dofs;
     unsigned first_point = 0, n_points = 0;
+    unsigned cell = 0;  // active cell index
   };
   struct Point {
     Vector3 reference;            // X
