@@ -25,6 +25,7 @@ void add_contact_channels(Curve& curve, const std::vector<ContactRecord>& record
               [tool, k](const ContactRecord& r) { return r.tool_forces[tool][k]; });
     }
   channel("friction_dissipation", Dimension::Energy, "J", [](const ContactRecord& r) { return r.friction_dissipation; });
+  channel("contact_energy", Dimension::Energy, "J", [](const ContactRecord& r) { return r.contact_energy; });
   channel("contact_max_pressure", Dimension::Stress, "MPa", [](const ContactRecord& r) { return r.max_pressure; });
   channel("contact_max_slip", Dimension::Length, "mm", [](const ContactRecord& r) { return r.max_slip; });
   channel("contact_max_penetration", Dimension::Length, "mm",

@@ -28,6 +28,10 @@ struct ContactRecord {
   std::vector<std::array<double, 3>> tool_displacements;  // m, prescribed, at the step's end
   std::vector<std::array<double, 3>> tool_forces;  // N, force of the wire on each tool (modelled part x multiplier)
   double friction_dissipation = 0.0;   // J, accumulated
+  // J, energy stored in the penalty springs: normal -g (p + lambda_N) / 2 (= p^2 / (2 eps_N) without
+  // augmentation) plus tangential |t_T|^2 / (2 eps_T). External work = elastic + plastic +
+  // friction + this.
+  double contact_energy = 0.0;
   double active_area = 0.0;            // m^2, reference area with p > 0
   double max_pressure = 0.0;           // Pa
   double max_slip = 0.0;               // m, accumulated, largest over the points

@@ -206,6 +206,9 @@ ContactRecord RigidToolContact::record(const PETScWrappers::MPI::Vector& interna
       if (!pair.last.active) continue;
       active = true;
       r.normal_force += pair.last.pressure * p.weight;
+      r.contact_energy += (-pair.last.gap * 0.5 * (pair.last.pressure + pair.multiplier) +
+                           pair.last.tangential_traction.norm_square() / (2.0 * law_.tangential_penalty)) *
+                          p.weight;
       tangential += pair.last.tangential_traction * p.weight;
       on_tools[k] -= pair.last.traction * p.weight;
       r.max_pressure = std::max(r.max_pressure, pair.last.pressure);
@@ -238,6 +241,7 @@ ContactRecord RigidToolContact::record(const PETScWrappers::MPI::Vector& interna
   }
   r.friction_force = t_sum.norm() * contact_scale;
   r.friction_dissipation = sum(dissipation_) * contact_scale;
+  r.contact_energy = sum(r.contact_energy) * contact_scale;
   r.active_area = sum(r.active_area) * contact_scale;
   r.max_pressure = Utilities::MPI::max(r.max_pressure, comm_);
   r.max_slip = Utilities::MPI::max(r.max_slip, comm_);
