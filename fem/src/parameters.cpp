@@ -28,6 +28,9 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Imperfection centre (mm)", "30", Patterns::Double(), "z of the smallest radius");
   prm.declare_entry("Imperfection half width (mm)", "30", Patterns::Double(0.0),
                     "Half width of the cosine radius profile");
+  prm.declare_entry("Mesh file", "", Patterns::Anything(),
+                    "gmsh .msh of a single wire from `dtwire mesh sw` (relative to this file); "
+                    "replaces the generated mesh (Diameter and Length are then taken from it)");
   prm.declare_entry("Bow imperfection (mm)", "0", Patterns::Double(),
                     "Lateral offset at mid-length, shape of the fixed-fixed buckling mode");
   prm.declare_entry("Mesh distortion", "0", Patterns::Double(0.0, 0.4),
@@ -164,6 +167,13 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.geometry.imperfection_half_width = prm.get_double("Imperfection half width (mm)") * 1e-3;
   p.geometry.mesh_distortion = prm.get_double("Mesh distortion");
   p.geometry.bow = prm.get_double("Bow imperfection (mm)") * 1e-3;
+  if (!prm.get("Mesh file").empty()) {
+    p.geometry.mesh_file = file.parent_path() / prm.get("Mesh file");
+    if (!std::filesystem::is_regular_file(p.geometry.mesh_file))
+      throw InputError(name, "'Mesh file': cannot open " + p.geometry.mesh_file.string());
+    if (p.geometry.quarter || p.geometry.imperfection != 0.0 || p.geometry.bow != 0.0 || p.geometry.mesh_distortion != 0.0)
+      throw InputError(name, "'Mesh file' needs Cross section = full and no imperfection, bow or distortion");
+  }
   if (p.geometry.bow != 0.0 && p.geometry.quarter)
     throw InputError(name, "'Bow imperfection (mm)' needs Cross section = full");
   prm.leave_subsection();

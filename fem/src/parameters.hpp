@@ -22,6 +22,7 @@ struct GeometryParameters {
   double imperfection_centre = 30e-3;      // m
   double imperfection_half_width = 30e-3;  // m, cosine profile
   double mesh_distortion = 0.0;            // random interior-vertex shift, fraction of cell size
+  std::filesystem::path mesh_file;  // gmsh .msh of a SW (meshes/ module); empty: generated
   double bow = 0.0;  // m, lateral (x) imperfection e (1 - cos(2 pi z / L)) / 2: fixed-fixed buckling mode
 };
 

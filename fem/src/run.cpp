@@ -76,11 +76,11 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
     std::vector<double> damage;
     for (const auto& s : records) damage.push_back(s.damage);
     c.add_channel_si("damage", Dimension::Dimensionless, damage, *find_unit("1"));
-    if (const StepRecord* f = first_failure(records)) {
+    if (const StepRecord* failure = first_failure(records)) {
       std::ostringstream text;
-      text << failure_mode(*f) << " at displacement " << f->displacement * 1e3 << " mm, force " << f->force
-           << " N, z = " << f->damage_z * 1e3 << " mm, r = " << f->damage_r * 1e3 << " mm, triaxiality "
-           << f->damage_triaxiality << ", Lode parameter " << f->damage_lode;
+      text << failure_mode(*failure) << " at displacement " << failure->displacement * 1e3 << " mm, force "
+           << failure->force << " N, z = " << failure->damage_z * 1e3 << " mm, r = " << failure->damage_r * 1e3
+           << " mm, triaxiality " << failure->damage_triaxiality << ", Lode parameter " << failure->damage_lode;
       c.set_metadata("failure", text.str());
     }
   }

@@ -325,11 +325,18 @@ void WireSolver::Impl::record_damage(StepRecord& record) const {
 }
 
 double WireSolver::Impl::neck_radius() const {
-  // The vertex layer nearest the imperfection centre (mid-length without imperfection).
+  // The surface vertex layer nearest the imperfection centre (mid-length without imperfection);
+  // every rank holds all coarse cells, so the layer is the same everywhere.
   const auto& g = prm.geometry;
-  const double h = g.length / g.axial_cells;
   const double z_ref = g.imperfection > 0.0 ? g.imperfection_centre : 0.5 * g.length;
-  const double z_layer = std::min(g.length, std::max(0.0, std::round(z_ref / h) * h));
+  double z_layer = 0.0;
+  for (const auto& cell : triangulation.active_cell_iterators())  // all coarse cells, any owner
+    for (const auto f : cell->face_indices())
+      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == kHull)
+        for (const auto v : cell->face(f)->vertex_indices())
+          if (std::abs(cell->face(f)->vertex(v)[2] - z_ref) < std::abs(z_layer - z_ref))
+            z_layer = cell->face(f)->vertex(v)[2];
+  const double h = 1e-6 * g.length;
   double smallest = std::numeric_limits<double>::max();
   for (const auto& cell : dof_handler.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
@@ -337,7 +344,7 @@ double WireSolver::Impl::neck_radius() const {
       if (!cell->face(f)->at_boundary() || cell->face(f)->boundary_id() != kHull) continue;
       for (const auto v : cell->face(f)->vertex_indices()) {
         const Point<3> x = cell->face(f)->vertex(v);
-        if (std::abs(x[2] - z_layer) > 1e-6 * h) continue;
+        if (std::abs(x[2] - z_layer) > h) continue;
         const double X = x[0] + ghosted[cell->face(f)->vertex_dof_index(v, 0)];
         const double Y = x[1] + ghosted[cell->face(f)->vertex_dof_index(v, 1)];
         smallest = std::min(smallest, std::hypot(X, Y));

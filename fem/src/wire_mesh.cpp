@@ -1,10 +1,13 @@
 #include "wire_mesh.hpp"
 
 #include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
 #include <deal.II/grid/grid_tools.h>
 #include <deal.II/grid/manifold_lib.h>
 
 #include <cmath>
+#include <fstream>
+#include <stdexcept>
 
 namespace dtwire::fem {
 
@@ -15,8 +18,38 @@ double wire_radius(const GeometryParameters& g, double z) {
   return R * (1.0 - 0.5 * g.imperfection * (1.0 + std::cos(M_PI * s)));
 }
 
-void make_wire_mesh(const GeometryParameters& g, dealii::Triangulation<3>& target) {
+namespace {
+
+void read_wire_mesh(GeometryParameters& g, dealii::Triangulation<3>& target) {
   using namespace dealii;
+  Triangulation<3> wire;
+  GridIn<3> in;
+  in.attach_triangulation(wire);
+  std::ifstream file(g.mesh_file);
+  in.read_msh(file);
+  double z_max = 0.0, r_max = 0.0;
+  for (const auto& v : wire.get_vertices()) {
+    z_max = std::max(z_max, v[2]);
+    r_max = std::max(r_max, std::hypot(v[0], v[1]));
+  }
+  g.length = z_max;
+  g.diameter = 2.0 * r_max;
+  for (const auto& cell : wire.active_cell_iterators())
+    for (const auto f : cell->face_indices())
+      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() != kBottom &&
+          cell->face(f)->boundary_id() != kTop)
+        cell->face(f)->set_boundary_id(kHull);
+  target.copy_triangulation(wire);
+}
+
+}  // namespace
+
+void make_wire_mesh(GeometryParameters& g, dealii::Triangulation<3>& target) {
+  using namespace dealii;
+  if (!g.mesh_file.empty()) {
+    read_wire_mesh(g, target);
+    return;
+  }
   const double R = 0.5 * g.diameter;
   Triangulation<2> disc;
   if (g.quarter) GridGenerator::quarter_hyper_ball(disc, Point<2>(), R);

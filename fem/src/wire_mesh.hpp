@@ -18,7 +18,11 @@ namespace dtwire::fem {
 enum BoundaryId : unsigned { kHull = 0, kBottom = 1, kTop = 2, kSymmetryX = 3, kSymmetryY = 4 };
 
 // `target` must be empty; it may be a parallel::distributed::Triangulation (coarse copy).
-void make_wire_mesh(const GeometryParameters& geometry, dealii::Triangulation<3>& target);
+// With geometry.mesh_file set, the SW mesh of the meshes/ module is read instead (gmsh .msh,
+// metres; its boundary ids 1 (z = 0) and 2 (z = L) are kept, the lateral ids 3, 4, 5 become 0,
+// coating and grip volumes are steel like the rest), and geometry.length and .diameter are set
+// from it.
+void make_wire_mesh(GeometryParameters& geometry, dealii::Triangulation<3>& target);
 
 // The radius of the undeformed wire at height z.
 double wire_radius(const GeometryParameters& geometry, double z);

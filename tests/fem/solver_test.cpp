@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -186,6 +187,34 @@ TEST(NeckingBar, CoarseLoadMaximumWithinTwoPercentOfConsidere) {
   EXPECT_NEAR(s.peak_force_N, expected, 0.02 * expected);
   const auto f = c.si("force");
   EXPECT_LT(f.back(), s.peak_force_N);  // the maximum was passed
+}
+
+// A SW mesh from the meshes module (gmsh .msh, written by `dtwire mesh sw` when the meshes
+// module is built; skipped otherwise), elastic tension: force = E A u / L within the
+// discretisation error of the polygonal section (1 %).
+TEST(MeshFile, GmshSingleWireElasticStiffness) {
+  const auto dir = scratch_dir("msh");
+  const std::string mesh_cmd = std::string(DTWIRE_EXE) + " mesh sw --length 60 --grip-length 0 --level 0 -o " +
+                               (dir / "sw.msh").string() + " > /dev/null 2>&1";
+  if (std::system(mesh_cmd.c_str()) != 0) GTEST_SKIP() << "dtwire mesh sw not available";
+  const char* prm =
+      "subsection Geometry\n set Mesh file = sw.msh\n set Cross section = full\nend\n"
+      "subsection Material\n set Young modulus (MPa) = 200000\n set Poisson ratio = 0.3\n"
+      " set Hardening law = linear\n set Yield stress (MPa) = 1e9\nend\n"
+      "subsection Boundary conditions\n set Bottom end = axial\n set Top end = clamped\n"
+      " set Load path (mm) = 0:0, 1:0.006\nend\n"
+      "subsection Load stepping\n set Initial step = 0.5\n set Maximum step = 0.5\nend\n"
+      "subsection Newton\n set Relative tolerance = 1e-8\nend\n"
+      "subsection Output\n set Fields = false\nend\n";
+  std::ofstream(dir / "msh.prm") << prm;
+  RunOptions options;
+  options.parameter_file = dir / "msh.prm";
+  options.output_directory = dir / "out";
+  options.echo = false;
+  const RunSummary s = run_experiment(options);
+  const Curve c = read_csv(s.curve_csv);
+  const double expected = 200e9 * M_PI * 1.35e-3 * 1.35e-3 * 6e-6 / 60e-3;  // E A u / L
+  EXPECT_NEAR(c.si("force").back(), expected, 0.01 * expected);
 }
 
 TEST(Input, BadEntryNamesTheFileAndLine) {
