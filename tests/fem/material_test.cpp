@@ -99,9 +99,15 @@ TEST_P(HomogeneousBar, TensionPastYieldMatchesClosedFormThenUnloadsElastically) 
   EXPECT_NEAR(r.kirchhoff[0][0], m.hardening().flow_stress(alpha_max) - kE * 1e-3, 1e-6 * kE * 1e-3);
 }
 
+std::string law_name(const ::testing::TestParamInfo<HardeningLaw>& info) {
+  const char* names[] = {"linear", "voce", "swift", "table"};
+  return names[static_cast<int>(info.param)];
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryHardeningLaw, HomogeneousBar,
                          ::testing::Values(HardeningLaw::linear, HardeningLaw::voce, HardeningLaw::swift,
-                                           HardeningLaw::table));
+                                           HardeningLaw::table),
+                         law_name);
 
 double relative_tangent_error(const J2LogPlasticity& m, const Tensor2& F, const PlasticState& state) {
   const StressUpdate r = m.update(F, state, true);
@@ -155,7 +161,8 @@ TEST_P(ConsistentTangent, MatchesCentralFiniteDifferences) {
 
 INSTANTIATE_TEST_SUITE_P(EveryHardeningLaw, ConsistentTangent,
                          ::testing::Values(HardeningLaw::linear, HardeningLaw::voce, HardeningLaw::swift,
-                                           HardeningLaw::table));
+                                           HardeningLaw::table),
+                         law_name);
 
 TEST(StressInvariants, UniaxialTensionHasTriaxialityOneThirdAndLodeOne) {
   SymTensor2 sigma;

@@ -99,6 +99,41 @@ TEST_P(PatchTest, DistortedMeshReproducesTheHomogeneousSolution) {
 
 INSTANTIATE_TEST_SUITE_P(BothElements, PatchTest, ::testing::Values("fbar", "displacement"));
 
+// Quadratic convergence of Newton in plastic steps, read from run.log: whenever the relative
+// residual r_k is in [1e-6, 1e-2], r_{k+1} <= 10 r_k^2 (order 2 with a modest constant; below
+// 1e-6 the next residual reaches the round-off floor ~1e-12), in a clamped bar with
+// non-uniform plastic flow.
+TEST(Newton, ConvergesQuadraticallyInPlasticSteps) {
+  const char* prm =
+      "subsection Geometry\n set Diameter (mm) = 2.7\n set Length (mm) = 10\n set Cross section = quarter\n"
+      " set Radial refinements = 1\n set Axial cells = 6\nend\n"
+      "subsection Material\n set Young modulus (MPa) = 200000\n set Poisson ratio = 0.3\n"
+      " set Hardening law = voce\n set Yield stress (MPa) = 400\n set Saturation stress (MPa) = 600\n"
+      " set Saturation rate = 20\n set Hardening modulus (MPa) = 200\nend\n"
+      "subsection Boundary conditions\n set Bottom end = clamped\n set Top end = clamped\n"
+      " set Load path (mm) = 0:0, 1:1\nend\n"
+      "subsection Load stepping\n set Initial step = 0.1\n set Maximum step = 0.1\nend\n"
+      "subsection Newton\n set Relative tolerance = 1e-12\n set Line search = false\nend\n"
+      "subsection Output\n set Fields = false\nend\n";
+  run_prm("newton", prm);
+  std::ifstream log(std::filesystem::temp_directory_path() / "dtwire_fem_test_newton" / "out" / "run.log");
+  std::string line;
+  int checked = 0;
+  while (std::getline(log, line)) {
+    const auto colon = line.find("newton (relative residual):");
+    if (colon == std::string::npos) continue;
+    std::istringstream values(line.substr(line.find(':', colon) + 1));
+    std::vector<double> r;
+    for (double v; values >> v;) r.push_back(v);
+    for (std::size_t k = 0; k + 1 < r.size(); ++k)
+      if (r[k] <= 1e-2 && r[k] >= 1e-6) {
+        EXPECT_LE(r[k + 1], 10 * r[k] * r[k]) << line;
+        ++checked;
+      }
+  }
+  EXPECT_GE(checked, 5) << "too few iterations in the asymptotic range";
+}
+
 // Elastic cantilever, clamped base, tip displaced laterally (rotation free): reaction
 // P = 3 E I w / L^3 (Euler-Bernoulli). L/d = 20, Q2 elements; I of the polygonal section.
 TEST(Cantilever, TipStiffnessWithinOnePercentOfEulerBernoulli) {
