@@ -21,12 +21,15 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
     std::string file;
     std::string out;
     bool quiet = false;
+    int restart_step = -1;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = root.add_subcommand("run", "Run a virtual FE experiment from a .prm file (MPI-capable)");
   command->add_option("file", options->file, "Experiment parameter file (.prm)")->required();
   command->add_option("-o,--out", options->out, "Output directory (default: fem-out/<file stem>)");
   command->add_flag("-q,--quiet", options->quiet, "Write progress only to run.log");
+  command->add_option("--restart", options->restart_step,
+                      "Resume from the checkpoint of this step in the output directory (Checkpoint interval)");
   commands.add(command, [options] {
     fem::RunOptions run;
     run.parameter_file = options->file;
@@ -35,6 +38,7 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
                                : std::filesystem::path(options->out);
     run.command_line = "dtwire run " + options->file + " --out " + run.output_directory.string();
     run.echo = !options->quiet;
+    run.restart_step = options->restart_step;
     const fem::RunSummary s = fem::run_experiment_with_mpi(run);
     if (s.root)
       std::cout << "run: " << s.steps << " steps, " << s.dofs << " dofs on " << s.ranks << " rank(s), peak force "

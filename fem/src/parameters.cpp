@@ -94,6 +94,8 @@ void declare(ParameterHandler& prm) {
   prm.enter_subsection("Output");
   prm.declare_entry("Fields", "true", Patterns::Bool(), "write VTU/PVTU fields");
   prm.declare_entry("Field interval", "0", Patterns::Integer(0), "every n steps; the last always");
+  prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
+                    "write a restart checkpoint every n steps (0: none)");
   prm.leave_subsection();
 
   contact::declare_contact_parameters(prm);  // contact (issue 5)
@@ -248,6 +250,7 @@ Parameters read_parameters(const std::filesystem::path& file) {
   prm.enter_subsection("Output");
   p.output.fields = prm.get_bool("Fields");
   p.output.field_interval = prm.get_integer("Field interval");
+  p.output.checkpoint_interval = prm.get_integer("Checkpoint interval");
   prm.leave_subsection();
   std::vector<double> knots;  // contact (issue 5)
   for (const auto& k : p.load.path) knots.push_back(k.first);

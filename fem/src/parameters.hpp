@@ -66,7 +66,8 @@ struct NewtonParameters {
 };
 
 struct OutputParameters {
-  unsigned field_interval = 0;  // VTU every n steps (0: none); the last step is always written
+  unsigned field_interval = 0;
+  unsigned checkpoint_interval = 0;  // steps between checkpoints (0: none)  // VTU every n steps (0: none); the last step is always written
   bool fields = true;
 };
 

@@ -116,6 +116,7 @@ RunSummary run_experiment(const RunOptions& options) {
   log << "dtwire " << kVersion << " (" << kGitHash << "): " << options.parameter_file.string() << "\n";
 
   WireSolver solver(parameters, log, parameters.output.fields ? out / "fields" : std::filesystem::path());
+  solver.set_checkpoints(out / "checkpoints", parameters.output.checkpoint_interval, options.restart_step);
   std::vector<StepRecord> records;
   RunSummary summary;
   summary.root = root;

@@ -22,6 +22,7 @@
 #include <deal.II/numerics/vector_tools.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -126,6 +127,19 @@ struct WireSolver::Impl {
   bool solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                   unsigned& iterations, std::string& reason);
   void write_fields(unsigned step, double time);
+
+  // Checkpoint / restart (binary, one file per rank; doubles written exactly).
+  std::filesystem::path checkpoint_directory;
+  unsigned checkpoint_interval = 0;
+  int restart_step = -1;
+  std::vector<StepRecord> history;  // every record passed to on_step
+  struct SteppingState {
+    double t = 0.0, dt = 0.0, last_dt = 0.0, last_knot = -1.0;
+    unsigned step = 0;
+  };
+  std::filesystem::path checkpoint_file(unsigned step) const;
+  void write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step);
+  void read_checkpoint(unsigned step, SteppingState& state, PETScWrappers::MPI::Vector& last_step);
   // contact (issue 5): solve_step inside the augmented-Lagrange (Uzawa) loop.
   bool solve_contact_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                           const PETScWrappers::MPI::Vector& start, unsigned& iterations, std::string& reason);
@@ -501,6 +515,109 @@ void WireSolver::Impl::write_fields(unsigned step, double time) {
   }
 }
 
+std::filesystem::path WireSolver::Impl::checkpoint_file(unsigned step) const {
+  char name[32];
+  std::snprintf(name, sizeof name, "step_%05u", step);
+  return checkpoint_directory / name / ("rank_" + std::to_string(Utilities::MPI::this_mpi_process(comm)) + ".bin");
+}
+
+namespace {
+constexpr char kCheckpointMagic[16] = "dtwire-ckpt-1";
+}  // namespace
+
+void WireSolver::Impl::write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step) {
+  const auto file = checkpoint_file(state.step);
+  std::filesystem::create_directories(file.parent_path());
+  std::vector<double> data = {static_cast<double>(stats.ranks), static_cast<double>(stats.dofs),
+                              static_cast<double>(triangulation.n_active_cells()), static_cast<double>(quadrature.size()),
+                              static_cast<double>(state.step), state.t, state.dt, state.last_dt, state.last_knot,
+                              static_cast<double>(stats.steps), static_cast<double>(stats.newton_iterations),
+                              static_cast<double>(stats.cutbacks), static_cast<double>(history.size())};
+  for (const auto& r : history)
+    data.insert(data.end(), {static_cast<double>(r.step), r.time, r.displacement, r.force, r.plastic_dissipation,
+                             r.elastic_energy, r.neck_radius, static_cast<double>(r.iterations), r.damage,
+                             r.damage_triaxiality, r.damage_lode, r.damage_z});
+  for (const auto i : owned) data.push_back(solution[i]);
+  for (const auto i : owned) data.push_back(last_step[i]);
+  for (const auto& p : points) {
+    for (unsigned k = 0; k < 6; ++k)
+      data.push_back(p.committed.plastic_metric_inverse.access_raw_entry(k));
+    data.insert(data.end(), {p.committed.equivalent_plastic_strain, p.committed.plastic_dissipation, p.committed.damage});
+  }
+  const auto temporary = file.string() + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out.write(kCheckpointMagic, sizeof kCheckpointMagic);
+    out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size() * sizeof(double)));
+    if (!out) throw ComputationError("cannot write checkpoint " + temporary);
+  }
+  std::filesystem::rename(temporary, file);
+  log << "  checkpoint written: " << file.parent_path().string() << "\n";
+}
+
+void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETScWrappers::MPI::Vector& last_step) {
+  const auto file = checkpoint_file(step);
+  std::ifstream in(file, std::ios::binary);
+  char magic[sizeof kCheckpointMagic] = {};
+  in.read(magic, sizeof magic);
+  if (!in || std::string(magic) != kCheckpointMagic)
+    throw InputError(file.string(), "not a dtwire checkpoint (or missing)");
+  std::vector<double> data;
+  double value = 0.0;
+  while (in.read(reinterpret_cast<char*>(&value), sizeof value)) data.push_back(value);
+  std::size_t k = 0;
+  auto next = [&]() {
+    if (k >= data.size()) throw InputError(file.string(), "truncated checkpoint");
+    return data[k++];
+  };
+  if (next() != stats.ranks || next() != stats.dofs || next() != triangulation.n_active_cells() ||
+      next() != quadrature.size())
+    throw InputError(file.string(), "checkpoint from another mesh, element or number of MPI ranks");
+  state.step = static_cast<unsigned>(next());
+  state.t = next();
+  state.dt = next();
+  state.last_dt = next();
+  state.last_knot = next();
+  stats.steps = static_cast<std::size_t>(next());
+  stats.newton_iterations = static_cast<std::size_t>(next());
+  stats.cutbacks = static_cast<std::size_t>(next());
+  history.resize(static_cast<std::size_t>(next()));
+  for (auto& r : history) {
+    r.step = static_cast<unsigned>(next());
+    r.time = next();
+    r.displacement = next();
+    r.force = next();
+    r.plastic_dissipation = next();
+    r.elastic_energy = next();
+    r.neck_radius = next();
+    r.iterations = static_cast<unsigned>(next());
+    r.damage = next();
+    r.damage_triaxiality = next();
+    r.damage_lode = next();
+    r.damage_z = next();
+  }
+  for (const auto i : owned) solution[i] = next();
+  for (const auto i : owned) last_step[i] = next();
+  solution.compress(VectorOperation::insert);
+  last_step.compress(VectorOperation::insert);
+  for (auto& p : points) {
+    for (unsigned j = 0; j < 6; ++j) p.committed.plastic_metric_inverse.access_raw_entry(j) = next();
+    p.committed.equivalent_plastic_strain = next();
+    p.committed.plastic_dissipation = next();
+    p.committed.damage = next();
+    p.trial = p.committed;
+  }
+  if (k != data.size()) throw InputError(file.string(), "checkpoint longer than expected");
+}
+
+void WireSolver::set_checkpoints(const std::filesystem::path& directory, unsigned interval, int restart_step) {
+  impl_->checkpoint_directory = directory;
+  impl_->checkpoint_interval = interval;
+  impl_->restart_step = restart_step;
+  if (impl_->rigid_contact && (interval > 0 || restart_step >= 0))
+    throw InputError("checkpoints", "checkpoint/restart is not available with contact tools");
+}
+
 WireSolver::WireSolver(const Parameters& parameters, std::ostream& log, std::filesystem::path field_directory)
     : impl_(std::make_unique<Impl>(parameters, log, std::move(field_directory))) {
   impl_->setup();
@@ -523,22 +640,36 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
   const double t_end = path.back().first;
   const double tiny = 1e-12 * t_end;
 
-  s.assemble(false, s.homogeneous);  // initial state (stress-free), fills the field records
-  s.commit();
-  StepRecord record;
-  record.neck_radius = s.neck_radius();
-  if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
-                                                                s.force_multiplier() * s.length_multiplier());
-  on_step(record);
   const unsigned interval = s.prm.output.fields ? s.prm.output.field_interval : 0;
-  if (interval > 0) s.write_fields(0, 0.0);
-
   double t = 0.0, dt = stepping.initial_step;
   unsigned step = 0;
   PETScWrappers::MPI::Vector saved(s.owned, s.comm), last_step(s.owned, s.comm), scaled(s.owned, s.comm);
   double last_dt = 0.0, last_knot = -1.0;
   bool retry = false;
   s.log << std::setprecision(6);
+  StepRecord record;
+  if (s.restart_step >= 0) {
+    Impl::SteppingState state;
+    s.read_checkpoint(static_cast<unsigned>(s.restart_step), state, last_step);
+    t = state.t;
+    dt = state.dt;
+    step = state.step;
+    last_dt = state.last_dt;
+    last_knot = state.last_knot;
+    s.assemble(false, s.homogeneous);  // stresses for output; the committed history stays as read
+    for (const auto& r : s.history) on_step(r);
+    record = s.history.back();
+    s.log << "restarted from the checkpoint of step " << step << " at t = " << t << "\n";
+  } else {
+    s.assemble(false, s.homogeneous);  // initial state (stress-free), fills the field records
+    s.commit();
+    record.neck_radius = s.neck_radius();
+    if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
+                                                                  s.force_multiplier() * s.length_multiplier());
+    on_step(record);
+    s.history.push_back(record);
+    if (interval > 0) s.write_fields(0, 0.0);
+  }
   while (t < t_end - tiny) {
     double knot = t_end;
     for (const auto& p : path)
@@ -581,6 +712,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "
             << record.neck_radius * 1e3 << " mm\n";
       on_step(record);
+      s.history.push_back(record);
       if (interval > 0 && step % interval == 0) s.write_fields(step, t);
       if (s.prm.material.failure.enabled() && record.damage >= 1.0) {
         s.log << "  ductile failure indicator reached " << record.damage << " at z = " << record.damage_z * 1e3
@@ -597,6 +729,8 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
               << dt << " -> " << grown << "\n";
         dt = grown;
       }
+      if (s.checkpoint_interval > 0 && step % s.checkpoint_interval == 0)
+        s.write_checkpoint({t, dt, last_dt, last_knot, step}, last_step);
     } else {
       s.solution = saved;
       retry = true;

@@ -51,6 +51,11 @@ class WireSolver {
   // Throws ComputationError when a step would fall below the minimum step.
   void run(const std::function<void(const StepRecord&)>& on_step);
 
+  // Checkpoints every `interval` converged steps (0: none) into directory/step_NNNNN/rank_R.bin;
+  // restart_step >= 0 resumes from that checkpoint (same .prm, same number of ranks): the curve
+  // rows up to it are replayed through on_step. Not with contact tools.
+  void set_checkpoints(const std::filesystem::path& directory, unsigned interval, int restart_step);
+
   const SolverStatistics& statistics() const;
   bool is_root() const;
   std::vector<std::string> field_files() const;  // the .pvd record and .pvtu files written

@@ -12,6 +12,7 @@ struct RunOptions {
   std::filesystem::path output_directory;  // curve.csv, results.h5, run.log, fields/
   std::string command_line;                // recorded in the provenance
   bool echo = true;                        // progress on stdout (rank 0)
+  int restart_step = -1;                   // >= 0: resume from output_directory/checkpoints/step_N
 };
 
 struct RunSummary {
