@@ -47,10 +47,6 @@ std::string elastic_material(double young_MPa, double poisson) {
   return s.str();
 }
 
-// Full cross-section without radial refinement: the mesh section is a square of half side
-// R sqrt(pi) / 2 (area-preserving 4-gon, see wire_mesh.hpp), flat faces at x, y = +-h.
-double square_half_side(double radius) { return radius * std::sqrt(kPi) / 2.0; }
-
 // (a) An elastic 10 x 10 x 10 mm block squeezed between two rigid planes (top one pressed by
 // 0.01 mm, then dragged 0.05 mm along z; bottom one fixed), ends held axially.
 TEST(ContactVerification, CoulombSlidingBlock) {
