@@ -45,7 +45,7 @@ std::filesystem::path write_campaign_report(const Campaign& campaign,
      << "## Steps\n\n| step | status | wall time (s) | note |\n|---|---|---|---|\n";
   for (const StepOutcome& o : outcomes)
     md << "| " << o.name << " | " << status_name(o.status) << " | " << std::fixed
-       << std::setprecision(1) << o.seconds << " | " << o.message << " |\n";
+       << std::setprecision(2) << o.seconds << " | " << o.message << " |\n";
   md << "\n";
   for (const CampaignStep& step : campaign.steps) {
     const auto outcome = std::find_if(outcomes.begin(), outcomes.end(),

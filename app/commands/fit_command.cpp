@@ -7,6 +7,7 @@
 #include <random>
 
 #include "../cli.hpp"
+#include "../plotting.hpp"
 #include "../commands.hpp"
 #include "dtwire/calibrate/fit_file.hpp"
 #include "dtwire/calibrate/fit_output.hpp"
@@ -117,12 +118,11 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                 << (result.sigma.empty() ? std::string() : " +- " + std::to_string(result.sigma[i])) << " "
                 << result.parameters[i].unit << "\n";
     if (options->plot) {
-      const std::string script = std::string(kSourceDir) + "/scripts/plot_fit.py";
-      // Debian's interpreter has python3-matplotlib; a python3 earlier on PATH may not.
-      const std::string python = std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-      const std::string call = python + " '" + script + "' '" + out.string() + "'";
-      if (std::system(call.c_str()) != 0)
-        std::cerr << "warning: the plot failed (" << call << "); the fit results are written\n";
+      try {
+        run_plot_script("plot_fit.py", {out.string()});
+      } catch (const ComputationError& e) {
+        std::cerr << "warning: " << e.what() << "; the fit results are written\n";
+      }
     }
     return 0;
   });

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "../cli.hpp"
+#include "../plotting.hpp"
 #include "../commands.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
@@ -33,31 +34,17 @@ void write_text(const std::string& path, const std::string& text) {
   write_file_atomically(target, [&](std::ostream& out) { out << text; });
 }
 
-// python3 with matplotlib: $DTWIRE_PYTHON, else the system one, else the first on PATH.
-std::string find_python() {
-  if (const char* chosen = std::getenv("DTWIRE_PYTHON")) return chosen;
-  for (const char* candidate : {"/usr/bin/python3", "python3"}) {
-    const std::string probe = std::string(candidate) + " -c 'import matplotlib' >/dev/null 2>&1";
-    if (std::system(probe.c_str()) == 0) return candidate;
-  }
-  return "";
-}
-
 void render_plot(const nlohmann::json& data, const std::string& png) {
   const std::filesystem::path target(png);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
   std::filesystem::path data_file = target;
   data_file.replace_extension(".plot.json");
   write_text(data_file.string(), data.dump());
-  const std::string python = find_python();
-  if (python.empty())
-    throw ComputationError("--plot needs python3 with matplotlib (Debian: python3-matplotlib), "
-                           "none found; the plot data is in " + data_file.string());
-  const std::string script = std::string(kSourceDir) + "/scripts/plot_gap.py";
-  const std::string command =
-      python + " '" + script + "' '" + data_file.string() + "' '" + target.string() + "'";
-  if (std::system(command.c_str()) != 0)
-    throw ComputationError("plotting failed: " + command);
+  try {
+    run_plot_script("plot_gap.py", {data_file.string(), target.string()});
+  } catch (const ComputationError& e) {
+    throw ComputationError(std::string(e.what()) + "; the plot data is in " + data_file.string());
+  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "../cli.hpp"
+#include "../plotting.hpp"
 #include "../commands.hpp"
 #ifdef DTWIRE_HAVE_FEM
 #include "dtwire/fem/run.hpp"
@@ -22,6 +23,7 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
     std::string out;
     bool quiet = false;
     int restart_step = -1;
+    std::string plot;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = root.add_subcommand("run", "Run a virtual FE experiment from a .prm file (MPI-capable)");
@@ -30,6 +32,8 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
   command->add_flag("-q,--quiet", options->quiet, "Write progress only to run.log");
   command->add_option("--restart", options->restart_step,
                       "Resume from the checkpoint of this step in the output directory (Checkpoint interval)");
+  command->add_option("--plot", options->plot,
+                      "Also draw the force-displacement curve to this PNG (python3-matplotlib)");
   commands.add(command, [options] {
     fem::RunOptions run;
     run.parameter_file = options->file;
@@ -44,6 +48,10 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
       std::cout << "run: " << s.steps << " steps, " << s.dofs << " dofs on " << s.ranks << " rank(s), peak force "
                 << s.peak_force_N << " N at " << s.displacement_at_peak_mm << " mm, " << s.wall_seconds
                 << " s; curve: " << s.curve_csv.string() << "\n";
+    if (s.root && !options->plot.empty())
+      run_plot_script("plot_curves.py", {options->plot, "displacement", "force",
+                                         std::filesystem::path(options->file).stem().string(),
+                                         s.curve_csv.string()});
     return 0;
   });
 #endif

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <iostream>
 #include <sstream>
 
@@ -179,14 +180,18 @@ RunSummary run_experiment(const RunOptions& options) {
 }
 
 RunSummary run_experiment_with_mpi(const RunOptions& options) {
+  // MPI can be initialised only once per process, and a campaign runs several experiments in
+  // one process: keep MPI and PETSc up until exit.
+  static std::unique_ptr<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
   int initialised = 0;
   MPI_Initialized(&initialised);
-  if (initialised) return run_experiment(options);
-  int argc = 1;
-  char name[] = "dtwire";
-  char* args[] = {name, nullptr};
-  char** argv = args;
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
+  if (!initialised) {
+    static int argc = 1;
+    static char name[] = "dtwire";
+    static char* args[] = {name, nullptr};
+    static char** argv = args;
+    mpi = std::make_unique<dealii::Utilities::MPI::MPI_InitFinalize>(argc, argv);
+  }
   return run_experiment(options);
 }
 

@@ -1,0 +1,36 @@
+#include "plotting.hpp"
+
+#include <cstdlib>
+
+#include "dtwire/core/error.hpp"
+#include "dtwire/version.hpp"
+
+namespace dtwire::app {
+namespace {
+std::string quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+}  // namespace
+
+std::string find_python_with_matplotlib() {
+  if (const char* chosen = std::getenv("DTWIRE_PYTHON")) return chosen;
+  for (const char* candidate : {"/usr/bin/python3", "python3"}) {
+    const std::string probe = std::string(candidate) + " -c 'import matplotlib' >/dev/null 2>&1";
+    if (std::system(probe.c_str()) == 0) return candidate;
+  }
+  return "";
+}
+
+void run_plot_script(const std::string& script, const std::vector<std::string>& arguments) {
+  const std::string python = find_python_with_matplotlib();
+  if (python.empty())
+    throw ComputationError("plotting needs python3 with matplotlib (Debian: python3-matplotlib); "
+                           "none found");
+  std::string command = python + " " + quoted(std::string(kSourceDir) + "/scripts/" + script);
+  for (const auto& argument : arguments) command += " " + quoted(argument);
+  if (std::system(command.c_str()) != 0) throw ComputationError("plotting failed: " + command);
+}
+
+}  // namespace dtwire::app
