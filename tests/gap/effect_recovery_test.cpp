@@ -2,6 +2,7 @@
 // magnitude recovered; clean noisy curves give `none`.
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <random>
 
 #include "dtwire/gap/diagnosis.hpp"
@@ -14,6 +15,9 @@ struct Case {
   std::string effect;
   std::vector<double> params;
 };
+
+// ctest shows the effect, not the bytes of the struct.
+void PrintTo(const Case& c, std::ostream* out) { *out << c.effect; }
 
 ForceCurve noisy_lab(const ForceCurve& model, unsigned seed, double sigma_N) {
   std::mt19937 rng(seed);
