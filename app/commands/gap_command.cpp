@@ -13,6 +13,8 @@
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/gap/gap_report.hpp"
 #include "dtwire/gap/selfcheck.hpp"
+#include "dtwire/gap/summary_lab.hpp"
+#include "gap_model_runner.hpp"
 #include "dtwire/version.hpp"
 
 namespace dtwire::app {
@@ -52,7 +54,8 @@ void render_plot(const nlohmann::json& data, const std::string& png) {
 void add_gap_command(CLI::App& root, CommandSet& commands) {
   struct Options {
     std::vector<std::string> labs;
-    std::string sim, model, effects, json, plot, report;
+    std::string sim, model, lab_summary, effects, json, plot, report;
+    std::size_t model_runs = 3;
     double gauge_mm = 0.0, area_mm2 = 0.0;
     bool no_pairs = false;
     unsigned seed = 1;
@@ -63,7 +66,13 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--lab", options->labs, "Laboratory curve CSV (repeat for several)");
   command->add_option("--sim", options->sim, "Simulated curve CSV (curve-only mode)");
   command->add_option("--model", options->model,
-                      "FE experiment (.prm) to re-run with effects switched on (needs fem)");
+                      "FE experiment (.prm) re-run through `dtwire run` with model-only effects "
+                      "switched on (the base run is the simulation unless --sim is given)");
+  command->add_option("--lab-summary", options->lab_summary,
+                      "Laboratory summary figures instead of curves, name=mean:sd,...: " +
+                          gap::summary_feature_names() + " (e.g. peak_force_N=1510:196)");
+  command->add_option("--model-runs", options->model_runs,
+                      "FE runs per model-only effect with --lab-summary")->capture_default_str();
   command->add_option("--effects", options->effects,
                       "Comma-separated effects to test (default: all that apply): " +
                           gap::effect_names());
@@ -78,26 +87,56 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--seed", options->seed, "Seed of the multi-start fits")->capture_default_str();
 
   commands.add(command, [options] {
-    if (!options->model.empty())
-      throw ComputationError("gap --model: re-running FE experiments needs the fem module, "
-                             "not in this build yet; use --sim with a finished curve");
-    if (options->labs.empty()) throw InputError("--lab", "give at least one laboratory curve");
-    if (options->sim.empty()) throw InputError("--sim", "give the simulated curve (or --model)");
+    if (options->labs.empty() && options->lab_summary.empty())
+      throw InputError("--lab", "give at least one laboratory curve (or --lab-summary)");
+    if (!options->labs.empty() && !options->lab_summary.empty())
+      throw InputError("--lab-summary", "give either --lab curves or --lab-summary figures, not both");
+    if (options->sim.empty() && options->model.empty())
+      throw InputError("--sim", "give the simulated curve (or --model)");
+    std::vector<gap::SummaryFeature> summary;
+    if (!options->lab_summary.empty()) summary = gap::parse_lab_summary(options->lab_summary);
+    std::vector<std::string> effects;
+    try {
+      for (const auto& name : split_names(options->effects)) {
+        gap::find_effect(name);
+        effects.push_back(name);
+      }
+    } catch (const std::invalid_argument& e) {
+      throw InputError("--effects", e.what());
+    }
     gap::CurveConversion conversion;
     if (options->gauge_mm > 0) conversion.gauge_length_m = options->gauge_mm * 1e-3;
     if (options->area_mm2 > 0) conversion.area_m2 = options->area_mm2 * 1e-6;
     std::vector<gap::ForceCurve> labs;
     for (const auto& lab : options->labs) labs.push_back(gap::load_force_curve(lab, conversion));
-    const gap::ForceCurve sim = gap::load_force_curve(options->sim, conversion);
-    gap::DiagnosisOptions diagnosis_options;
-    try {
-      for (const auto& name : split_names(options->effects)) {
-        gap::find_effect(name);
-        diagnosis_options.effects.push_back(name);
-      }
-    } catch (const std::invalid_argument& e) {
-      throw InputError("--effects", e.what());
+    FeModel fe;
+    if (!options->model.empty()) fe = make_fe_model(options->model);
+    const gap::ForceCurve sim = !options->sim.empty() ? gap::load_force_curve(options->sim, conversion)
+                                                      : fe.run({});
+    if (!summary.empty()) {
+      gap::SummaryOptions summary_options;
+      summary_options.effects = effects;
+      summary_options.model = fe.run;
+      summary_options.model_unsupported = fe.unsupported;
+      summary_options.model_runs = options->model_runs;
+      summary_options.seed = options->seed;
+      const gap::SummaryDiagnosis d = gap::diagnose_summary(sim, summary, summary_options);
+      write_text(options->json, gap::summary_json(d).dump(2) + "\n");
+      write_text(options->report, gap::summary_markdown(d));
+      std::cout << "gap " << d.gap_before << " lab sd (noise floor " << d.noise_floor << "), cause: "
+                << d.cause << " (" << d.reason << ")";
+      if (!d.ranking.empty())
+        std::cout << "; best: " << d.ranking.front().effect << ", shrink " << d.ranking.front().shrink;
+      std::cout << "\n";
+      if (fe.runs) std::cout << "FE runs: " << *fe.runs << "\n";
+      if (!options->plot.empty())
+        throw InputError("--plot", "not available with --lab-summary (no laboratory curve to draw)");
+      return 0;
     }
+    gap::DiagnosisOptions diagnosis_options;
+    diagnosis_options.effects = effects;
+    diagnosis_options.model = fe.run;
+    diagnosis_options.model_unsupported = fe.unsupported;
     diagnosis_options.try_pairs = !options->no_pairs;
     diagnosis_options.seed = options->seed;
     const gap::Diagnosis d = gap::diagnose(labs, sim, diagnosis_options);
@@ -110,8 +149,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       std::cout << "; best: " << d.ranking.front().effect << ", shrink " << d.ranking.front().shrink;
     std::cout << "\n";
     if (!d.not_tested.empty()) {
-      std::cout << "not tested (need --model):";
-      for (const auto& n : d.not_tested) std::cout << " " << n;
+      std::cout << "not tested:";
+      for (const auto& n : d.not_tested) std::cout << " " << n << " (" << d.not_tested_reason.at(n) << ")";
       std::cout << "\n";
     }
     if (!options->plot.empty()) render_plot(gap::plot_data_json(d), options->plot);

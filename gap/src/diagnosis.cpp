@@ -250,8 +250,16 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   else
     for (const std::string& name : options.effects) requested.push_back(&find_effect(name));
   for (const EffectSpec* e : requested) {
-    if (e->needs_model && !options.model) d.not_tested.push_back(e->name);
-    else candidates.push_back(e);
+    const auto unsupported = options.model_unsupported.find(e->name);
+    if (e->needs_model && !options.model) {
+      d.not_tested.push_back(e->name);
+      d.not_tested_reason[e->name] = "needs --model";
+    } else if (e->needs_model && unsupported != options.model_unsupported.end()) {
+      d.not_tested.push_back(e->name);
+      d.not_tested_reason[e->name] = unsupported->second;
+    } else {
+      candidates.push_back(e);
+    }
   }
 
   std::mt19937 rng(options.seed);

@@ -163,8 +163,11 @@ std::vector<EffectSpec> make_catalogue() {
        {"shear_strength_ratio_1", 0.3, 1.0, 0.5, 0.8, {}}, 1.0},
       {"coating_slip", "sliding between steel and PVC sheath (interface shear strength)",
        {"interface_strength_MPa", 0.0, 20.0, 0.5, 5.0, {}}, 20.0},
-      {"geometry_imperfection", "diameter, lay and initial kink (decisive in compression)",
-       {"diameter_scale_1", 0.9, 1.1, 0.97, 1.03, {}}, 1.0}};
+      // The imperfection amplitudes of the FE experiment (bow, radius reduction) times a factor:
+      // 1 is the model as given; 0.5-4 spans L/2000 to L/250 for the usual L/1000 bow.
+      {"geometry_imperfection", "initial crookedness and section defects (decisive in compression): "
+       "the model's imperfection amplitudes scaled",
+       {"imperfection_scale_1", 0.0, 10.0, 0.5, 4.0, {}}, 1.0}};
   int order = 10;
   for (const ModelOnly& m : model_only) {
     EffectSpec e;

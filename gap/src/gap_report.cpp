@@ -93,6 +93,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                         {"lag1_autocorrelation", d.lag1_autocorrelation},
                         {"compression", d.compression},
                         {"not_tested", d.not_tested},
+                        {"not_tested_reason", d.not_tested_reason},
                         {"predictive_check", predictive},
                         {"lab", labs},
                         {"sim", d.sim.source}};
@@ -116,8 +117,11 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     << ")\n"
     << "- **cause: " << d.cause << "** (" << d.reason << ")\n";
   if (!d.not_tested.empty()) {
-    s << "- not tested (need `--model`):";
-    for (const auto& n : d.not_tested) s << " " << n;
+    s << "- not tested:";
+    for (const auto& n : d.not_tested) {
+      const auto why = d.not_tested_reason.find(n);
+      s << " " << n << (why != d.not_tested_reason.end() ? " (" + why->second + ")" : std::string()) << ";";
+    }
     s << "\n";
   }
   if (d.predictive.done)

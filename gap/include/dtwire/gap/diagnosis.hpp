@@ -1,6 +1,7 @@
 #pragma once
 // The gap diagnosis: where the gap between a simulated curve and laboratory curves lies, which
 // catalogue effect explains it, and how far it shrinks once that effect is added.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ struct DiagnosisOptions {
   std::size_t random_starts = 3;
   // --model mode: with a runner, model-only effects are candidates too (else "not tested").
   ModelRunner model;
+  // Model-only effects the runner cannot switch on for this model, with the reason.
+  std::map<std::string, std::string> model_unsupported;
 };
 
 struct RankedEffect {
@@ -58,6 +61,7 @@ struct Diagnosis {
   std::string cause = "none";
   std::string reason;
   std::vector<std::string> not_tested;
+  std::map<std::string, std::string> not_tested_reason;
   PredictiveCheck predictive;
   ForceCurve sim;                // oriented
   std::vector<ForceCurve> labs;  // oriented

@@ -1,0 +1,187 @@
+#include "gap_model_runner.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <regex>
+#include <sstream>
+
+#include "dtwire/calibrate/command_simulator.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/provenance.hpp"
+
+namespace dtwire::app {
+namespace {
+
+const std::regex& set_line() {
+  static const std::regex r(R"(^(\s*set\s+)([^=]*?)(\s*=\s*)([^#]*?)(\s*(#.*)?)$)");
+  return r;
+}
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s.precision(10);
+  s << v;
+  return s.str();
+}
+
+// Calls `edit(name, value)` on every `set name = value` line; a non-empty result replaces value.
+std::string edit_entries(const std::string& text,
+                         const std::function<std::string(const std::string&, const std::string&)>& edit) {
+  std::istringstream in(text);
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, set_line())) {
+      const std::string replaced = edit(m[2].str(), m[4].str());
+      if (!replaced.empty()) line = m[1].str() + m[2].str() + m[3].str() + replaced + m[5].str();
+    }
+    out << line << "\n";
+  }
+  return out.str();
+}
+
+std::map<std::string, std::string> entries(const std::string& text) {
+  std::map<std::string, std::string> out;
+  edit_entries(text, [&](const std::string& name, const std::string& value) {
+    out[name] = value;
+    return std::string();
+  });
+  return out;
+}
+
+double to_number(const std::string& text) {
+  try {
+    return std::stod(text);
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+}
+
+// Hardening table "e:s, ..." shifted by a plastic pre-strain a0: sigma'(e) = sigma(e + a0).
+std::string shifted_table(const std::string& table, double a0) {
+  std::vector<std::pair<double, double>> points;
+  std::stringstream s(table);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    const auto colon = item.find(':');
+    if (colon != std::string::npos)
+      points.emplace_back(to_number(item.substr(0, colon)), to_number(item.substr(colon + 1)));
+  }
+  if (points.size() < 2) throw ComputationError("residual_stress: the hardening table needs two points");
+  auto stress_at = [&](double e) {  // piecewise linear, last slope continued
+    std::size_t k = 1;
+    while (k + 1 < points.size() && points[k].first < e) ++k;
+    const auto& [e0, s0] = points[k - 1];
+    const auto& [e1, s1] = points[k];
+    return s0 + (s1 - s0) * (e - e0) / (e1 - e0);
+  };
+  std::string out = "0:" + number_text(stress_at(a0));
+  int kept = 0;
+  for (const auto& [e, sigma] : points)
+    if (e > a0) {
+      out += ", " + number_text(e - a0) + ":" + number_text(sigma);
+      ++kept;
+    }
+  if (kept == 0) out += ", 1:" + number_text(stress_at(a0 + 1.0));
+  return out;
+}
+
+}  // namespace
+
+std::string edit_prm(const std::string& text, const std::vector<gap::AppliedEffect>& effects,
+                     const std::filesystem::path& prm_directory) {
+  std::string out = edit_entries(text, [&](const std::string& name, const std::string& value) {
+    if (name == "Fields") return std::string("false");  // no VTU output in fits
+    if (name == "Mesh file" && !value.empty() && std::filesystem::path(value).is_relative())
+      return (prm_directory / value).string();
+    return std::string();
+  });
+  const auto values = entries(text);
+  for (const gap::AppliedEffect& a : effects) {
+    const std::string& effect = a.effect->name;
+    const double p = a.params.at(0);
+    if (effect == "geometry_imperfection") {
+      out = edit_entries(out, [&](const std::string& name, const std::string& value) {
+        if (name == "Bow imperfection (mm)" || name == "Imperfection") return number_text(p * to_number(value));
+        return std::string();
+      });
+    } else if (effect == "residual_stress") {
+      const double a0 = p * kTwistingPlasticStrain;
+      const std::string law = values.count("Hardening law") ? values.at("Hardening law") : "linear";
+      out = edit_entries(out, [&](const std::string& name, const std::string& value) {
+        if (law == "table" && name == "Hardening table") return shifted_table(value, a0);
+        if (law == "linear" && name == "Yield stress (MPa)") {
+          const double h = values.count("Hardening modulus (MPa)") ? to_number(values.at("Hardening modulus (MPa)")) : 0.0;
+          return number_text(to_number(value) + h * a0);
+        }
+        return std::string();
+      });
+    } else {
+      throw ComputationError("gap --model: effect " + effect + " cannot be switched on in a .prm");
+    }
+  }
+  return out;
+}
+
+FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work) {
+  std::ifstream in(prm);
+  if (!in) throw InputError(prm.string(), "cannot read the model .prm");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  const auto values = entries(text);
+
+  FeModel model;
+  const auto has_amplitude = [&](const char* name) {
+    return values.count(name) && std::abs(to_number(values.at(name))) > 0;
+  };
+  if (!has_amplitude("Bow imperfection (mm)") && !has_amplitude("Imperfection"))
+    model.unsupported["geometry_imperfection"] = "the .prm has no imperfection amplitude to scale";
+  const std::string law = values.count("Hardening law") ? values.at("Hardening law") : "linear";
+  if (law != "table" && law != "linear")
+    model.unsupported["residual_stress"] = "plastic pre-strain only for table and linear hardening";
+  for (const char* name : {"wire_friction", "twist_tightening", "shear_failure", "coating_slip"})
+    model.unsupported[name] = "the single-wire FE model has no such parameter (needs the DT contact model)";
+
+  if (work.empty())
+    work = std::filesystem::temp_directory_path() / ("dtwire_gap_model_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(work);
+  auto cache = std::make_shared<std::map<std::string, gap::ForceCurve>>();
+  auto runs = std::make_shared<int>(0);
+  const std::filesystem::path directory = std::filesystem::absolute(prm).parent_path();
+  const std::string source = prm.string();
+  model.runs = runs.get();
+  model.run = [=, keep = runs](const std::vector<gap::AppliedEffect>& effects) {
+    const std::string edited = edit_prm(text, effects, directory);
+    const std::string key = sha256_text(edited);
+    if (const auto hit = cache->find(key); hit != cache->end()) return hit->second;
+    calibrate::CommandSpecification spec;
+    // $DTWIRE_FE_EXECUTABLE: a dtwire built with fem, when this one was built without it.
+    const char* fe_executable = std::getenv("DTWIRE_FE_EXECUTABLE");
+    spec.program = fe_executable ? std::filesystem::path(fe_executable) : calibrate::dtwire_executable();
+    spec.arguments = {"run", "{input}", "--out", "{output}", "--quiet"};
+    spec.input_template = edited;
+    spec.work_directory = work;
+    std::string label = source;
+    for (const gap::AppliedEffect& a : effects) label += " " + a.effect->name + "=" + number_text(a.params[0]);
+    std::cout << "  FE run: " << label << std::flush;
+    const Curve curve = calibrate::CommandSimulator(spec).simulate({});
+    gap::ForceCurve c;
+    c.u = curve.si("displacement");
+    c.f = curve.si("force");
+    c.source = label;
+    ++*keep;
+    std::cout << " (done)\n";
+    (*cache)[key] = c;
+    return c;
+  };
+  return model;
+}
+
+}  // namespace dtwire::app

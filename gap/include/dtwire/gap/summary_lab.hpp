@@ -1,0 +1,76 @@
+#pragma once
+// Diagnosis against laboratory summary figures (mean and scatter of curve features, e.g. the
+// peak and residual force of a test series) instead of laboratory curves: the simulated
+// curve's features are compared with the laboratory means in units of the laboratory scatter,
+// and that scatter is the noise floor. Effects are fitted to the features; model-only effects
+// through the ModelRunner with a small, bounded 1-D search (every FE run costs seconds).
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dtwire/gap/effects.hpp"
+
+namespace dtwire::gap {
+
+struct SummaryFeature {
+  std::string name;  // peak_force_N, residual_force_N, peak_displacement_mm
+  double mean = 0.0, sd = 0.0;  // in the unit of the name
+};
+
+// "peak_force_N=1510:196,residual_force_N=550:77". Throws InputError naming `field` and the
+// feature: unknown name, missing '=' or ':', a value that is not a number, sd <= 0, repeats.
+std::vector<SummaryFeature> parse_lab_summary(const std::string& text,
+                                              const std::string& field = "--lab-summary");
+std::string summary_feature_names();
+
+// The feature of an oriented curve (dominant force positive), in the unit of its name:
+// peak_force_N the largest force, residual_force_N the force at the end of the test,
+// peak_displacement_mm the displacement at the peak.
+double curve_feature(const ForceCurve& curve, const std::string& name);
+
+struct SummaryOptions {
+  std::vector<std::string> effects;  // empty: all
+  ModelRunner model;
+  std::map<std::string, std::string> model_unsupported;  // effect -> reason
+  std::size_t model_runs = 3;  // FE runs per model-only effect (the base run is given)
+  unsigned seed = 1;
+};
+
+struct SummaryCandidate {
+  std::string effect;
+  std::vector<AppliedEffect> fitted;
+  std::vector<double> features;  // of the augmented simulation, in feature order
+  double gap_after = 0.0, shrink = 0.0, plausibility = 1.0, score = 0.0;
+  int runs = 0;  // FE runs spent
+  bool qualifies = false;
+};
+
+struct SummaryDiagnosis {
+  std::string metric = "summary_z_rms";
+  std::vector<SummaryFeature> lab;
+  std::vector<double> sim_features;
+  double noise_floor = 1.0;  // one laboratory standard deviation
+  double gap_before = 0.0;
+  bool compression = false;
+  std::vector<SummaryCandidate> ranking;  // by score
+  std::string cause = "none", reason;
+  std::vector<std::string> not_tested;
+  std::map<std::string, std::string> not_tested_reason;
+  ForceCurve sim, best_model;  // oriented
+};
+
+// Root mean square of (simulated - laboratory mean) / laboratory sd over the features.
+double summary_gap(const std::vector<SummaryFeature>& lab, const std::vector<double>& features);
+
+SummaryDiagnosis diagnose_summary(const ForceCurve& sim, const std::vector<SummaryFeature>& lab,
+                                  const SummaryOptions& options);
+
+nlohmann::json summary_json(const SummaryDiagnosis& d);
+std::string summary_markdown(const SummaryDiagnosis& d);
+
+// A qualifying effect must remove at least this fraction of the gap.
+inline constexpr double kSummaryMinimumShrink = 0.3;
+
+}  // namespace dtwire::gap

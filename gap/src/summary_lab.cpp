@@ -1,0 +1,389 @@
+#include "dtwire/gap/summary_lab.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include "dtwire/core/error.hpp"
+#include "dtwire/gap/diagnosis.hpp"
+#include "dtwire/gap/gap_report.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+const std::vector<std::string>& known_features() {
+  static const std::vector<std::string> names = {"peak_force_N", "residual_force_N",
+                                                 "peak_displacement_mm"};
+  return names;
+}
+
+double number(const std::string& text, const std::string& field, const std::string& what) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v))
+    throw InputError(field, what + ": expected a number, found '" + text + "'");
+  return v;
+}
+
+std::vector<double> features_of(const ForceCurve& c, const std::vector<SummaryFeature>& lab) {
+  std::vector<double> out;
+  for (const SummaryFeature& f : lab) out.push_back(curve_feature(c, f.name));
+  return out;
+}
+
+// Scaled coordinate of a parameter: (p - plausible_lower) / plausible width.
+double width_of(const ParameterSpec& s) {
+  const double w = s.plausible_upper - s.plausible_lower;
+  return w > 0 ? w : std::max(s.upper - s.lower, 1e-12);
+}
+
+struct FeatureResiduals {
+  const ForceCurve* sim;
+  const CurveScale* scale;
+  const EffectSpec* effect;
+  const std::vector<SummaryFeature>* lab;
+  std::vector<ParameterSpec> specs;
+  bool operator()(double const* const* x, double* r) const {
+    std::vector<double> p;
+    for (std::size_t j = 0; j < specs.size(); ++j)
+      p.push_back(std::clamp(specs[j].plausible_lower + x[0][j] * width_of(specs[j]), specs[j].lower,
+                             specs[j].upper));
+    const auto f = features_of(apply_effects(*sim, {{effect, p}}, *scale), *lab);
+    for (std::size_t i = 0; i < f.size(); ++i) r[i] = (f[i] - (*lab)[i].mean) / (*lab)[i].sd;
+    return true;
+  }
+};
+
+// Curve-mode effect: bounded least squares on the feature z-scores (Ceres, numeric central
+// differences), from the plausible centre, the neutral value and two random starts.
+std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& scale,
+                                     const EffectSpec& effect, const std::vector<SummaryFeature>& lab,
+                                     std::mt19937& rng) {
+  const auto specs = effect.parameters(scale);
+  std::vector<std::vector<double>> starts;
+  std::vector<double> centre;
+  for (const auto& s : specs) centre.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
+  starts.push_back(centre);
+  std::vector<double> neutral = centre;
+  neutral[effect.magnitude] = effect.neutral;
+  starts.push_back(neutral);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int k = 0; k < 2; ++k) {
+    std::vector<double> p;
+    for (const auto& s : specs) p.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * width_of(s) : 0.0);
+    starts.push_back(p);
+  }
+  std::vector<double> best = neutral;
+  double best_gap = summary_gap(lab, features_of(apply_effects(sim, {{&effect, neutral}}, scale), lab));
+  for (const auto& start : starts) {
+    auto* functor = new FeatureResiduals{&sim, &scale, &effect, &lab, specs};
+    std::vector<double> x;
+    for (std::size_t j = 0; j < specs.size(); ++j)
+      x.push_back((start[j] - specs[j].plausible_lower) / width_of(specs[j]));
+    ceres::NumericDiffOptions diff;
+    diff.relative_step_size = 1e-4;
+    auto* cost = new ceres::DynamicNumericDiffCostFunction<FeatureResiduals, ceres::CENTRAL>(
+        functor, ceres::TAKE_OWNERSHIP, diff);
+    cost->AddParameterBlock(static_cast<int>(x.size()));
+    cost->SetNumResiduals(static_cast<int>(lab.size()));
+    ceres::Problem problem;
+    problem.AddResidualBlock(cost, nullptr, x.data());
+    for (std::size_t j = 0; j < specs.size(); ++j) {
+      const double lo = (specs[j].lower - specs[j].plausible_lower) / width_of(specs[j]);
+      const double hi = (specs[j].upper - specs[j].plausible_lower) / width_of(specs[j]);
+      x[j] = std::clamp(x[j], lo, hi);
+      problem.SetParameterLowerBound(x.data(), static_cast<int>(j), lo);
+      problem.SetParameterUpperBound(x.data(), static_cast<int>(j), hi);
+    }
+    ceres::Solver::Options options;
+    options.linear_solver_type = ceres::DENSE_QR;
+    options.max_num_iterations = 50;
+    options.logging_type = ceres::SILENT;
+    ceres::Solver::Summary summary;
+    ceres::Solve(options, &problem, &summary);
+    std::vector<double> p;
+    for (std::size_t j = 0; j < specs.size(); ++j)
+      p.push_back(std::clamp(specs[j].plausible_lower + x[j] * width_of(specs[j]), specs[j].lower, specs[j].upper));
+    const double gap = summary_gap(lab, features_of(apply_effects(sim, {{&effect, p}}, scale), lab));
+    if (gap < best_gap) {
+      best_gap = gap;
+      best = p;
+    }
+  }
+  return best;
+}
+
+// Model-only effect (one parameter): FE runs at the ends of the plausible range (the neutral
+// model is the given simulation), then at the minimum of the piecewise-linear interpolant of
+// the features, until `runs` are spent. The answer is the best value actually run.
+struct ModelSearch {
+  double value;
+  ForceCurve curve;
+  int runs = 0;
+};
+
+ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, const EffectSpec& effect,
+                                const std::vector<SummaryFeature>& lab, const ModelRunner& runner,
+                                std::size_t runs) {
+  const ParameterSpec spec = effect.parameters(scale).front();
+  std::map<double, std::vector<double>> sampled;  // value -> features
+  std::map<double, ForceCurve> curves;
+  sampled[effect.neutral] = features_of(sim, lab);
+  curves[effect.neutral] = sim;
+  int spent = 0;
+  auto run = [&](double v) {
+    if (sampled.count(v) || static_cast<std::size_t>(spent) >= runs) return;
+    ForceCurve c = oriented(runner({{&effect, {v}}}));
+    validate_force_curve(c);
+    sampled[v] = features_of(c, lab);
+    curves[v] = c;
+    ++spent;
+  };
+  run(spec.plausible_lower);
+  run(spec.plausible_upper);
+  while (static_cast<std::size_t>(spent) < runs) {
+    // Minimum of the interpolated gap on a fine scan of the sampled interval.
+    const double lo = sampled.begin()->first, hi = sampled.rbegin()->first;
+    double best_v = lo, best_gap = INFINITY;
+    for (int k = 0; k <= 400; ++k) {
+      const double v = lo + (hi - lo) * k / 400.0;
+      auto right = sampled.lower_bound(v);
+      if (right == sampled.end()) --right;
+      auto left = right == sampled.begin() ? right : std::prev(right);
+      const double t = right->first > left->first ? (v - left->first) / (right->first - left->first) : 0.0;
+      std::vector<double> f;
+      for (std::size_t i = 0; i < lab.size(); ++i)
+        f.push_back(left->second[i] + t * (right->second[i] - left->second[i]));
+      const double g = summary_gap(lab, f);
+      if (g < best_gap) {
+        best_gap = g;
+        best_v = v;
+      }
+    }
+    // Closest sampled value within 2 % of the range: nothing new to learn there.
+    bool known = false;
+    for (const auto& [v, f] : sampled) known = known || std::abs(v - best_v) < 0.02 * (hi - lo);
+    if (known) break;
+    run(best_v);
+  }
+  ModelSearch out{effect.neutral, sim, spent};
+  double best_gap = INFINITY;
+  for (const auto& [v, f] : sampled) {
+    const double g = summary_gap(lab, f);
+    if (g < best_gap) {
+      best_gap = g;
+      out.value = v;
+      out.curve = curves[v];
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string summary_feature_names() {
+  std::string out;
+  for (const auto& n : known_features()) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+std::vector<SummaryFeature> parse_lab_summary(const std::string& text, const std::string& field) {
+  std::vector<SummaryFeature> out;
+  std::stringstream s(text);
+  std::string item;
+  std::set<std::string> seen;
+  while (std::getline(s, item, ',')) {
+    if (item.empty()) continue;
+    const auto eq = item.find('=');
+    if (eq == std::string::npos)
+      throw InputError(field, "'" + item + "': expected name=mean:sd, e.g. peak_force_N=1510:196");
+    SummaryFeature f;
+    f.name = item.substr(0, eq);
+    if (std::find(known_features().begin(), known_features().end(), f.name) == known_features().end())
+      throw InputError(field, "unknown feature '" + f.name + "', expected one of: " + summary_feature_names());
+    if (!seen.insert(f.name).second) throw InputError(field, "feature '" + f.name + "' given twice");
+    const std::string rest = item.substr(eq + 1);
+    const auto colon = rest.find(':');
+    if (colon == std::string::npos)
+      throw InputError(field, f.name + ": expected mean:sd (the laboratory scatter sets the noise "
+                              "floor), found '" + rest + "'");
+    f.mean = number(rest.substr(0, colon), field, f.name + " mean");
+    f.sd = number(rest.substr(colon + 1), field, f.name + " sd");
+    if (!(f.sd > 0)) throw InputError(field, f.name + " sd: expected a positive number, found " + rest.substr(colon + 1));
+    out.push_back(f);
+  }
+  if (out.empty())
+    throw InputError(field, "expected at least one feature name=mean:sd, e.g. peak_force_N=1510:196");
+  return out;
+}
+
+double curve_feature(const ForceCurve& c, const std::string& name) {
+  const auto peak = std::max_element(c.f.begin(), c.f.end());
+  if (name == "peak_force_N") return *peak;
+  if (name == "residual_force_N") return c.f.back();
+  if (name == "peak_displacement_mm") return c.u[static_cast<std::size_t>(peak - c.f.begin())] * 1e3;
+  throw std::invalid_argument("unknown summary feature " + name);
+}
+
+double summary_gap(const std::vector<SummaryFeature>& lab, const std::vector<double>& features) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < lab.size(); ++i) {
+    const double z = (features[i] - lab[i].mean) / lab[i].sd;
+    sum += z * z;
+  }
+  return std::sqrt(sum / static_cast<double>(lab.size()));
+}
+
+SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<SummaryFeature>& lab,
+                                  const SummaryOptions& options) {
+  if (lab.empty()) throw InputError("--lab-summary", "give at least one feature");
+  validate_force_curve(sim_in);
+  SummaryDiagnosis d;
+  d.lab = lab;
+  d.sim = oriented(sim_in, &d.compression);
+  d.sim_features = features_of(d.sim, lab);
+  d.gap_before = summary_gap(lab, d.sim_features);
+  const CurveScale scale = curve_scale(d.sim);
+
+  std::vector<const EffectSpec*> requested;
+  if (options.effects.empty())
+    for (const EffectSpec& e : effect_catalogue()) requested.push_back(&e);
+  else
+    for (const std::string& name : options.effects) requested.push_back(&find_effect(name));
+  std::mt19937 rng(options.seed);
+  for (const EffectSpec* e : requested) {
+    const auto unsupported = options.model_unsupported.find(e->name);
+    if (e->needs_model && (!options.model || unsupported != options.model_unsupported.end())) {
+      d.not_tested.push_back(e->name);
+      d.not_tested_reason[e->name] = options.model ? unsupported->second : "needs --model";
+      continue;
+    }
+    SummaryCandidate c;
+    c.effect = e->name;
+    ForceCurve model;
+    if (e->needs_model) {
+      const ModelSearch s = search_model_effect(d.sim, scale, *e, lab, options.model, options.model_runs);
+      c.fitted = {{e, {s.value}}};
+      c.runs = s.runs;
+      model = s.curve;
+    } else {
+      c.fitted = {{e, fit_curve_effect(d.sim, scale, *e, lab, rng)}};
+      model = apply_effects(d.sim, c.fitted, scale);
+    }
+    c.features = features_of(model, lab);
+    c.gap_after = summary_gap(lab, c.features);
+    c.shrink = d.gap_before > 0 ? 1.0 - c.gap_after / d.gap_before : 0.0;
+    c.plausibility = plausibility(*e, c.fitted.front().params, scale);
+    c.score = c.plausibility * std::max(0.0, c.shrink);
+    c.qualifies = d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5;
+    d.ranking.push_back(c);
+  }
+  std::stable_sort(d.ranking.begin(), d.ranking.end(),
+                   [](const SummaryCandidate& a, const SummaryCandidate& b) { return a.score > b.score; });
+  const auto cause = std::find_if(d.ranking.begin(), d.ranking.end(),
+                                  [](const SummaryCandidate& c) { return c.qualifies; });
+  if (d.gap_before <= d.noise_floor) {
+    d.reason = "the simulated features lie within one laboratory standard deviation (rms z-score " +
+               std::to_string(d.gap_before) + ")";
+  } else if (cause == d.ranking.end()) {
+    d.reason = "no plausible effect removes 30 % of the gap";
+  } else {
+    d.cause = cause->effect;
+    d.reason = cause->gap_after <= d.noise_floor ? "brings the features within the laboratory scatter"
+                                                 : "reduces the gap most, but not to the laboratory scatter";
+  }
+  d.best_model = d.sim;
+  if (!d.ranking.empty()) {
+    const SummaryCandidate& shown = cause != d.ranking.end() ? *cause : d.ranking.front();
+    d.best_model = augment(d.sim, shown.fitted, scale, [&](const std::vector<AppliedEffect>& e) {
+      return oriented(options.model(e));  // cached by the runner
+    });
+  }
+  return d;
+}
+
+nlohmann::json summary_json(const SummaryDiagnosis& d) {
+  const CurveScale scale = curve_scale(d.sim);
+  nlohmann::json where = nlohmann::json::array();
+  double total = 0.0;
+  std::vector<double> z2;
+  for (std::size_t i = 0; i < d.lab.size(); ++i) {
+    const double z = (d.sim_features[i] - d.lab[i].mean) / d.lab[i].sd;
+    z2.push_back(z * z);
+    total += z * z;
+  }
+  const auto peak = std::max_element(d.sim.f.begin(), d.sim.f.end()) - d.sim.f.begin();
+  nlohmann::json lab = nlohmann::json::array();
+  for (std::size_t i = 0; i < d.lab.size(); ++i) {
+    const bool at_peak = d.lab[i].name != "residual_force_N";
+    const double at = at_peak ? d.sim.u[static_cast<std::size_t>(peak)] : d.sim.u.back();
+    const double z = (d.sim_features[i] - d.lab[i].mean) / d.lab[i].sd;
+    where.push_back({{"region", at_peak ? "peak" : "post_peak"},
+                     {"from_mm", at * 1e3},
+                     {"to_mm", at * 1e3},
+                     {"share", total > 0 ? z2[i] / total : 1.0 / static_cast<double>(d.lab.size())},
+                     {"direction", d.lab[i].name == "peak_displacement_mm" ? "horizontal offset" : "vertical offset"},
+                     {"feature", d.lab[i].name},
+                     {"z", z}});
+    lab.push_back({{"feature", d.lab[i].name}, {"mean", d.lab[i].mean}, {"sd", d.lab[i].sd},
+                   {"simulated", d.sim_features[i]}});
+  }
+  nlohmann::json ranking = nlohmann::json::array();
+  for (const SummaryCandidate& c : d.ranking) {
+    nlohmann::json params = nlohmann::json::object();
+    const auto specs = c.fitted.front().effect->parameters(scale);
+    for (std::size_t j = 0; j < specs.size(); ++j) params[specs[j].name] = c.fitted.front().params[j];
+    ranking.push_back({{"effect", c.effect}, {"params", params}, {"gap_after", c.gap_after},
+                       {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility},
+                       {"features_after", c.features}, {"fe_runs", c.runs}, {"qualifies", c.qualifies}});
+  }
+  nlohmann::json out = {{"metric", d.metric},       {"noise_floor", d.noise_floor},
+                        {"gap_before", d.gap_before}, {"where", where},
+                        {"ranking", ranking},       {"cause", d.cause},
+                        {"cause_reason", d.reason}, {"compression", d.compression},
+                        {"not_tested", d.not_tested}, {"not_tested_reason", d.not_tested_reason},
+                        {"lab_summary", lab},       {"sim", d.sim.source}};
+  require_finite(out);
+  return out;
+}
+
+std::string summary_markdown(const SummaryDiagnosis& d) {
+  std::ostringstream s;
+  s.precision(3);
+  s << "### Gap diagnosis against laboratory summary figures\n\n"
+    << "Simulation `" << d.sim.source << "`; gap = rms of (simulated - laboratory mean) / "
+    << "laboratory sd over the features; noise floor " << d.noise_floor << " (one sd).\n\n"
+    << "| feature | laboratory mean | sd | simulated | z |\n|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < d.lab.size(); ++i)
+    s << "| " << d.lab[i].name << " | " << d.lab[i].mean << " | " << d.lab[i].sd << " | "
+      << d.sim_features[i] << " | " << (d.sim_features[i] - d.lab[i].mean) / d.lab[i].sd << " |\n";
+  s << "\n- gap before: " << d.gap_before << "\n- **cause: " << d.cause << "** (" << d.reason << ")\n";
+  if (!d.not_tested.empty()) {
+    s << "- not tested:";
+    for (const auto& n : d.not_tested) s << " " << n << " (" << d.not_tested_reason.at(n) << ");";
+    s << "\n";
+  }
+  s << "\n| effect | fitted | features after | gap after | shrink | plausibility | FE runs |\n"
+    << "|---|---|---|---|---|---|---|\n";
+  const CurveScale scale = curve_scale(d.sim);
+  for (const SummaryCandidate& c : d.ranking) {
+    const auto specs = c.fitted.front().effect->parameters(scale);
+    s << "| " << c.effect << " | ";
+    for (std::size_t j = 0; j < specs.size(); ++j) s << specs[j].name << " " << c.fitted.front().params[j] << " ";
+    s << "| ";
+    for (double f : c.features) s << f << " ";
+    s << "| " << c.gap_after << " | " << c.shrink << " | " << c.plausibility << " | " << c.runs << " |\n";
+  }
+  return s.str();
+}
+
+}  // namespace dtwire::gap
