@@ -1,0 +1,87 @@
+// `dtwire gap --model`: the .prm edits of the model-only effects, and the real subprocess path
+// (`dtwire run` on a very coarse fixed-fixed column, about 1 s per run) recovering an injected
+// imperfection from summary figures.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "commands/gap_model_runner.hpp"
+#include "dtwire/gap/diagnosis.hpp"
+#include "dtwire/gap/summary_lab.hpp"
+
+namespace dtwire::app {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kColumn = fs::path(DTWIRE_SOURCE_DIR) / "tests/gap/data/tiny_column.prm";
+
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(GapModelPrm, EffectsEditTheirParameters) {
+  const std::string text = text_of(kColumn);
+  const std::string bow = edit_prm(text, {{&gap::find_effect("geometry_imperfection"), {2.5}}}, kColumn.parent_path());
+  EXPECT_NE(bow.find("set Bow imperfection (mm) = 0.5\n"), std::string::npos) << bow;  // 2.5 x 0.2
+  EXPECT_NE(bow.find("set Yield stress (MPa) = 250\n"), std::string::npos);
+  // Pre-strain 0.5 x 0.04 = 0.02 on the linear law: 250 + 1000 x 0.02 = 270 MPa.
+  const std::string pre = edit_prm(text, {{&gap::find_effect("residual_stress"), {0.5}}}, kColumn.parent_path());
+  EXPECT_NE(pre.find("set Yield stress (MPa) = 270\n"), std::string::npos) << pre;
+  const std::string table = "subsection Material\n  set Hardening law = table\n"
+                            "  set Hardening table = 0:250, 0.1:350, 0.2:400\nend\n";
+  const std::string shifted = edit_prm(table, {{&gap::find_effect("residual_stress"), {1.0}}}, ".");
+  // sigma'(e) = sigma(e + 0.04): 250 + 100 x 0.4 = 290 at 0.
+  EXPECT_NE(shifted.find("set Hardening table = 0:290, 0.06:350, 0.16:400\n"), std::string::npos) << shifted;
+  EXPECT_NE(edit_prm(text, {}, ".").find("set Fields = false"), std::string::npos);
+}
+
+TEST(GapModelPrm, UnsupportedEffectsAreNamedWithTheirReason) {
+  const FeModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_a");
+  EXPECT_EQ(model.unsupported.count("geometry_imperfection"), 0u);
+  EXPECT_EQ(model.unsupported.count("residual_stress"), 0u);
+  EXPECT_NE(model.unsupported.at("wire_friction").find("no such parameter"), std::string::npos);
+}
+
+std::string fe_executable() {
+#ifdef DTWIRE_TEST_FE_EXECUTABLE
+  return DTWIRE_TEST_FE_EXECUTABLE;
+#else
+  const char* env = std::getenv("DTWIRE_FE_EXECUTABLE");
+  return env ? env : "";
+#endif
+}
+
+TEST(GapModelFe, InjectedImperfectionRecoveredThroughDtwireRun) {
+  const std::string exe = fe_executable();
+  if (exe.empty()) GTEST_SKIP() << "no dtwire with fem in this build (set DTWIRE_FE_EXECUTABLE)";
+  ::setenv("DTWIRE_FE_EXECUTABLE", exe.c_str(), 1);
+  const FeModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_b");
+  const gap::ForceCurve base = model.run({});
+  const double injected = 3.0;
+  const gap::ForceCurve with = gap::oriented(model.run({{&gap::find_effect("geometry_imperfection"), {injected}}}));
+  const double peak = gap::curve_feature(with, "peak_force_N");
+  const double residual = gap::curve_feature(with, "residual_force_N");
+  // Laboratory figures = the FE run with the effect, scatter 2 % of the mean.
+  const std::vector<gap::SummaryFeature> lab = {{"peak_force_N", peak, 0.02 * peak},
+                                                {"residual_force_N", residual, 0.02 * residual}};
+  gap::SummaryOptions options;
+  options.effects = {"geometry_imperfection", "strain_rate"};
+  options.model = model.run;
+  options.model_runs = 4;
+  const gap::SummaryDiagnosis d = gap::diagnose_summary(base, lab, options);
+  EXPECT_GT(d.gap_before, 2.0);  // the base run misses by more than 2 sd
+  ASSERT_EQ(d.cause, "geometry_imperfection") << d.reason;
+  // A value actually run, within 0.5 of s = 3 (14 % of the searched range 0.5-4).
+  EXPECT_NEAR(d.ranking.front().fitted.front().params.front(), injected, 0.5);
+  EXPECT_LT(d.ranking.front().gap_after, d.noise_floor);
+  EXPECT_LE(*model.runs, 2 + 4);  // base + injected + the search (cached repeats are free)
+}
+
+}  // namespace
+}  // namespace dtwire::app
