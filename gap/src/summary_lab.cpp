@@ -129,6 +129,7 @@ struct ModelSearch {
   double value;
   ForceCurve curve;
   int runs = 0;
+  std::vector<std::pair<double, std::vector<double>>> samples;
 };
 
 ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, const EffectSpec& effect,
@@ -175,7 +176,7 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
     if (known) break;
     run(best_v);
   }
-  ModelSearch out{effect.neutral, sim, spent};
+  ModelSearch out{effect.neutral, sim, spent, {sampled.begin(), sampled.end()}};
   double best_gap = INFINITY;
   for (const auto& [v, f] : sampled) {
     const double g = summary_gap(lab, f);
@@ -274,6 +275,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
       const ModelSearch s = search_model_effect(d.sim, scale, *e, lab, options.model, options.model_runs);
       c.fitted = {{e, {s.value}}};
       c.runs = s.runs;
+      c.samples = s.samples;
       model = s.curve;
     } else {
       c.fitted = {{e, fit_curve_effect(d.sim, scale, *e, lab, rng)}};
@@ -345,6 +347,11 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
     ranking.push_back({{"effect", c.effect}, {"params", params}, {"gap_after", c.gap_after},
                        {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility},
                        {"features_after", c.features}, {"fe_runs", c.runs}, {"qualifies", c.qualifies}});
+    if (!c.samples.empty()) {
+      nlohmann::json samples = nlohmann::json::array();
+      for (const auto& [v, f] : c.samples) samples.push_back({{"value", v}, {"features", f}});
+      ranking.back()["fe_samples"] = samples;
+    }
   }
   nlohmann::json out = {{"metric", d.metric},       {"noise_floor", d.noise_floor},
                         {"gap_before", d.gap_before}, {"where", where},
@@ -358,7 +365,7 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
 
 std::string summary_markdown(const SummaryDiagnosis& d) {
   std::ostringstream s;
-  s.precision(3);
+  s.precision(4);
   s << "### Gap diagnosis against laboratory summary figures\n\n"
     << "Simulation `" << d.sim.source << "`; gap = rms of (simulated - laboratory mean) / "
     << "laboratory sd over the features; noise floor " << d.noise_floor << " (one sd).\n\n"
@@ -382,6 +389,17 @@ std::string summary_markdown(const SummaryDiagnosis& d) {
     s << "| ";
     for (double f : c.features) s << f << " ";
     s << "| " << c.gap_after << " | " << c.shrink << " | " << c.plausibility << " | " << c.runs << " |\n";
+  }
+  for (const SummaryCandidate& c : d.ranking) {
+    if (c.samples.empty()) continue;
+    const auto specs = c.fitted.front().effect->parameters(scale);
+    s << "\nFE runs of " << c.effect << " (" << specs.front().name << " -> features, rms z):";
+    for (const auto& [v, f] : c.samples) {
+      s << " " << v << " ->";
+      for (double x : f) s << " " << x;
+      s << " (" << summary_gap(d.lab, f) << ");";
+    }
+    s << "\n";
   }
   return s.str();
 }

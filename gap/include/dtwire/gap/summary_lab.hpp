@@ -44,6 +44,8 @@ struct SummaryCandidate {
   std::vector<double> features;  // of the augmented simulation, in feature order
   double gap_after = 0.0, shrink = 0.0, plausibility = 1.0, score = 0.0;
   int runs = 0;  // FE runs spent
+  // Model-only effects: every value run (the neutral one is the simulation) and its features.
+  std::vector<std::pair<double, std::vector<double>>> samples;
   bool qualifies = false;
 };
 
