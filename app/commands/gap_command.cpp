@@ -111,6 +111,14 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     for (const auto& lab : options->labs) labs.push_back(gap::load_force_curve(lab, conversion));
     FeModel fe;
     if (!options->model.empty()) fe = make_fe_model(options->model);
+    // The run directory goes when empty (a failed run's directory is kept for diagnosis).
+    struct RemoveWhenEmpty {
+      std::filesystem::path dir;
+      ~RemoveWhenEmpty() {
+        std::error_code ignored;
+        if (!dir.empty()) std::filesystem::remove(dir, ignored);
+      }
+    } cleanup{fe.work};
     const gap::ForceCurve sim = !options->sim.empty() ? gap::load_force_curve(options->sim, conversion)
                                                       : fe.run({});
     if (!summary.empty()) {

@@ -157,6 +157,7 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
   const std::filesystem::path directory = std::filesystem::absolute(prm).parent_path();
   const std::string source = prm.string();
   model.runs = runs.get();
+  model.work = work;
   model.run = [=, keep = runs](const std::vector<gap::AppliedEffect>& effects) {
     const std::string edited = edit_prm(text, effects, directory);
     const std::string key = sha256_text(edited);

@@ -20,6 +20,7 @@ struct FeModel {
   gap::ModelRunner run;  // cached by the edited .prm text; each new run prints one line
   std::map<std::string, std::string> unsupported;  // model-only effect -> reason
   int* runs = nullptr;                              // FE runs done so far
+  std::filesystem::path work;                       // run directories (removed after success)
 };
 
 // Reads the .prm (InputError naming it when missing). Runs go to `work` (a fresh temp

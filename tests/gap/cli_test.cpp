@@ -108,6 +108,31 @@ TEST_F(GapCli, BadInputExitsTwoNamingTheFileAndWritesNothing) {
   EXPECT_NE(unknown.err.find("gravity"), std::string::npos) << unknown.err;
 }
 
+TEST_F(GapCli, LabSummaryWritesTheContractAndRejectsBadFigures) {
+  const fs::path json = dir / "summary.json";
+  fs::remove(json);
+  const CommandResult r = run({"gap", "--lab-summary", "peak_force_N=900:50,residual_force_N=700:40",
+                               "--sim", (dir / "sim.csv").string(), "--effects", "strain_rate,coating_slip",
+                               "--json", json.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  for (const char* key : {"metric", "noise_floor", "gap_before", "where", "ranking", "cause"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j.at("metric"), "summary_z_rms");
+  EXPECT_EQ(j.at("not_tested_reason").at("coating_slip"), "needs --model");
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"--lab-summary", "peak_force_N=900"},
+        std::vector<std::string>{"--lab-summary", "peak_force=900:50"},
+        std::vector<std::string>{"--lab-summary", "peak_force_N=900:50", "--lab", (dir / "lab1.csv").string()}}) {
+    std::vector<std::string> args = {"gap", "--sim", (dir / "sim.csv").string()};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const CommandResult e = run(args);
+    EXPECT_EQ(e.code, 2) << bad[1];
+    EXPECT_NE(e.err.find("--lab-summary"), std::string::npos) << e.err;
+  }
+}
+
 TEST_F(GapCli, PlotIsRenderedWhenPythonWithMatplotlibIsThere) {
   if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "python3-matplotlib not installed";
