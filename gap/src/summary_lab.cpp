@@ -282,6 +282,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
       model = apply_effects(d.sim, c.fitted, scale);
     }
     c.features = features_of(model, lab);
+    c.curve = model;
     c.gap_after = summary_gap(lab, c.features);
     c.shrink = d.gap_before > 0 ? 1.0 - c.gap_after / d.gap_before : 0.0;
     c.plausibility = plausibility(*e, c.fitted.front().params, scale);
@@ -303,13 +304,8 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     d.reason = cause->gap_after <= d.noise_floor ? "brings the features within the laboratory scatter"
                                                  : "reduces the gap most, but not to the laboratory scatter";
   }
-  d.best_model = d.sim;
-  if (!d.ranking.empty()) {
-    const SummaryCandidate& shown = cause != d.ranking.end() ? *cause : d.ranking.front();
-    d.best_model = augment(d.sim, shown.fitted, scale, [&](const std::vector<AppliedEffect>& e) {
-      return oriented(options.model(e));  // cached by the runner
-    });
-  }
+  d.best_model = d.ranking.empty() ? d.sim
+                                    : (cause != d.ranking.end() ? *cause : d.ranking.front()).curve;
   return d;
 }
 

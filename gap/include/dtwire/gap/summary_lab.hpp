@@ -42,6 +42,7 @@ struct SummaryCandidate {
   std::string effect;
   std::vector<AppliedEffect> fitted;
   std::vector<double> features;  // of the augmented simulation, in feature order
+  ForceCurve curve;              // the augmented simulation
   double gap_after = 0.0, shrink = 0.0, plausibility = 1.0, score = 0.0;
   int runs = 0;  // FE runs spent
   // Model-only effects: every value run (the neutral one is the simulation) and its features.
