@@ -6,12 +6,12 @@
 #include <stdexcept>
 
 namespace dtwire::fem {
-namespace {
-
 struct Spectral {
   std::array<double, 3> values;
   Tensor2 vectors;  // columns are the eigenvectors: vectors[i][a] = n_a[i]
 };
+
+namespace {
 
 Spectral spectral(const SymTensor2& b) {
   const auto pairs = dealii::eigenvectors(b, dealii::SymmetricTensorEigenvectorMethod::jacobi);
@@ -48,12 +48,74 @@ SymTensor2 symmetric_part(const Tensor2& t) {
   return s;
 }
 
+// dP/dF from a log-space modulus deps -> dtau: d ln(b)/db by the Daleckii-Krein formula in the
+// eigenbasis of b_tr (valid for repeated eigenvalues), then dP = dtau F^-T - tau F^-T dF^T F^-T.
+template <class Modulus>
+Tensor4 chain_tangent(const Spectral& s, const Tensor2& F, const Tensor2& F_inv_T, const Tensor2& Cpi,
+                      const SymTensor2& kirchhoff, const Modulus& modulus) {
+  double theta[3][3];
+  for (unsigned a = 0; a < 3; ++a)
+    for (unsigned b = 0; b < 3; ++b) theta[a][b] = log_divided_difference(s.values[a], s.values[b]);
+  const Tensor2& Q = s.vectors;
+  const Tensor2 QT = dealii::transpose(Q);
+  const Tensor2 Cpi_FT = Cpi * dealii::transpose(F);
+  const Tensor2 P_part = Tensor2(kirchhoff) * F_inv_T;  // tau F^-T
+  Tensor4 tangent;
+  for (unsigned k = 0; k < 3; ++k)
+    for (unsigned l = 0; l < 3; ++l) {
+      // Direction dF = e_k (x) e_l.
+      Tensor2 X;  // dF Cp^-1 F^T
+      for (unsigned j = 0; j < 3; ++j) X[k][j] = Cpi_FT[l][j];
+      const Tensor2 db = X + dealii::transpose(X);
+      Tensor2 h = QT * db * Q;
+      for (unsigned a = 0; a < 3; ++a)
+        for (unsigned b = 0; b < 3; ++b) h[a][b] *= 0.5 * theta[a][b];
+      const SymTensor2 dtau = modulus(symmetric_part(Q * h * QT));
+      Tensor2 dFT_FinvT;  // dF^T F^-T = e_l (x) (row k of F^-T)
+      for (unsigned j = 0; j < 3; ++j) dFT_FinvT[l][j] = F_inv_T[k][j];
+      const Tensor2 dP = Tensor2(dtau) * F_inv_T - P_part * dFT_FinvT;
+      for (unsigned i = 0; i < 3; ++i)
+        for (unsigned j = 0; j < 3; ++j) tangent[i][j][k][l] = dP[i][j];
+    }
+  return tangent;
+}
+
 }  // namespace
 
-J2LogPlasticity::J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening, FailureParameters failure)
-    : elastic_(elastic), hardening_(std::move(hardening)), failure_(failure) {
+J2LogPlasticity::J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening, FailureParameters failure,
+                                 KinematicParameters kinematic)
+    : elastic_(elastic), hardening_(std::move(hardening)), failure_(failure), kinematic_(kinematic) {
   if (!(elastic_.young > 0) || !(elastic_.poisson > -1.0) || !(elastic_.poisson < 0.5))
     throw std::invalid_argument("elastic constants: need E > 0 and -1 < nu < 0.5");
+  if (!(kinematic_.modulus >= 0.0) || !(kinematic_.saturation_rate >= 0.0))
+    throw std::invalid_argument("kinematic hardening: need C >= 0 and gamma >= 0");
+}
+
+// Backward-Euler Armstrong-Frederick return: with eta(x) = s_tr - beta_n / (1 + gamma x) the
+// relative stress stays parallel to eta and x = Delta alpha solves
+//   g(x) = sqrt(3/2) |eta(x)| - (3 G + C / (1 + gamma x)) x - sigma_y(alpha_n + x) = 0.
+// Safeguarded Newton; g(0) > 0 and g < 0 at the upper bracket below.
+double J2LogPlasticity::solve_kinematic_increment(const SymTensor2& s_trial, const SymTensor2& beta_n,
+                                                  double alpha_n) const {
+  const double G = elastic_.shear(), C = kinematic_.modulus, gm = kinematic_.saturation_rate;
+  const double scale = std::sqrt(1.5) * (s_trial.norm() + beta_n.norm());
+  double lo = 0.0, hi = scale / (3.0 * G);
+  double x = 0.0;
+  for (int it = 0; it < 200; ++it) {
+    const double d = 1.0 + gm * x;
+    const SymTensor2 eta = s_trial - beta_n / d;
+    const double eta_norm = eta.norm();
+    const double g = std::sqrt(1.5) * eta_norm - (3.0 * G + C / d) * x - hardening_.flow_stress(alpha_n + x);
+    if (std::abs(g) <= 1e-13 * scale) return x;
+    if (g > 0) lo = x; else hi = x;
+    const double deta_n = eta_norm > 0.0 ? (eta * beta_n) * gm / (d * d) / eta_norm : 0.0;
+    const double dg = std::sqrt(1.5) * deta_n - 3.0 * G - C / (d * d) - hardening_.slope(alpha_n + x);
+    double next = x - g / dg;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (hi - lo <= 1e-16 * std::max(1.0, hi)) return next;
+    x = next;
+  }
+  throw std::domain_error("kinematic return mapping did not converge");
 }
 
 // Safeguarded Newton (bisection fallback) on q_tr - 3 G x - sigma_y(alpha_n + x) = 0; the root is
@@ -89,6 +151,9 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
   for (unsigned a = 0; a < 3; ++a) eps[a] = 0.5 * std::log(s.values[a]);
   const double volumetric = eps[0] + eps[1] + eps[2];
   for (unsigned a = 0; a < 3; ++a) dev[a] = eps[a] - volumetric / 3.0;
+  const Tensor2 F_inv = dealii::invert(F);
+  const Tensor2 F_inv_T = dealii::transpose(F_inv);
+  if (kinematic_.enabled()) return update_kinematic(F, F_inv_T, Cpi, s, eps, committed, with_tangent);
   const double dev_norm = std::sqrt(dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]);
   const double q_trial = std::sqrt(1.5) * 2.0 * G * dev_norm;
 
@@ -111,8 +176,6 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
 
   StressUpdate r;
   r.kirchhoff = from_principal(s, tau);
-  const Tensor2 F_inv = dealii::invert(F);
-  const Tensor2 F_inv_T = dealii::transpose(F_inv);
   r.first_piola = Tensor2(r.kirchhoff) * F_inv_T;
   r.plastic_increment = dgamma;
   r.elastic_energy = 0.5 * K * volumetric * volumetric + G * dev_e_sq;
@@ -142,37 +205,82 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
     c_dev = 2.0 * G * (1.0 - 3.0 * G * dgamma / q_trial);
     c_nn = 6.0 * G * G * (dgamma / q_trial - 1.0 / (3.0 * G + H));
   }
+  r.tangent = chain_tangent(s, F, F_inv_T, Cpi, r.kirchhoff, [&](const SymTensor2& deps) {
+    const double dvol = dealii::trace(deps);
+    const SymTensor2 ddev = deps - dvol / 3.0 * dealii::unit_symmetric_tensor<3>();
+    return SymTensor2(K * dvol * dealii::unit_symmetric_tensor<3>() + c_dev * ddev + c_nn * (n_hat * ddev) * n_hat);
+  });
+  return r;
+}
 
-  // d ln(b)/db by the Daleckii-Krein formula in the eigenbasis (valid for repeated eigenvalues).
-  double theta[3][3];
-  for (unsigned a = 0; a < 3; ++a)
-    for (unsigned b = 0; b < 3; ++b) theta[a][b] = log_divided_difference(s.values[a], s.values[b]);
-  const Tensor2& Q = s.vectors;
-  const Tensor2 QT = dealii::transpose(Q);
-  const Tensor2 Cpi_FT = Cpi * dealii::transpose(F);
-  const Tensor2 P_part = Tensor2(r.kirchhoff) * F_inv_T;  // tau F^-T
+// Combined isotropic / Armstrong-Frederick hardening. The backstress lives in the spatial
+// log-strain space of the trial state and is not rotated with the material (no spin term):
+// exact for paths with fixed principal axes (tension-compression cycles), an approximation
+// under large rigid rotations. The plastic flow direction is then no longer coaxial with b_tr;
+// b_e = exp(2 eps_e) with eps_e = eps_tr - Delta eps_p (Eterovic & Bathe 1990).
+StressUpdate J2LogPlasticity::update_kinematic(const Tensor2& F, const Tensor2& F_inv_T, const Tensor2& Cpi,
+                                               const Spectral& s, const std::array<double, 3>& eps,
+                                               const PlasticState& committed, bool with_tangent) const {
+  const double K = elastic_.bulk(), G = elastic_.shear();
+  const double C = kinematic_.modulus, gm = kinematic_.saturation_rate;
+  const SymTensor2 I = dealii::unit_symmetric_tensor<3>();
+  const SymTensor2 eps_tr = from_principal(s, eps);
+  const double volumetric = dealii::trace(eps_tr);
+  const SymTensor2 s_trial = 2.0 * G * dealii::deviator(eps_tr);
+  const SymTensor2& beta_n = committed.backstress;
+  const double alpha_n = committed.equivalent_plastic_strain;
+  const double q_trial = std::sqrt(1.5) * (s_trial - beta_n).norm();
+  const double sigma_y0 = hardening_.flow_stress(alpha_n);
 
-  for (unsigned k = 0; k < 3; ++k)
-    for (unsigned l = 0; l < 3; ++l) {
-      // Direction dF = e_k (x) e_l.
-      Tensor2 X;  // dF Cp^-1 F^T
-      for (unsigned j = 0; j < 3; ++j) X[k][j] = Cpi_FT[l][j];
-      const Tensor2 db = X + dealii::transpose(X);
-      Tensor2 h = QT * db * Q;
-      for (unsigned a = 0; a < 3; ++a)
-        for (unsigned b = 0; b < 3; ++b) h[a][b] *= 0.5 * theta[a][b];
-      const SymTensor2 deps = symmetric_part(Q * h * QT);
-      const double dvol = dealii::trace(deps);
-      const SymTensor2 ddev = deps - dvol / 3.0 * dealii::unit_symmetric_tensor<3>();
-      const SymTensor2 dtau = K * dvol * dealii::unit_symmetric_tensor<3>() + c_dev * ddev +
-                              c_nn * (n_hat * ddev) * n_hat;
-      // dP = dtau F^-T - tau F^-T dF^T F^-T
-      Tensor2 dFT_FinvT;  // dF^T F^-T = e_l (x) (row k of F^-T)
-      for (unsigned j = 0; j < 3; ++j) dFT_FinvT[l][j] = F_inv_T[k][j];
-      const Tensor2 dP = Tensor2(dtau) * F_inv_T - P_part * dFT_FinvT;
-      for (unsigned i = 0; i < 3; ++i)
-        for (unsigned j = 0; j < 3; ++j) r.tangent[i][j][k][l] = dP[i][j];
+  double dalpha = 0.0;
+  if (q_trial - sigma_y0 > 1e-12 * sigma_y0) dalpha = solve_kinematic_increment(s_trial, beta_n, alpha_n);
+  const double d = 1.0 + gm * dalpha;
+  const SymTensor2 eta = s_trial - beta_n / d;
+  const double eta_norm = eta.norm();
+  const SymTensor2 n_hat = dalpha > 0.0 ? SymTensor2(eta / eta_norm) : SymTensor2();
+  const SymTensor2 plastic_strain_increment = std::sqrt(1.5) * dalpha * n_hat;
+  const SymTensor2 deviator = s_trial - 2.0 * G * plastic_strain_increment;
+  const SymTensor2 eps_e = eps_tr - plastic_strain_increment;
+
+  StressUpdate r;
+  r.kirchhoff = K * volumetric * I + deviator;
+  r.first_piola = Tensor2(r.kirchhoff) * F_inv_T;
+  r.plastic_increment = dalpha;
+  const SymTensor2 dev_e = dealii::deviator(eps_e);
+  r.elastic_energy = 0.5 * K * volumetric * volumetric + G * (dev_e * dev_e);
+  r.state.equivalent_plastic_strain = alpha_n + dalpha;
+  // Plastic work tau : Delta eps_p (includes the energy stored in the backstress).
+  r.state.plastic_dissipation = committed.plastic_dissipation + deviator * plastic_strain_increment;
+  r.state.backstress = dalpha > 0.0 ? SymTensor2((beta_n + C * std::sqrt(2.0 / 3.0) * dalpha * n_hat) / d) : beta_n;
+  const Spectral e = spectral(eps_e);
+  std::array<double, 3> b_e{};
+  for (unsigned a = 0; a < 3; ++a) b_e[a] = std::exp(2.0 * e.values[a]);
+  const Tensor2 F_inv = dealii::transpose(F_inv_T);
+  r.state.plastic_metric_inverse = symmetric_part(F_inv * Tensor2(from_principal(e, b_e)) * F_inv_T);
+  r.state.damage = committed.damage;
+  if (dalpha > 0.0 && failure_.enabled()) {
+    const double q = std::sqrt(1.5) * deviator.norm();
+    const double strain_to_failure = failure_.d1 + failure_.d2 * std::exp(failure_.d3 * K * volumetric / q);
+    r.state.damage += dalpha / std::max(strain_to_failure, 1e-6);
+  }
+  if (!with_tangent) return r;
+
+  // Linearisation of the return: d(Delta alpha) from dg = 0, d n_hat from d eta.
+  const SymTensor2 b = gm / (d * d) * beta_n;  // d eta / d(Delta alpha)
+  const double hardening_slope = hardening_.slope(alpha_n + dalpha);
+  const double denominator = 3.0 * G + C / (d * d) + hardening_slope - std::sqrt(1.5) * (n_hat * b);
+  r.tangent = chain_tangent(s, F, F_inv_T, Cpi, r.kirchhoff, [&](const SymTensor2& deps) {
+    const double dvol = dealii::trace(deps);
+    const SymTensor2 ddev = deps - dvol / 3.0 * I;
+    SymTensor2 dtau = K * dvol * I + 2.0 * G * ddev;
+    if (dalpha > 0.0) {
+      const double ddalpha = std::sqrt(1.5) * 2.0 * G * (n_hat * ddev) / denominator;
+      const SymTensor2 deta = 2.0 * G * ddev + ddalpha * b;
+      const SymTensor2 dn = (deta - (n_hat * deta) * n_hat) / eta_norm;
+      dtau -= 2.0 * G * std::sqrt(1.5) * (ddalpha * n_hat + dalpha * dn);
     }
+    return dtau;
+  });
   return r;
 }
 

@@ -6,6 +6,8 @@
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
 
+#include <array>
+
 #include "hardening.hpp"
 
 namespace dtwire::fem {
@@ -27,6 +29,17 @@ struct PlasticState {
   double equivalent_plastic_strain = 0.0;
   double plastic_dissipation = 0.0;  // J per reference volume, accumulated
   double damage = 0.0;               // ductile failure indicator, failure at 1
+  SymTensor2 backstress;             // Pa, deviatoric (Armstrong-Frederick), spatial log-strain frame
+};
+
+// Armstrong-Frederick kinematic hardening (Armstrong & Frederick 1966; Frederick & Armstrong
+// 2007, Mater. High Temp. 24): d beta = (2/3) C d eps_p - gamma beta d alpha, in the logarithmic
+// strain space of the trial state (Eterovic & Bathe 1990, IJNME 30, combined hardening). Uniaxial:
+// X = (3/2) beta_zz = (C / gamma)(1 - exp(-gamma eps_p)). Off when C = 0.
+struct KinematicParameters {
+  double modulus = 0.0;          // C, Pa
+  double saturation_rate = 0.0;  // gamma (0: linear Prager hardening)
+  bool enabled() const { return modulus > 0.0; }
 };
 
 // Uncoupled ductile failure indicator (Johnson & Cook 1985, EFM 21): D = sum d(alpha) / eps_f,
@@ -45,9 +58,12 @@ struct StressUpdate {
   PlasticState state;              // updated history (commit only on convergence)
 };
 
+struct Spectral;  // eigen-decomposition of a symmetric tensor (implementation detail)
+
 class J2LogPlasticity {
  public:
-  J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening, FailureParameters failure = {});
+  J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening, FailureParameters failure = {},
+                  KinematicParameters kinematic = {});
 
   // Stress at deformation gradient F from the committed history. Throws std::domain_error if
   // det F <= 0 (the caller cuts the load step back).
@@ -55,13 +71,20 @@ class J2LogPlasticity {
 
   const ElasticParameters& elastic() const { return elastic_; }
   const IsotropicHardening& hardening() const { return hardening_; }
+  const KinematicParameters& kinematic() const { return kinematic_; }
 
  private:
   double solve_plastic_increment(double trial_equivalent_stress, double alpha_n) const;
+  StressUpdate update_kinematic(const Tensor2& F, const Tensor2& F_inv_T, const Tensor2& Cpi, const Spectral& s,
+                                const std::array<double, 3>& eps, const PlasticState& committed,
+                                bool with_tangent) const;
+  double solve_kinematic_increment(const SymTensor2& trial_deviator, const SymTensor2& backstress,
+                                   double alpha_n) const;
 
   ElasticParameters elastic_;
   IsotropicHardening hardening_;
   FailureParameters failure_;
+  KinematicParameters kinematic_;
 };
 
 // Stress invariants for output: von Mises, triaxiality (mean / von Mises), Lode parameter

@@ -54,6 +54,10 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Failure d2", "0", Patterns::Double(), "");
   prm.declare_entry("Failure d3", "0", Patterns::Double(), "");
   prm.declare_entry("Stop at failure", "true", Patterns::Bool(), "end the run when the indicator reaches 1");
+  prm.declare_entry("Kinematic modulus (MPa)", "0", Patterns::Double(0.0),
+                    "Armstrong-Frederick C (0: no kinematic hardening), combined with the isotropic law");
+  prm.declare_entry("Kinematic saturation rate", "0", Patterns::Double(0.0),
+                    "Armstrong-Frederick gamma: backstress saturates at C/gamma (0: linear Prager)");
   prm.leave_subsection();
 
   prm.enter_subsection("Formulation");
@@ -66,13 +70,18 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Bottom end", "clamped", Patterns::Selection("clamped|axial|symmetry"),
                     "z = 0: clamped (u = 0), axial (u_z = 0), symmetry (mid-plane: u_z = 0, "
                     "curve displacement and energies doubled)");
-  prm.declare_entry("Top end", "clamped", Patterns::Selection("clamped|axial"),
+  prm.declare_entry("Top end", "clamped", Patterns::Selection("clamped|axial|free"),
                     "z = length: the load-path displacement; clamped also fixes the other components, "
-                    "axial leaves them free");
+                    "axial leaves them free; free: no constraint (loaded by contact tools, e.g. bending)");
   prm.declare_entry("Load direction", "axial", Patterns::Selection("axial|lateral"),
                     "axial: top u_z prescribed (tension, compression); lateral: top u_x (cantilever)");
   prm.declare_entry("Load path (mm)", "0:0, 1:1", Patterns::Anything(),
                     "pseudo-time:top displacement pairs, piecewise linear (unload/reload/cycles)");
+  prm.declare_entry("Control", "displacement", Patterns::Selection("displacement|force"),
+                    "displacement: Load path (mm) on the top face; force: Force path (N), the top face "
+                    "moving as one along z (axial load only)");
+  prm.declare_entry("Force path (N)", "0:0, 1:0", Patterns::Anything(),
+                    "Control = force: pseudo-time:total axial force pairs (whole specimen), piecewise linear");
   prm.leave_subsection();
 
   prm.enter_subsection("Load stepping");
@@ -89,6 +98,10 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Relative tolerance", "1e-10", Patterns::Double(0.0), "");
   prm.declare_entry("Line search", "true", Patterns::Bool(), "");
   prm.declare_entry("Maximum line search steps", "5", Patterns::Integer(0), "");
+  prm.declare_entry("Linear solver", "direct", Patterns::Selection("direct|gmres-amg"),
+                    "direct: MUMPS; gmres-amg: GMRES with PETSc GAMG and the rigid-body modes (large problems)");
+  prm.declare_entry("Linear tolerance", "1e-12", Patterns::Double(0.0), "gmres-amg: relative residual");
+  prm.declare_entry("Maximum linear iterations", "2000", Patterns::Integer(1), "gmres-amg");
   prm.leave_subsection();
 
   prm.enter_subsection("Output");
@@ -126,6 +139,7 @@ std::vector<std::pair<double, double>> parse_pairs(const std::string& text, cons
 EndCondition end_condition(const std::string& s) {
   if (s == "axial") return EndCondition::axial;
   if (s == "symmetry") return EndCondition::symmetry;
+  if (s == "free") return EndCondition::free;
   return EndCondition::clamped;
 }
 
@@ -189,6 +203,8 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.material.failure.d2 = prm.get_double("Failure d2");
   p.material.failure.d3 = prm.get_double("Failure d3");
   p.material.stop_at_failure = prm.get_bool("Stop at failure");
+  p.material.kinematic.modulus = prm.get_double("Kinematic modulus (MPa)") * 1e6;
+  p.material.kinematic.saturation_rate = prm.get_double("Kinematic saturation rate");
   h.yield_stress = prm.get_double("Yield stress (MPa)") * 1e6;
   h.linear_modulus = prm.get_double("Hardening modulus (MPa)") * 1e6;
   h.saturation_stress = prm.get_double("Saturation stress (MPa)") * 1e6;
@@ -225,6 +241,20 @@ Parameters read_parameters(const std::filesystem::path& file) {
   for (std::size_t i = 1; i < p.load.path.size(); ++i)
     if (!(p.load.path[i].first > p.load.path[i - 1].first))
       throw InputError(name, "'Load path (mm)': pseudo-times must increase strictly");
+  if (prm.get("Control") == "force") {
+    if (p.load.direction != LoadDirection::axial || p.load.top == EndCondition::free)
+      throw InputError(name, "Control = force needs Load direction = axial and Top end = clamped or axial");
+    p.load.force_control = true;
+    p.load.force_path = parse_pairs(prm.get("Force path (N)"), name, "Force path (N)");
+    const auto& f = p.load.force_path;
+    if (f.size() < 2 || f.front().first != 0.0 || f.front().second != 0.0)
+      throw InputError(name, "'Force path (N)': expected at least two pairs starting with 0:0");
+    for (std::size_t i = 1; i < f.size(); ++i)
+      if (!(f[i].first > f[i - 1].first))
+        throw InputError(name, "'Force path (N)': pseudo-times must increase strictly");
+    p.load.path.clear();
+    for (const auto& knot : f) p.load.path.emplace_back(knot.first, 0.0);
+  }
   if (!p.geometry.quarter && p.load.bottom != EndCondition::clamped && p.load.top != EndCondition::clamped)
     throw InputError(name, "a full cross-section needs at least one clamped end (rigid-body modes)");
   prm.leave_subsection();
@@ -245,6 +275,9 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.newton.relative_tolerance = prm.get_double("Relative tolerance");
   p.newton.line_search = prm.get_bool("Line search");
   p.newton.maximum_line_search_steps = prm.get_integer("Maximum line search steps");
+  p.newton.krylov = prm.get("Linear solver") == "gmres-amg";
+  p.newton.linear_tolerance = prm.get_double("Linear tolerance");
+  p.newton.maximum_linear_iterations = prm.get_integer("Maximum linear iterations");
   prm.leave_subsection();
 
   prm.enter_subsection("Output");
@@ -258,8 +291,8 @@ Parameters read_parameters(const std::filesystem::path& file) {
   return p;
 }
 
-double path_displacement(const LoadParameters& load, double t) {
-  const auto& path = load.path;
+namespace {
+double piecewise_linear(const std::vector<std::pair<double, double>>& path, double t) {
   if (t <= path.front().first) return path.front().second;
   for (std::size_t i = 1; i < path.size(); ++i)
     if (t <= path[i].first) {
@@ -267,6 +300,13 @@ double path_displacement(const LoadParameters& load, double t) {
       return path[i - 1].second + s * (path[i].second - path[i - 1].second);
     }
   return path.back().second;
+}
+}  // namespace
+
+double path_displacement(const LoadParameters& load, double t) { return piecewise_linear(load.path, t); }
+
+double path_force(const LoadParameters& load, double t) {
+  return load.force_control ? piecewise_linear(load.force_path, t) : 0.0;
 }
 
 }  // namespace dtwire::fem

@@ -31,6 +31,7 @@ struct MaterialParameters {
   double poisson = 0.3;
   HardeningParameters hardening;
   FailureParameters failure;
+  KinematicParameters kinematic;  // Armstrong-Frederick, off by default
   bool stop_at_failure = true;
 };
 
@@ -39,7 +40,7 @@ struct FormulationParameters {
   unsigned degree = 1;
 };
 
-enum class EndCondition { clamped, axial, symmetry };
+enum class EndCondition { clamped, axial, symmetry, free };  // free: top end only (bending on rollers)
 enum class LoadDirection { axial, lateral };  // top displacement along z, or along x
 
 struct LoadParameters {
@@ -47,6 +48,10 @@ struct LoadParameters {
   EndCondition top = EndCondition::clamped;     // z = length, carries the prescribed displacement
   LoadDirection direction = LoadDirection::axial;
   std::vector<std::pair<double, double>> path;  // (pseudo-time, top displacement in m)
+  // Force control: the top face moves as one (all its u_z equal) under the total axial force
+  // force_path(t) (N, whole specimen); `path` then holds the same knots with zero displacement.
+  bool force_control = false;
+  std::vector<std::pair<double, double>> force_path;  // (pseudo-time, force in N)
 };
 
 struct SteppingParameters {
@@ -63,6 +68,9 @@ struct NewtonParameters {
   double relative_tolerance = 1e-10;  // free residual vs internal-force norm
   bool line_search = true;
   unsigned maximum_line_search_steps = 5;
+  bool krylov = false;                 // GMRES + PETSc GAMG with rigid-body modes instead of MUMPS
+  double linear_tolerance = 1e-12;     // Krylov: relative residual of each linear solve
+  unsigned maximum_linear_iterations = 2000;
 };
 
 struct OutputParameters {
@@ -87,5 +95,7 @@ Parameters read_parameters(const std::filesystem::path& file);
 
 // Top displacement (m) at pseudo-time t, piecewise linear in the load path.
 double path_displacement(const LoadParameters& load, double t);
+// Prescribed total force (N) at pseudo-time t under force control (0 otherwise).
+double path_force(const LoadParameters& load, double t);
 
 }  // namespace dtwire::fem

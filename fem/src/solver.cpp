@@ -18,6 +18,8 @@
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 #include <deal.II/lac/sparsity_tools.h>
+#include <deal.II/fe/mapping_q1.h>
+#include <petscksp.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
 
@@ -26,6 +28,7 @@
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <ostream>
 #include <sstream>
 
@@ -84,7 +87,7 @@ struct WireSolver::Impl {
         dof_handler(triangulation),
         quadrature(p.formulation.degree + 1),
         material(ElasticParameters{p.material.young, p.material.poisson}, IsotropicHardening(p.material.hardening),
-                 p.material.failure),
+                 p.material.failure, p.material.kinematic),
         field_directory(std::move(fields)) {}
 
   Parameters prm;
@@ -98,6 +101,12 @@ struct WireSolver::Impl {
   std::filesystem::path field_directory;
 
   IndexSet owned, relevant, top_loaded_dofs;
+  // Force control: the top face's u_z dofs follow this one; the prescribed force (per modelled
+  // part) acts on it.
+  types::global_dof_index force_dof = numbers::invalid_dof_index;
+  double applied_force = 0.0;
+  // Krylov option: orthonormal rigid-body modes (3 translations, 3 rotations) for GAMG.
+  std::vector<PETScWrappers::MPI::Vector> rigid_body_modes;
   AffineConstraints<double> homogeneous, predictor;
   PETScWrappers::MPI::SparseMatrix matrix;
   PETScWrappers::MPI::Vector solution, rhs, internal_force, increment;
@@ -141,6 +150,8 @@ struct WireSolver::Impl {
   void write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step);
   void read_checkpoint(unsigned step, SteppingState& state, PETScWrappers::MPI::Vector& last_step);
   // contact (issue 5): solve_step inside the augmented-Lagrange (Uzawa) loop.
+  void make_rigid_body_modes();
+  unsigned solve_krylov();  // GMRES + GAMG; returns the iterations, throws on failure
   bool solve_contact_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                           const PETScWrappers::MPI::Vector& start, unsigned& iterations, std::string& reason);
 };
@@ -154,6 +165,13 @@ void WireSolver::Impl::setup() {
   stats.cells = triangulation.n_global_active_cells();
   stats.ranks = Utilities::MPI::n_mpi_processes(comm);
 
+  top_loaded_dofs = DoFTools::extract_boundary_dofs(dof_handler, fe.component_mask(loaded_component()), {kTop});
+  if (prm.load.force_control) {
+    force_dof = Utilities::MPI::min(top_loaded_dofs.n_elements() > 0 ? *top_loaded_dofs.begin()
+                                                                      : numbers::invalid_dof_index,
+                                    comm);
+    relevant.add_index(force_dof);  // every rank reads its displacement and constrains to it
+  }
   make_constraints(homogeneous, 0.0);
   make_constraints(predictor, 1.0);  // same sparsity; values reset per step
   DynamicSparsityPattern dsp(relevant);
@@ -166,8 +184,8 @@ void WireSolver::Impl::setup() {
   increment.reinit(owned, comm);
   ghosted.reinit(owned, relevant, comm);
 
-  top_loaded_dofs = DoFTools::extract_boundary_dofs(dof_handler, fe.component_mask(loaded_component()), {kTop});
   points.assign(triangulation.n_active_cells() * quadrature.size(), QuadraturePointRecord{});
+  if (prm.newton.krylov) make_rigid_body_modes();
   if (prm.contact.enabled())  // contact (issue 5)
     rigid_contact = std::make_unique<contact::RigidToolContact>(prm.contact, prm.material.young, dof_handler, kBottom,
                                                                 kTop, comm);
@@ -185,9 +203,21 @@ void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double top
   Vector<double> top_value(3);
   top_value[loaded_component().component] = top_increment;
   const Functions::ConstantFunction<3> top(top_value);
-  VectorTools::interpolate_boundary_values(dof_handler, kTop, top, c,
-                                           prm.load.top == EndCondition::clamped ? all
-                                                                                 : fe.component_mask(loaded_component()));
+  if (prm.load.force_control) {
+    // The top face translates as one along z (all u_z equal to force_dof's); clamped also
+    // holds u_x, u_y.
+    if (prm.load.top == EndCondition::clamped)
+      VectorTools::interpolate_boundary_values(dof_handler, kTop, zero, c,
+                                               ComponentMask(std::vector<bool>{true, true, false}));
+    for (const auto i : top_loaded_dofs)
+      if (i != force_dof && relevant.is_element(i)) {
+        c.add_line(i);
+        c.add_entry(i, force_dof, 1.0);
+      }
+  } else if (prm.load.top != EndCondition::free)
+    VectorTools::interpolate_boundary_values(dof_handler, kTop, top, c,
+                                             prm.load.top == EndCondition::clamped ? all
+                                                                                   : fe.component_mask(loaded_component()));
   VectorTools::interpolate_boundary_values(dof_handler, kBottom, zero, c,
                                            prm.load.bottom == EndCondition::clamped ? all : z_only);
   if (prm.geometry.quarter) {
@@ -278,6 +308,7 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
   if (rigid_contact &&  // contact (issue 5): tool tractions on the contact boundary faces
       !rigid_contact->assemble(relevant, relevant_values, with_matrix, constraints, matrix, rhs, internal_force))
     failed = true;
+  if (force_dof != numbers::invalid_dof_index && owned.is_element(force_dof)) rhs(force_dof) += applied_force;
   if (with_matrix) matrix.compress(VectorOperation::add);
   rhs.compress(VectorOperation::add);
   internal_force.compress(VectorOperation::add);
@@ -290,6 +321,11 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
   if (outcome.ok) {
     outcome.residual = rhs.l2_norm();
     outcome.force_scale = internal_force.l2_norm();
+    // Force control: near zero load the internal forces vanish and a purely relative criterion
+    // would chase round-off; the largest force of the path sets the scale.
+    if (prm.load.force_control)
+      for (const auto& knot : prm.load.force_path)
+        outcome.force_scale = std::max(outcome.force_scale, std::abs(knot.second) / force_multiplier());
     outcome.ok = std::isfinite(outcome.residual) && std::isfinite(outcome.force_scale);
   }
   stats.assembly_seconds += timer.wall_time();
@@ -375,6 +411,7 @@ double WireSolver::Impl::neck_radius() const {
 bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                                   unsigned& iterations, std::string& reason) {
   const double increment_value = path_displacement(prm.load, t_new) - path_displacement(prm.load, t_old);
+  applied_force = path_force(prm.load, t_new) / force_multiplier();
   make_constraints(predictor, increment_value);
   const unsigned first_free = extrapolation ? 0 : 1;  // first iteration with homogeneous constraints
   if (extrapolation) {
@@ -418,12 +455,16 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
       if (it > first_free && a.residual > 1e6 * previous_residual) break;
     }
     Timer timer;
-    SolverControl control(1, 0.0);
-    PETScWrappers::SparseDirectMUMPS direct(control, comm);
     try {
-      direct.solve(matrix, increment, rhs);
+      if (prm.newton.krylov) {
+        history << " (gmres " << solve_krylov() << ")";
+      } else {
+        SolverControl control(1, 0.0);
+        PETScWrappers::SparseDirectMUMPS direct(control, comm);
+        direct.solve(matrix, increment, rhs);
+      }
     } catch (const std::exception& e) {
-      reason = "direct solver failed";
+      reason = prm.newton.krylov ? std::string("Krylov solver failed: ") + e.what() : "direct solver failed";
       stats.solve_seconds += timer.wall_time();
       return false;
     }
@@ -437,6 +478,66 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
   reason = "no convergence in " + std::to_string(prm.newton.maximum_iterations) + " iterations";
   log << "    newton (relative residual):" << history.str() << "\n";
   return false;
+}
+
+// Rigid-body modes of the owned dofs from their support points, orthonormalised (PETSc's
+// near-null-space contract) by modified Gram-Schmidt.
+void WireSolver::Impl::make_rigid_body_modes() {
+  std::map<types::global_dof_index, Point<3>> points_of;
+  DoFTools::map_dofs_to_support_points(MappingQ1<3>(), dof_handler, points_of);
+  std::array<IndexSet, 3> component;
+  for (unsigned c = 0; c < 3; ++c) {
+    std::vector<bool> mask(3, false);
+    mask[c] = true;
+    component[c] = DoFTools::extract_dofs(dof_handler, ComponentMask(mask));
+  }
+  rigid_body_modes.assign(6, PETScWrappers::MPI::Vector(owned, comm));
+  for (const auto i : owned) {
+    const Point<3>& x = points_of.at(i);
+    unsigned c = 0;
+    while (!component[c].is_element(i)) ++c;
+    rigid_body_modes[c](i) = 1.0;                                                  // translations
+    rigid_body_modes[3](i) = c == 0 ? -x[1] : c == 1 ? x[0] : 0.0;                 // rotation about z
+    rigid_body_modes[4](i) = c == 1 ? -x[2] : c == 2 ? x[1] : 0.0;                 // about x
+    rigid_body_modes[5](i) = c == 2 ? -x[0] : c == 0 ? x[2] : 0.0;                 // about y
+  }
+  for (unsigned m = 0; m < 6; ++m) {
+    rigid_body_modes[m].compress(VectorOperation::insert);
+    for (unsigned k = 0; k < m; ++k) rigid_body_modes[m].add(-(rigid_body_modes[m] * rigid_body_modes[k]), rigid_body_modes[k]);
+    rigid_body_modes[m] /= rigid_body_modes[m].l2_norm();
+  }
+}
+
+unsigned WireSolver::Impl::solve_krylov() {
+  const auto check = [](PetscErrorCode code) {
+    if (code != 0) throw std::runtime_error("PETSc error " + std::to_string(code));
+  };
+  std::vector<Vec> modes;
+  for (const auto& v : rigid_body_modes) modes.push_back(v);
+  MatNullSpace near_null_space;
+  check(MatNullSpaceCreate(comm, PETSC_FALSE, static_cast<PetscInt>(modes.size()), modes.data(), &near_null_space));
+  check(MatSetNearNullSpace(matrix, near_null_space));
+  KSP ksp;
+  check(KSPCreate(comm, &ksp));
+  check(KSPSetOperators(ksp, matrix, matrix));
+  check(KSPSetType(ksp, KSPGMRES));
+  check(KSPGMRESSetRestart(ksp, 200));
+  check(KSPSetTolerances(ksp, prm.newton.linear_tolerance, 0.0, PETSC_DEFAULT,
+                         static_cast<PetscInt>(prm.newton.maximum_linear_iterations)));
+  PC pc;
+  check(KSPGetPC(ksp, &pc));
+  check(PCSetType(pc, PCGAMG));
+  check(KSPSolve(ksp, rhs, increment));
+  KSPConvergedReason converged;
+  PetscInt iterations = 0;
+  check(KSPGetConvergedReason(ksp, &converged));
+  check(KSPGetIterationNumber(ksp, &iterations));
+  check(KSPDestroy(&ksp));
+  check(MatNullSpaceDestroy(&near_null_space));
+  if (converged < 0)
+    throw std::runtime_error("GMRES did not converge (reason " + std::to_string(converged) + ") in " +
+                             std::to_string(iterations) + " iterations");
+  return static_cast<unsigned>(iterations);
 }
 
 // ---- contact (issue 5) ----
@@ -543,6 +644,7 @@ void WireSolver::Impl::write_checkpoint(const SteppingState& state, const PETScW
     for (unsigned k = 0; k < 6; ++k)
       data.push_back(p.committed.plastic_metric_inverse.access_raw_entry(k));
     data.insert(data.end(), {p.committed.equivalent_plastic_strain, p.committed.plastic_dissipation, p.committed.damage});
+    for (unsigned k = 0; k < 6; ++k) data.push_back(p.committed.backstress.access_raw_entry(k));
   }
   const auto temporary = file.string() + ".tmp";
   {
@@ -605,6 +707,7 @@ void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETS
     p.committed.equivalent_plastic_strain = next();
     p.committed.plastic_dissipation = next();
     p.committed.damage = next();
+    for (unsigned j = 0; j < 6; ++j) p.committed.backstress.access_raw_entry(j) = next();
     p.trial = p.committed;
   }
   if (k != data.size()) throw InputError(file.string(), "checkpoint longer than expected");
@@ -680,7 +783,9 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
     unsigned iterations = 0;
     std::string reason;
     s.log << "step " << step + 1 << ": t = " << t << " -> " << t + dt_try << " (dt = " << dt_try
-          << "), top displacement " << path_displacement(s.prm.load, t + dt_try) * 1e3 << " mm\n";
+          << "), top " << (s.prm.load.force_control ? "force " : "displacement ")
+          << (s.prm.load.force_control ? path_force(s.prm.load, t + dt_try) : path_displacement(s.prm.load, t + dt_try) * 1e3)
+          << (s.prm.load.force_control ? " N\n" : " mm\n");
     // Extrapolate the previous increment only inside the same load-path segment, not on a retry.
     const bool extrapolate = !retry && last_dt > 0.0 && knot == last_knot;
     if (extrapolate) {
@@ -700,7 +805,8 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       s.stats.newton_iterations += iterations;
       record.step = step;
       record.time = t;
-      record.displacement = path_displacement(s.prm.load, t) * s.length_multiplier();
+      record.displacement = (s.prm.load.force_control ? s.ghosted[s.force_dof] : path_displacement(s.prm.load, t)) *
+                            s.length_multiplier();
       record.force = s.reaction();
       record.plastic_dissipation = s.dissipation * s.force_multiplier() * s.length_multiplier();
       record.elastic_energy = s.elastic_energy * s.force_multiplier() * s.length_multiplier();

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <functional>
+#include <iostream>
 
 #include "j2_log_plasticity.hpp"
 
@@ -199,6 +200,108 @@ TEST(FailureIndicator, UniaxialDamageIsPlasticStrainOverStrainToFailure) {
   const double strain_to_failure = 0.05 + 3.44 * std::exp(-2.12 / 3.0);
   // Tolerance: the lateral-equilibrium iteration leaves eta = 1/3 to ~1e-10.
   EXPECT_NEAR(state.damage, state.equivalent_plastic_strain / strain_to_failure, 1e-9);
+}
+
+}  // namespace
+}  // namespace dtwire::fem
+
+namespace dtwire::fem {
+namespace {
+
+// Combined isotropic (linear) and Armstrong-Frederick kinematic hardening, uniaxial. Closed form
+// (Lemaitre & Chaboche 1990, sec. 5.4): with p the accumulated plastic strain, the uniaxial
+// backstress X = (3/2) beta_axial obeys dX = C d eps_p - gamma X dp, so under monotonic tension
+// X = (C/gamma)(1 - exp(-gamma p)) and tau = sigma_y(p) + X; on reversal the material yields
+// again at tau = X* - sigma_y(p*) (elastic range 2 sigma_y: Bauschinger effect), then in
+// compression X = -C/gamma + (X* + C/gamma) exp(-gamma (p - p*)) and tau = X - sigma_y(p).
+constexpr double kC = 20e9, kGamma = 100.0;  // backstress saturates at C/gamma = 200 MPa
+
+J2LogPlasticity kinematic_model() {
+  HardeningParameters h;
+  h.law = HardeningLaw::linear;
+  h.yield_stress = 400e6;
+  h.linear_modulus = 1e9;
+  return J2LogPlasticity(ElasticParameters{kE, kNu}, IsotropicHardening(h), {}, KinematicParameters{kC, kGamma});
+}
+
+TEST(KinematicHardening, UniaxialCycleMatchesArmstrongFrederickClosedForm) {
+  const J2LogPlasticity m = kinematic_model();
+  const double saturation = kC / kGamma;
+  // Backward Euler integrates dX/dp = C - gamma X with a global error <= X_sat (h/2) max(x e^-x),
+  // h = gamma dp per step = 100 x 2.5e-5: <= 4.6e-4 X_sat. Tolerance 1e-3 X_sat = 0.2 MPa.
+  const double tolerance = 1e-3 * saturation;
+  PlasticState state;
+  double mu = 1.0, tau = 0.0;
+  const int steps = 2000;
+  const double peak_strain = 0.05;
+  for (int n = 1; n <= steps; ++n) {
+    const StressUpdate r = uniaxial(m, std::exp(peak_strain * n / steps), state, mu);
+    state = r.state;
+    tau = r.kirchhoff[0][0];
+    const double p = state.equivalent_plastic_strain;
+    if (p == 0.0) continue;
+    const double X = saturation * (1.0 - std::exp(-kGamma * p));
+    ASSERT_NEAR(1.5 * state.backstress[0][0], X, tolerance) << "step " << n;
+    ASSERT_NEAR(tau, m.hardening().flow_stress(p) + X, tolerance) << "step " << n;
+  }
+  EXPECT_NEAR(dealii::trace(state.backstress), 0.0, 1e-6);  // deviatoric
+  const double p_star = state.equivalent_plastic_strain, X_star = 1.5 * state.backstress[0][0];
+  const double sigma_star = m.hardening().flow_stress(p_star);
+  // Bauschinger: Hencky elasticity is linear in log strain, so the reverse yield is at
+  // ln(lambda) = peak - (tau* - (X* - sigma_y*))/E = peak - 2 sigma_y* / E (to 1e-7 in log strain).
+  const double reverse_yield = peak_strain - (tau - (X_star - sigma_star)) / kE;
+  PlasticState before = state;
+  const StressUpdate elastic = uniaxial(m, std::exp(reverse_yield + 1e-7), before, mu);
+  EXPECT_EQ(elastic.plastic_increment, 0.0);
+  // Stress 1e-7 (log strain) before the reverse yield point: X* - sigma_y* + E 1e-7, to 1e-6 sigma_y*.
+  EXPECT_NEAR(elastic.kirchhoff[0][0], X_star - sigma_star + kE * 1e-7, 1e-6 * sigma_star);
+  EXPECT_GT(uniaxial(m, std::exp(reverse_yield - 1e-7), before, mu).plastic_increment, 0.0);
+  std::cout << "[kinematic] p* = " << p_star << ", X* = " << X_star * 1e-6 << " MPa (closed form "
+            << saturation * (1 - std::exp(-kGamma * p_star)) * 1e-6 << "), forward yield " << tau * 1e-6
+            << " MPa, reverse yield " << (elastic.kirchhoff[0][0] - kE * 1e-7) * 1e-6 << " MPa (X* - sigma_y* = "
+            << (X_star - sigma_star) * 1e-6 << ")\n";
+  // Reverse plastic loading in compression to -0.05 (fine steps again).
+  for (int n = 1; n <= 2 * steps; ++n) {
+    const double strain = reverse_yield + (-peak_strain - reverse_yield) * n / (2 * steps);
+    const StressUpdate r = uniaxial(m, std::exp(strain), state, mu);
+    state = r.state;
+    const double p = state.equivalent_plastic_strain;
+    if (p == p_star) continue;
+    const double X = -saturation + (X_star + saturation) * std::exp(-kGamma * (p - p_star));
+    ASSERT_NEAR(1.5 * state.backstress[0][0], X, tolerance) << "reverse step " << n;
+    ASSERT_NEAR(r.kirchhoff[0][0], X - m.hardening().flow_stress(p), tolerance) << "reverse step " << n;
+  }
+  const double Jp = 1.0 / std::sqrt(dealii::determinant(state.plastic_metric_inverse));
+  EXPECT_NEAR(Jp, 1.0, 1e-12);  // isochoric plastic flow
+}
+
+TEST(KinematicHardening, ConsistentTangentMatchesCentralFiniteDifferences) {
+  const J2LogPlasticity m = kinematic_model();
+  // Non-proportional history so that the backstress is not coaxial with the next trial stress.
+  PlasticState state;
+  Tensor2 F1 = dealii::unit_symmetric_tensor<3>();
+  F1[0][0] = 1.03;
+  F1[1][1] = F1[2][2] = 0.985;
+  F1[0][1] = 0.02;
+  state = m.update(F1, state, false).state;
+  ASSERT_GT(state.backstress.norm(), 0.0);
+  Tensor2 F2 = F1;
+  F2[1][2] = 0.03;
+  F2[2][0] = -0.015;
+  F2[0][0] = 1.05;
+  const StressUpdate plastic = m.update(F2, state, false);
+  ASSERT_GT(plastic.plastic_increment, 0.0);
+  EXPECT_LT(relative_tangent_error(m, F2, state), 1e-6);  // central differences, h = 1e-6
+  // Reverse plastic step (compression after tension) and an elastic step with a backstress.
+  Tensor2 F_reverse = F1;
+  F_reverse[0][0] = 0.99;
+  F_reverse[1][1] = F_reverse[2][2] = 1.006;
+  ASSERT_GT(m.update(F_reverse, plastic.state, false).plastic_increment, 0.0);
+  EXPECT_LT(relative_tangent_error(m, F_reverse, plastic.state), 1e-6);
+  Tensor2 F_unload = F2;
+  F_unload[0][0] -= 0.002;
+  ASSERT_EQ(m.update(F_unload, plastic.state, false).plastic_increment, 0.0);
+  EXPECT_LT(relative_tangent_error(m, F_unload, plastic.state), 1e-6);
 }
 
 }  // namespace
