@@ -1,0 +1,77 @@
+// FE solver benchmark (not a test): SW tension to failure (experiments/default/sw_tension.prm)
+// at three mesh levels, with MUMPS and with GMRES + GAMG (rigid-body modes). Reports DoFs,
+// steps, Newton iterations per step, assembly and solve time per iteration, total time, peak
+// memory and the peak force. 1 vs 2 ranks: run it under `mpirun -np 2`.
+#include <benchmark/benchmark.h>
+#include <deal.II/base/mpi.h>
+#include <sys/resource.h>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "dtwire/fem/run.hpp"
+
+namespace {
+
+std::string sw_tension_prm() {
+  std::ifstream in(std::string(DTWIRE_SOURCE_DIR) + "/experiments/default/sw_tension.prm");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void set_entry(std::string& prm, const std::string& key, const std::string& value) {
+  const auto pos = prm.find("set " + key + " =");
+  if (pos == std::string::npos) throw std::runtime_error("no entry " + key);
+  prm.replace(pos, prm.find('\n', pos) - pos, "set " + key + " = " + value);
+}
+
+// Level 0: 8-gon quarter section, 15 axial cells; 1: the default (30 cells); 2: 16-gon, 60 cells.
+void sw_tension(benchmark::State& state, int level, const std::string& linear_solver) {
+  std::string prm = sw_tension_prm();
+  set_entry(prm, "Radial refinements", level < 2 ? "1" : "2");
+  set_entry(prm, "Axial cells", std::to_string(15 << level));
+  set_entry(prm, "Fields", "false");
+  prm += "subsection Newton\n  set Linear solver = " + linear_solver + "\nend\n";
+  const std::string key = "sw_tension_" + std::to_string(level) + "_" + linear_solver;
+  const auto dir = std::filesystem::temp_directory_path() / ("dtwire_bench_fem_" + key);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "case.prm") << prm;
+  dtwire::fem::RunOptions options;
+  options.parameter_file = dir / "case.prm";
+  options.output_directory = dir / "out";
+  options.command_line = "bench_fem_sw_tension " + key;
+  options.echo = false;
+  dtwire::fem::RunSummary s;
+  for (auto _ : state) s = dtwire::fem::run_experiment(options);
+  const double iterations = static_cast<double>(s.newton_iterations + s.steps);  // + predictor solves
+  state.counters["dofs"] = static_cast<double>(s.dofs);
+  state.counters["ranks"] = s.ranks;
+  state.counters["steps"] = static_cast<double>(s.steps);
+  state.counters["newton_per_step"] = static_cast<double>(s.newton_iterations) / static_cast<double>(s.steps);
+  state.counters["cutbacks"] = static_cast<double>(s.cutbacks);
+  state.counters["assembly_s_per_it"] = s.assembly_seconds / iterations;
+  state.counters["solve_s_per_it"] = s.solve_seconds / iterations;
+  state.counters["total_s"] = s.wall_seconds;
+  state.counters["peak_force_kN"] = s.peak_force_N * 1e-3;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(sw_tension, level0_direct, 0, "direct")->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(sw_tension, level1_direct, 1, "direct")->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(sw_tension, level2_direct, 2, "direct")->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(sw_tension, level1_gmres_amg, 1, "gmres-amg")->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK_CAPTURE(sw_tension, level2_gmres_amg, 2, "gmres-amg")->Iterations(1)->Unit(benchmark::kSecond);
+
+int main(int argc, char** argv) {
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
