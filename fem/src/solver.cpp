@@ -10,6 +10,7 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/fe/fe_system.h>
 #include <deal.II/fe/fe_values.h>
+#include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/filtered_iterator.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -18,10 +19,9 @@
 #include <deal.II/lac/petsc_sparse_matrix.h>
 #include <deal.II/lac/petsc_vector.h>
 #include <deal.II/lac/sparsity_tools.h>
-#include <deal.II/fe/mapping_q1.h>
-#include <petscksp.h>
 #include <deal.II/numerics/data_out.h>
 #include <deal.II/numerics/vector_tools.h>
+#include <petscksp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -149,9 +149,9 @@ struct WireSolver::Impl {
   std::filesystem::path checkpoint_file(unsigned step) const;
   void write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step);
   void read_checkpoint(unsigned step, SteppingState& state, PETScWrappers::MPI::Vector& last_step);
-  // contact (issue 5): solve_step inside the augmented-Lagrange (Uzawa) loop.
   void make_rigid_body_modes();
   unsigned solve_krylov();  // GMRES + GAMG; returns the iterations, throws on failure
+  // contact (issue 5): solve_step inside the augmented-Lagrange (Uzawa) loop.
   bool solve_contact_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                           const PETScWrappers::MPI::Vector& start, unsigned& iterations, std::string& reason);
 };
