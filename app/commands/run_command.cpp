@@ -24,6 +24,8 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
     bool quiet = false;
     int restart_step = -1;
     std::string plot;
+    std::string plot_x = "displacement";
+    std::string plot_y = "force";
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = root.add_subcommand("run", "Run a virtual FE experiment from a .prm file (MPI-capable)");
@@ -33,7 +35,10 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--restart", options->restart_step,
                       "Resume from the checkpoint of this step in the output directory (Checkpoint interval)");
   command->add_option("--plot", options->plot,
-                      "Also draw the force-displacement curve to this PNG (python3-matplotlib)");
+                      "Also draw a curve of the run to this PNG (python3-matplotlib)");
+  command->add_option("--plot-x", options->plot_x, "Quantity on the plot's x axis (a curve.csv column without its unit)")
+      ->capture_default_str();
+  command->add_option("--plot-y", options->plot_y, "Quantity on the plot's y axis")->capture_default_str();
   commands.add(command, [options] {
     fem::RunOptions run;
     run.parameter_file = options->file;
@@ -49,7 +54,7 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
                 << s.peak_force_N << " N at " << s.displacement_at_peak_mm << " mm, " << s.wall_seconds
                 << " s; curve: " << s.curve_csv.string() << "\n";
     if (s.root && !options->plot.empty())
-      run_plot_script("plot_curves.py", {options->plot, "displacement", "force",
+      run_plot_script("plot_curves.py", {options->plot, options->plot_x, options->plot_y,
                                          std::filesystem::path(options->file).stem().string(),
                                          s.curve_csv.string()});
     return 0;

@@ -51,7 +51,7 @@ ElementGeometry distorted_hex() {
   const double gp[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
   for (unsigned q = 0; q < 8; ++q) {
     double detJ = 0;
-    geo.shape_grad.push_back(gradients({gp[q & 1], gp[(q >> 1) & 1], gp[(q >> 2) & 1]}, detJ));
+    geo.shape_grad.push_back(gradients({{gp[q & 1], gp[(q >> 1) & 1], gp[(q >> 2) & 1]}}, detJ));
     geo.weight.push_back(detJ / 8.0);
   }
   return geo;
