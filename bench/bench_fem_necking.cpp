@@ -17,6 +17,7 @@
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/curve_ops.hpp"
 #include "dtwire/fem/run.hpp"
+#include "fem_bench_case.hpp"
 
 namespace {
 
@@ -44,32 +45,7 @@ double considere_peak() {  // imperfect mid-section, exact homogeneous Hencky ba
 std::map<std::string, dtwire::Curve> curves;  // by "element/level", for the convergence figure
 
 void run_case(benchmark::State& state, const std::string& prm_text, const std::string& key) {
-  const auto dir = std::filesystem::temp_directory_path() / ("dtwire_bench_fem_" + key);
-  std::filesystem::create_directories(dir);
-  const auto prm = dir / "case.prm";
-  std::ofstream(prm) << prm_text;
-  dtwire::fem::RunOptions options;
-  options.parameter_file = prm;
-  options.output_directory = dir / "out";
-  options.command_line = "bench_fem_necking " + key;
-  options.echo = false;
-  dtwire::fem::RunSummary s;
-  for (auto _ : state) s = dtwire::fem::run_experiment(options);
-  const double iterations = static_cast<double>(s.newton_iterations + s.steps);  // + predictor solves
-  state.counters["dofs"] = static_cast<double>(s.dofs);
-  state.counters["ranks"] = s.ranks;
-  state.counters["steps"] = static_cast<double>(s.steps);
-  state.counters["newton_per_step"] = static_cast<double>(s.newton_iterations) / static_cast<double>(s.steps);
-  state.counters["cutbacks"] = static_cast<double>(s.cutbacks);
-  state.counters["assembly_s_per_it"] = s.assembly_seconds / iterations;
-  state.counters["solve_s_per_it"] = s.solve_seconds / iterations;
-  state.counters["dof_its_per_s_assembly"] = static_cast<double>(s.dofs) * iterations / s.assembly_seconds;
-  state.counters["total_s"] = s.wall_seconds;
-  state.counters["peak_force_kN"] = s.peak_force_N * 1e-3;
-  state.counters["u_at_peak_mm"] = s.displacement_at_peak_mm;
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  const dtwire::fem::RunSummary s = run_fem_case(state, prm_text, key, "bench_fem_necking");
   if (key.rfind("necking", 0) == 0) {
     state.counters["peak_vs_considere_pct"] = (s.peak_force_N / considere_peak() - 1) * 100;
     if (s.root) curves[key] = dtwire::read_csv(s.curve_csv);

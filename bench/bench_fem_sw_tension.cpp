@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "dtwire/fem/run.hpp"
+#include "fem_bench_case.hpp"
 
 namespace {
 
@@ -35,29 +36,7 @@ void sw_tension(benchmark::State& state, int level, const std::string& linear_so
   set_entry(prm, "Fields", "false");
   prm += "subsection Newton\n  set Linear solver = " + linear_solver + "\nend\n";
   const std::string key = "sw_tension_" + std::to_string(level) + "_" + linear_solver;
-  const auto dir = std::filesystem::temp_directory_path() / ("dtwire_bench_fem_" + key);
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "case.prm") << prm;
-  dtwire::fem::RunOptions options;
-  options.parameter_file = dir / "case.prm";
-  options.output_directory = dir / "out";
-  options.command_line = "bench_fem_sw_tension " + key;
-  options.echo = false;
-  dtwire::fem::RunSummary s;
-  for (auto _ : state) s = dtwire::fem::run_experiment(options);
-  const double iterations = static_cast<double>(s.newton_iterations + s.steps);  // + predictor solves
-  state.counters["dofs"] = static_cast<double>(s.dofs);
-  state.counters["ranks"] = s.ranks;
-  state.counters["steps"] = static_cast<double>(s.steps);
-  state.counters["newton_per_step"] = static_cast<double>(s.newton_iterations) / static_cast<double>(s.steps);
-  state.counters["cutbacks"] = static_cast<double>(s.cutbacks);
-  state.counters["assembly_s_per_it"] = s.assembly_seconds / iterations;
-  state.counters["solve_s_per_it"] = s.solve_seconds / iterations;
-  state.counters["total_s"] = s.wall_seconds;
-  state.counters["peak_force_kN"] = s.peak_force_N * 1e-3;
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
+  run_fem_case(state, prm, key, "bench_fem_sw_tension");
 }
 
 }  // namespace
