@@ -21,18 +21,6 @@
 
 namespace {
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void set_entry(std::string& prm, const std::string& key, const std::string& value) {
-  const auto pos = prm.find("set " + key + " =");
-  if (pos == std::string::npos) throw std::runtime_error("no entry " + key);
-  prm.replace(pos, prm.find('\n', pos) - pos, "set " + key + " = " + value);
-}
 
 double considere_peak() {  // imperfect mid-section, exact homogeneous Hencky bar
   const double r = 6.413e-3 * (1 - 0.018), A0 = M_PI * r * r;

@@ -16,17 +16,9 @@
 namespace {
 
 std::string sw_tension_prm() {
-  std::ifstream in(std::string(DTWIRE_SOURCE_DIR) + "/experiments/default/sw_tension.prm");
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
+  return read_text(std::string(DTWIRE_SOURCE_DIR) + "/experiments/default/sw_tension.prm");
 }
 
-void set_entry(std::string& prm, const std::string& key, const std::string& value) {
-  const auto pos = prm.find("set " + key + " =");
-  if (pos == std::string::npos) throw std::runtime_error("no entry " + key);
-  prm.replace(pos, prm.find('\n', pos) - pos, "set " + key + " = " + value);
-}
 
 // Level 0: 8-gon quarter section, 15 axial cells; 1: the default (30 cells); 2: 16-gon, 60 cells.
 void sw_tension(benchmark::State& state, int level, const std::string& linear_solver) {

@@ -7,9 +7,26 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "dtwire/fem/run.hpp"
+
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Replaces the value of `set key = ...` in a .prm text.
+inline void set_entry(std::string& prm, const std::string& key, const std::string& value) {
+  const auto pos = prm.find("set " + key + " =");
+  if (pos == std::string::npos) throw std::runtime_error("no entry " + key);
+  prm.replace(pos, prm.find('\n', pos) - pos, "set " + key + " = " + value);
+}
 
 inline dtwire::fem::RunSummary run_fem_case(benchmark::State& state, const std::string& prm_text,
                                             const std::string& key, const std::string& bench_name) {

@@ -8,6 +8,10 @@
 
 namespace dtwire::dem::detail {
 
+inline constexpr double degrees_per_radian = 57.295779513082320876798154814105;
+// Shear stiffness kEA / (2 (1 + nu)) with nu fixed at 0.3, as in the published PFC7 plugin.
+inline constexpr double poisson_ratio = 0.3;
+
 inline double optional_parameter(const ParameterMap& parameters, const std::string& field,
                                  double fallback) {
   const auto found = parameters.find(field);

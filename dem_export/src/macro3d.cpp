@@ -7,9 +7,10 @@
 
 namespace dtwire::dem {
 
+using detail::degrees_per_radian;
+using detail::poisson_ratio;
+
 namespace {
-constexpr double degrees_per_radian = 57.295779513082320876798154814105;
-constexpr double poisson_ratio = 0.3;  // as in the thesis plugin
 const std::string law_name = "macro3d";
 }  // namespace
 

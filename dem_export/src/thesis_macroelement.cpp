@@ -6,9 +6,10 @@
 
 namespace dtwire::dem {
 
+using detail::degrees_per_radian;
+using detail::poisson_ratio;
+
 namespace {
-constexpr double degrees_per_radian = 57.295779513082320876798154814105;
-constexpr double poisson_ratio = 0.3;  // fixed in the published plugin
 const std::string law_name = "thesis";
 }  // namespace
 
