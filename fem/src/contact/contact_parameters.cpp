@@ -89,9 +89,9 @@ ContactParameters parse_contact_parameters(dealii::ParameterHandler& prm, const 
       if (t.shape == ToolShape::grooved_plate) {
         const std::string entry = name + "/Groove axis";
         t.groove_axis = unit(parse_vector(prm.get("Groove axis"), file, entry), file, entry);
-        double c = 0.0;
-        for (unsigned k = 0; k < 3; ++k) c += t.groove_axis[k] * t.direction[k];
-        if (std::abs(c) > 1e-9)
+        double cosine = 0.0;
+        for (unsigned k = 0; k < 3; ++k) cosine += t.groove_axis[k] * t.direction[k];
+        if (std::abs(cosine) > 1e-9)
           throw InputError(file, "Contact: '" + name + "/Groove axis': expected a direction perpendicular to Direction");
       }
       std::stringstream list(prm.get("Path (mm)"));
