@@ -180,8 +180,11 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
   r.plastic_increment = dgamma;
   r.elastic_energy = 0.5 * K * volumetric * volumetric + G * dev_e_sq;
   r.state.equivalent_plastic_strain = alpha_n + dgamma;
+  // Plastic work: the flow stress integrated over Delta alpha by the trapezoidal rule, second
+  // order in the step like the external work it is balanced against.
   r.state.plastic_dissipation =
-      committed.plastic_dissipation + hardening_.flow_stress(alpha_n + dgamma) * dgamma;
+      committed.plastic_dissipation +
+      0.5 * (hardening_.flow_stress(alpha_n) + hardening_.flow_stress(alpha_n + dgamma)) * dgamma;
   r.state.plastic_metric_inverse = symmetric_part(F_inv * Tensor2(from_principal(s, b_e)) * F_inv_T);
   r.state.damage = committed.damage;
   if (dgamma > 0.0 && failure_.enabled()) {

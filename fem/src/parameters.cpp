@@ -82,6 +82,19 @@ void declare(ParameterHandler& prm) {
                     "moving as one along z (axial load only)");
   prm.declare_entry("Force path (N)", "0:0, 1:0", Patterns::Anything(),
                     "Control = force: pseudo-time:total axial force pairs (whole specimen), piecewise linear");
+  prm.declare_entry("Bottom boundary ids", "1", Patterns::Anything(),
+                    "boundary ids of the bottom end (SW: 1; DT mesh: its lower grips, e.g. 4, 14)");
+  prm.declare_entry("Top boundary ids", "2", Patterns::Anything(),
+                    "boundary ids of the loaded end (SW: 2; DT mesh: its upper grips, e.g. 5, 15)");
+  prm.declare_entry("Pull direction", "", Patterns::Anything(),
+                    "Top end = clamped: 'x y z' direction of the load-path displacement (pull at an angle); "
+                    "empty: the Load direction");
+  prm.declare_entry("Rotation path (deg)", "", Patterns::Anything(),
+                    "Top end = clamped: pseudo-time:angle pairs of a rigid rotation of the top end "
+                    "(hybrid tension-bending); empty: none");
+  prm.declare_entry("Rotation axis", "0 1 0", Patterns::Anything(), "unit axis of the top-end rotation");
+  prm.declare_entry("Rotation centre (mm)", "", Patterns::Anything(),
+                    "'x y z' of the rotation and moment centre; empty: centroid of the top end's vertices");
   prm.leave_subsection();
 
   prm.enter_subsection("Load stepping");
@@ -107,6 +120,9 @@ void declare(ParameterHandler& prm) {
   prm.enter_subsection("Output");
   prm.declare_entry("Fields", "true", Patterns::Bool(), "write VTU/PVTU fields");
   prm.declare_entry("Field interval", "0", Patterns::Integer(0), "every n steps; the last always");
+  prm.declare_entry("Probe points (mm)", "", Patterns::Anything(),
+                    "semicolon-separated 'x y z' material points (reference configuration) whose displacement "
+                    "is written every step (probe<k>_displacement_{x,y,z}_mm)");
   prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
                     "write a restart checkpoint every n steps (0: none)");
   prm.leave_subsection();
@@ -255,8 +271,51 @@ Parameters read_parameters(const std::filesystem::path& file) {
     p.load.path.clear();
     for (const auto& knot : f) p.load.path.emplace_back(knot.first, 0.0);
   }
-  if (!p.geometry.quarter && p.load.bottom != EndCondition::clamped && p.load.top != EndCondition::clamped)
-    throw InputError(name, "a full cross-section needs at least one clamped end (rigid-body modes)");
+  p.load.bottom_ids = contact::parse_id_list(prm.get("Bottom boundary ids"), name, "Bottom boundary ids");
+  p.load.top_ids = contact::parse_id_list(prm.get("Top boundary ids"), name, "Top boundary ids");
+  const auto vector3 = [&](const std::string& entry) {
+    std::istringstream in(prm.get(entry));
+    std::array<double, 3> v{};
+    for (auto& x : v)
+      if (!(in >> x) || !std::isfinite(x)) throw InputError(name, "'" + entry + "': expected three numbers");
+    std::string rest;
+    if (in >> rest) throw InputError(name, "'" + entry + "': expected three numbers");
+    return v;
+  };
+  const auto unit = [&](const std::string& entry) {
+    auto v = vector3(entry);
+    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(n > 0.0)) throw InputError(name, "'" + entry + "': expected a non-zero direction");
+    for (auto& x : v) x /= n;
+    return v;
+  };
+  if (!prm.get("Pull direction").empty()) {
+    const auto d = unit("Pull direction");
+    p.load.pull_direction.assign(d.begin(), d.end());
+  }
+  if (!prm.get("Rotation path (deg)").empty()) {
+    for (const auto& [t, angle] : parse_pairs(prm.get("Rotation path (deg)"), name, "Rotation path (deg)"))
+      p.load.rotation_path.emplace_back(t, angle * M_PI / 180.0);
+    if (p.load.rotation_path.empty() || p.load.rotation_path.front().first != 0.0 ||
+        p.load.rotation_path.front().second != 0.0)
+      throw InputError(name, "'Rotation path (deg)': expected pairs starting with 0:0");
+    for (const auto& knot : p.load.rotation_path) {
+      bool found = false;
+      for (const auto& k : p.load.path) found = found || std::abs(k.first - knot.first) <= 1e-12 * (1.0 + k.first);
+      if (!found)
+        throw InputError(name, "'Rotation path (deg)': pseudo-time " + std::to_string(knot.first) +
+                                   " is not a knot of 'Load path (mm)'");
+    }
+    p.load.rotation_axis = unit("Rotation axis");
+  }
+  if (!prm.get("Rotation centre (mm)").empty()) {
+    p.load.rotation_centre = vector3("Rotation centre (mm)");
+    for (auto& x : p.load.rotation_centre) x *= 1e-3;
+    p.load.rotation_centre_given = true;
+  }
+  if ((!p.load.pull_direction.empty() || !p.load.rotation_path.empty()) &&
+      (p.load.top != EndCondition::clamped || p.load.force_control))
+    throw InputError(name, "'Pull direction' and 'Rotation path (deg)' need Top end = clamped and displacement control");
   prm.leave_subsection();
 
   prm.enter_subsection("Load stepping");
@@ -284,10 +343,28 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.output.fields = prm.get_bool("Fields");
   p.output.field_interval = prm.get_integer("Field interval");
   p.output.checkpoint_interval = prm.get_integer("Checkpoint interval");
+  {
+    std::stringstream list(prm.get("Probe points (mm)"));
+    std::string item;
+    while (std::getline(list, item, ';')) {
+      if (item.find_first_not_of(" \t") == std::string::npos) continue;
+      std::istringstream in(item);
+      std::array<double, 3> x{};
+      for (auto& v : x)
+        if (!(in >> v) || !std::isfinite(v))
+          throw InputError(name, "'Probe points (mm)': expected 'x y z' items separated by ';', found '" + item + "'");
+      for (auto& v : x) v *= 1e-3;
+      p.output.probe_points.push_back(x);
+    }
+  }
   prm.leave_subsection();
   std::vector<double> knots;  // contact (issue 5)
   for (const auto& k : p.load.path) knots.push_back(k.first);
   p.contact = contact::parse_contact_parameters(prm, name, knots);
+  p.wire_contact = contact::parse_wire_contact_parameters(prm, name);
+  if (!p.geometry.quarter && p.load.bottom != EndCondition::clamped && p.load.top != EndCondition::clamped &&
+      !p.contact.enabled())
+    throw InputError(name, "a full cross-section needs at least one clamped end or contact tools (rigid-body modes)");
   return p;
 }
 
@@ -304,6 +381,10 @@ double piecewise_linear(const std::vector<std::pair<double, double>>& path, doub
 }  // namespace
 
 double path_displacement(const LoadParameters& load, double t) { return piecewise_linear(load.path, t); }
+
+double path_rotation(const LoadParameters& load, double t) {
+  return load.rotation_path.empty() ? 0.0 : piecewise_linear(load.rotation_path, t);
+}
 
 double path_force(const LoadParameters& load, double t) {
   return load.force_control ? piecewise_linear(load.force_path, t) : 0.0;

@@ -1,6 +1,7 @@
 #pragma once
 // The .prm file of a virtual experiment: one struct per concern (as in deal.II step-44), parsed
 // with dealii::ParameterHandler. Values are converted to SI here; the file uses mm and MPa.
+#include <array>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -24,6 +25,9 @@ struct GeometryParameters {
   double mesh_distortion = 0.0;            // random interior-vertex shift, fraction of cell size
   std::filesystem::path mesh_file;  // gmsh .msh of a SW (meshes/ module); empty: generated
   double bow = 0.0;  // m, lateral (x) imperfection e (1 - cos(2 pi z / L)) / 2: fixed-fixed buckling mode
+  // Set when the mesh file is a double twist (two wires: material ids 1-6 and 11-16); its
+  // boundary ids are then kept as written by `dtwire mesh dt` (docs/meshes.md).
+  bool double_twist = false;
 };
 
 struct MaterialParameters {
@@ -52,6 +56,17 @@ struct LoadParameters {
   // force_path(t) (N, whole specimen); `path` then holds the same knots with zero displacement.
   bool force_control = false;
   std::vector<std::pair<double, double>> force_path;  // (pseudo-time, force in N)
+  // Boundary ids of the two ends: SW meshes 1 (z = 0) and 2 (z = L); a DT mesh its grips.
+  std::vector<unsigned> bottom_ids{1}, top_ids{2};
+  // Clamped top only: the displacement of the load path acts along this unit vector (pull at an
+  // angle) instead of z / x; empty: the Load direction decides.
+  std::vector<double> pull_direction;
+  // Clamped top only: rigid rotation of the top end about `rotation_axis` through
+  // `rotation_centre` (m, reference configuration), (pseudo-time, angle in rad).
+  std::vector<std::pair<double, double>> rotation_path;
+  std::array<double, 3> rotation_axis{{0.0, 1.0, 0.0}};
+  std::array<double, 3> rotation_centre{};  // set by the solver when not given
+  bool rotation_centre_given = false;
 };
 
 struct SteppingParameters {
@@ -74,9 +89,12 @@ struct NewtonParameters {
 };
 
 struct OutputParameters {
-  unsigned field_interval = 0;
-  unsigned checkpoint_interval = 0;  // steps between checkpoints (0: none)  // VTU every n steps (0: none); the last step is always written
+  unsigned field_interval = 0;       // VTU every n steps (0: none); the last step is always written
+  unsigned checkpoint_interval = 0;  // steps between checkpoints (0: none)
   bool fields = true;
+  // Material points (m, reference configuration) whose displacement is written every step: a
+  // virtual extensometer / image-analysis marker.
+  std::vector<std::array<double, 3>> probe_points;
 };
 
 struct Parameters {
@@ -88,6 +106,13 @@ struct Parameters {
   NewtonParameters newton;
   OutputParameters output;
   contact::ContactParameters contact;  // contact (issue 5): rigid tools, none by default
+  contact::WireContactParameters wire_contact;  // contact between the two wires of a DT mesh
+
+  // Generalised end forces, moment and energy split in the curve (DT meshes, pull angles,
+  // rotations).
+  bool generalised_output() const {
+    return geometry.double_twist || !load.pull_direction.empty() || !load.rotation_path.empty();
+  }
 };
 
 // Throws InputError naming the file (and line, when deal.II reports it) and what was expected.
@@ -95,6 +120,8 @@ Parameters read_parameters(const std::filesystem::path& file);
 
 // Top displacement (m) at pseudo-time t, piecewise linear in the load path.
 double path_displacement(const LoadParameters& load, double t);
+// Rotation (rad) of the top end at pseudo-time t (0 without a rotation path).
+double path_rotation(const LoadParameters& load, double t);
 // Prescribed total force (N) at pseudo-time t under force control (0 otherwise).
 double path_force(const LoadParameters& load, double t);
 

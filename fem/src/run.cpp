@@ -2,9 +2,11 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <iostream>
 #include <sstream>
@@ -58,6 +60,46 @@ const StepRecord* first_failure(const std::vector<StepRecord>& records) {
   return nullptr;
 }
 
+// Generalised end results (issue 5): with d the load direction and k the rotation axis, the
+// axial force N = F . d, shear V = F . (k x d), moment M = M_end . k (about the moving end
+// centre) and their work-conjugates u (the load path), w = translation . (k x d), theta; the
+// full force and moment vectors; the energy split and the balance error
+// W_ext - (elastic + plastic + friction + penalty springs).
+void add_generalised_channels(Curve& c, const std::vector<StepRecord>& records, const Parameters& p) {
+  std::array<double, 3> d{{0.0, 0.0, 1.0}}, k = p.load.rotation_axis;
+  if (!p.load.pull_direction.empty()) d = {{p.load.pull_direction[0], p.load.pull_direction[1], p.load.pull_direction[2]}};
+  else if (p.load.direction == LoadDirection::lateral) d = {{1.0, 0.0, 0.0}};
+  const std::array<double, 3> v{{k[1] * d[2] - k[2] * d[1], k[2] * d[0] - k[0] * d[2], k[0] * d[1] - k[1] * d[0]}};
+  const auto dot = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+  };
+  const auto channel = [&](const std::string& name, Dimension dimension, const char* unit,
+                           const std::function<double(const StepRecord&)>& value) {
+    std::vector<double> values;
+    for (const auto& r : records) values.push_back(value(r));
+    c.add_channel_si(name, dimension, values, *find_unit(unit));
+  };
+  channel("axial_force", Dimension::Force, "N", [&](const StepRecord& r) { return dot(r.end_force, d); });
+  channel("shear_force", Dimension::Force, "N", [&](const StepRecord& r) { return dot(r.end_force, v); });
+  channel("moment", Dimension::Moment, "Nm", [&](const StepRecord& r) { return dot(r.end_moment, k); });
+  channel("transverse_displacement", Dimension::Length, "mm",
+          [&](const StepRecord& r) { return dot(r.end_translation, v); });
+  channel("rotation", Dimension::Angle, "rad", [](const StepRecord& r) { return r.end_rotation; });
+  const char* axes[] = {"x", "y", "z"};
+  for (unsigned a = 0; a < 3; ++a) {
+    channel(std::string("end_force_") + axes[a], Dimension::Force, "N", [a](const StepRecord& r) { return r.end_force[a]; });
+    channel(std::string("end_moment_") + axes[a], Dimension::Moment, "Nm",
+            [a](const StepRecord& r) { return r.end_moment[a]; });
+  }
+  const auto stored = [](const StepRecord& r) {
+    return r.elastic_energy + r.plastic_dissipation + r.contact.friction_dissipation + r.contact.contact_energy +
+           r.wire_contact.friction_dissipation + r.wire_contact.contact_energy;
+  };
+  channel("external_work", Dimension::Energy, "J", [](const StepRecord& r) { return r.external_work; });
+  channel("energy_balance_error", Dimension::Energy, "J",
+          [&](const StepRecord& r) { return r.external_work - stored(r); });
+}
+
 Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& options, const Parameters& p) {
   std::vector<double> u, f, d, e, r;
   for (const auto& s : records) {
@@ -72,7 +114,7 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
   c.add_channel_si("force", Dimension::Force, f, *find_unit("N"));
   c.add_channel_si("plastic_dissipation", Dimension::Energy, d, *find_unit("J"));
   c.add_channel_si("elastic_energy", Dimension::Energy, e, *find_unit("J"));
-  c.add_channel_si("neck_radius", Dimension::Length, r, *find_unit("mm"));
+  if (!p.geometry.double_twist) c.add_channel_si("neck_radius", Dimension::Length, r, *find_unit("mm"));
   if (p.material.failure.enabled()) {
     std::vector<double> damage;
     for (const auto& s : records) damage.push_back(s.damage);
@@ -90,6 +132,20 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
     for (const auto& s : records) contacts.push_back(s.contact);
     contact::add_contact_channels(c, contacts);
   }
+  if (!records.empty() && records.front().wire_contact.enabled) {
+    std::vector<contact::WireContactRecord> wires;
+    for (const auto& s : records) wires.push_back(s.wire_contact);
+    contact::add_wire_contact_channels(c, wires);
+  }
+  if (p.generalised_output()) add_generalised_channels(c, records, p);
+  const char* axes[] = {"x", "y", "z"};
+  for (std::size_t k = 0; k < p.output.probe_points.size(); ++k)
+    for (unsigned a = 0; a < 3; ++a) {
+      std::vector<double> values;
+      for (const auto& s : records) values.push_back(s.probe_displacements.at(k)[a]);
+      c.add_channel_si("probe" + std::to_string(k + 1) + "_displacement_" + axes[a], Dimension::Length, values,
+                       *find_unit("mm"));
+    }
   c.set_metadata("source", "dtwire run " + options.parameter_file.filename().string());
   c.set_metadata("model", std::string("finite-strain J2 plasticity, ") +
                               (p.formulation.fbar ? "F-bar" : "plain displacement") + " Q" +
@@ -104,7 +160,7 @@ RunSummary run_experiment(const RunOptions& options) {
   MPI_Initialized(&initialised);
   if (!initialised) throw std::logic_error("run_experiment: MPI is not initialised");
   const auto start = std::chrono::steady_clock::now();
-  const Parameters parameters = read_parameters(options.parameter_file);
+  Parameters parameters = read_parameters(options.parameter_file);
   const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const auto& out = options.output_directory;
   if (root) std::filesystem::create_directories(out);
@@ -117,6 +173,7 @@ RunSummary run_experiment(const RunOptions& options) {
   log << "dtwire " << kVersion << " (" << kGitHash << "): " << options.parameter_file.string() << "\n";
 
   WireSolver solver(parameters, log, parameters.output.fields ? out / "fields" : std::filesystem::path());
+  parameters.geometry = solver.geometry();  // as read from a mesh file (length, double twist)
   solver.set_checkpoints(out / "checkpoints", parameters.output.checkpoint_interval, options.restart_step);
   std::vector<StepRecord> records;
   RunSummary summary;

@@ -12,6 +12,7 @@
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/fe/mapping_q1.h>
 #include <deal.II/grid/filtered_iterator.h>
+#include <deal.II/grid/grid_tools.h>
 #include <deal.II/lac/affine_constraints.h>
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/full_matrix.h>
@@ -29,11 +30,13 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <set>
 #include <ostream>
 #include <sstream>
 
 #include "dtwire/core/error.hpp"
 #include "contact/rigid_tool_contact.hpp"  // contact (issue 5)
+#include "contact/wire_wire_contact.hpp"
 #include "fbar_element.hpp"
 #include "wire_mesh.hpp"
 
@@ -67,6 +70,45 @@ struct CopyData {
   std::vector<types::global_dof_index> dofs;
   double elastic_energy = 0.0, dissipation = 0.0;
   bool failed = false;
+};
+
+// Prescribed motion increment of the top end between two pseudo-times: translation a(t) d plus a
+// rigid rotation R(theta(t)) about the axis through the centre c (Rodrigues' formula).
+class TopEndIncrement : public Function<3> {
+ public:
+  TopEndIncrement(const LoadParameters& load, const Tensor<1, 3>& direction, const Point<3>& centre, double t_old,
+                  double t_new)
+      : Function<3>(3), load_(load), direction_(direction), centre_(centre), t_old_(t_old), t_new_(t_new) {}
+  void vector_value(const Point<3>& X, Vector<double>& values) const override {
+    const Tensor<1, 3> u = motion(X, t_new_) - motion(X, t_old_);
+    for (unsigned c = 0; c < 3; ++c) values[c] = u[c];
+  }
+
+ private:
+  Tensor<1, 3> motion(const Point<3>& X, double t) const {
+    Tensor<1, 3> u = path_displacement(load_, t) * direction_;
+    const double angle = path_rotation(load_, t);
+    if (angle != 0.0) {
+      Tensor<1, 3> k;
+      for (unsigned c = 0; c < 3; ++c) k[c] = load_.rotation_axis[c];
+      const Tensor<1, 3> r = X - centre_;
+      const Tensor<1, 3> rotated =
+          r * std::cos(angle) + cross_product_3d(k, r) * std::sin(angle) + k * (k * r) * (1.0 - std::cos(angle));
+      u += rotated - r;
+    }
+    return u;
+  }
+  const LoadParameters& load_;
+  Tensor<1, 3> direction_;
+  Point<3> centre_;
+  double t_old_, t_new_;
+};
+
+struct EndDof {  // an owned dof of the top end
+  types::global_dof_index index;
+  unsigned component;
+  Point<3> reference;
+  std::array<types::global_dof_index, 3> vertex_dofs;  // all components at its vertex
 };
 
 struct AssemblyOutcome {
@@ -115,6 +157,23 @@ struct WireSolver::Impl {
   std::vector<QuadraturePointRecord> points;
   double elastic_energy = 0.0, dissipation = 0.0;
   std::unique_ptr<contact::RigidToolContact> rigid_contact;  // contact (issue 5): null without tools
+  std::unique_ptr<contact::WireWireContact> wire_contact;    // null unless enabled
+  std::set<types::boundary_id> bottom_ids, top_ids;
+  Tensor<1, 3> load_direction;  // unit: the load path's displacement acts along it
+  Point<3> rotation_centre;
+  std::vector<EndDof> top_end_dofs;
+  // Probe points found in this rank's cells: (probe index, cell, reference-cell coordinates).
+  struct Probe {
+    unsigned index;
+    typename DoFHandler<3>::active_cell_iterator cell;
+    Point<3> unit_point;
+  };
+  std::vector<Probe> probes;
+  void locate_probes();
+  void record_probes(StepRecord& record);
+  std::vector<double> previous_end_force, previous_end_displacement;  // per top_end_dofs entry
+  double end_work = 0.0, tool_work = 0.0;
+  std::vector<std::array<double, 3>> previous_tool_force, previous_tool_displacement;
 
   SolverStatistics stats;
   std::vector<std::string> written_fields;
@@ -127,7 +186,10 @@ struct WireSolver::Impl {
   double length_multiplier() const { return prm.load.bottom == EndCondition::symmetry ? 2.0 : 1.0; }
 
   void setup();
-  void make_constraints(AffineConstraints<double>& c, double top_increment) const;
+  void make_matrix();
+  void refresh_relevant_values();
+  void make_constraints(AffineConstraints<double>& c, double t_old, double t_new) const;
+  void record_end(StepRecord& record);
   AssemblyOutcome assemble(bool with_matrix, const AffineConstraints<double>& constraints);
   void commit();
   double reaction() const;
@@ -165,60 +227,167 @@ void WireSolver::Impl::setup() {
   stats.cells = triangulation.n_global_active_cells();
   stats.ranks = Utilities::MPI::n_mpi_processes(comm);
 
-  top_loaded_dofs = DoFTools::extract_boundary_dofs(dof_handler, fe.component_mask(loaded_component()), {kTop});
+  for (const auto id : prm.load.bottom_ids) bottom_ids.insert(static_cast<types::boundary_id>(id));
+  for (const auto id : prm.load.top_ids) top_ids.insert(static_cast<types::boundary_id>(id));
+  load_direction[loaded_component().component] = 1.0;
+  if (!prm.load.pull_direction.empty())
+    for (unsigned c = 0; c < 3; ++c) load_direction[c] = prm.load.pull_direction[c];
+  top_loaded_dofs = DoFTools::extract_boundary_dofs(dof_handler, fe.component_mask(loaded_component()), top_ids);
+  {  // the top end's owned dofs with their reference positions; its vertex centroid
+    std::map<types::global_dof_index, EndDof> found;
+    Tensor<1, 3> sum;
+    double vertices = 0.0;
+    for (const auto& cell : dof_handler.active_cell_iterators()) {
+      if (!cell->is_locally_owned()) continue;
+      for (const auto f : cell->face_indices()) {
+        if (!cell->face(f)->at_boundary() || top_ids.count(cell->face(f)->boundary_id()) == 0) continue;
+        for (const auto v : cell->face(f)->vertex_indices())
+          for (unsigned c = 0; c < 3; ++c) {
+            const auto i = cell->face(f)->vertex_dof_index(v, c);
+            if (!owned.is_element(i) || found.count(i)) continue;
+            found[i] = EndDof{i, c, cell->face(f)->vertex(v),
+                              {{cell->face(f)->vertex_dof_index(v, 0), cell->face(f)->vertex_dof_index(v, 1),
+                                cell->face(f)->vertex_dof_index(v, 2)}}};
+            if (c == 0) {
+              sum += cell->face(f)->vertex(v);
+              vertices += 1.0;
+            }
+          }
+      }
+    }
+    for (const auto& entry : found) top_end_dofs.push_back(entry.second);
+    for (unsigned c = 0; c < 3; ++c) rotation_centre[c] = Utilities::MPI::sum(sum[c], comm);
+    vertices = Utilities::MPI::sum(vertices, comm);
+    if (!(vertices > 0.0)) throw InputError("Boundary conditions", "no boundary face carries the 'Top boundary ids'");
+    rotation_centre /= vertices;
+    if (prm.load.rotation_centre_given)
+      rotation_centre = Point<3>(prm.load.rotation_centre[0], prm.load.rotation_centre[1], prm.load.rotation_centre[2]);
+    previous_end_force.assign(top_end_dofs.size(), 0.0);
+    previous_end_displacement.assign(top_end_dofs.size(), 0.0);
+  }
   if (prm.load.force_control) {
     force_dof = Utilities::MPI::min(top_loaded_dofs.n_elements() > 0 ? *top_loaded_dofs.begin()
                                                                       : numbers::invalid_dof_index,
                                     comm);
     relevant.add_index(force_dof);  // every rank reads its displacement and constrains to it
   }
-  make_constraints(homogeneous, 0.0);
-  make_constraints(predictor, 1.0);  // same sparsity; values reset per step
-  DynamicSparsityPattern dsp(relevant);
-  DoFTools::make_sparsity_pattern(dof_handler, dsp, predictor, false);
-  SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
-  matrix.reinit(owned, owned, dsp, comm);
+  if (prm.wire_contact.enabled) {
+    if (!prm.geometry.double_twist)
+      throw InputError("Wire contact", "Enabled = true needs a double-twist mesh file (`dtwire mesh dt`)");
+    wire_contact = std::make_unique<contact::WireWireContact>(prm.wire_contact, prm.material.young,
+                                                              prm.geometry.diameter, dof_handler, comm);
+    relevant.add_indices(wire_contact->needed_dofs());
+  }
+  make_constraints(homogeneous, 0.0, 0.0);
+  make_constraints(predictor, 0.0, 1.0);  // same sparsity; values reset per step
   solution.reinit(owned, comm);
   rhs.reinit(owned, comm);
   internal_force.reinit(owned, comm);
   increment.reinit(owned, comm);
   ghosted.reinit(owned, relevant, comm);
+  if (wire_contact) {
+    wire_contact->initialise(relevant, homogeneous, owned);
+    refresh_relevant_values();
+    wire_contact->begin_step(relevant_values);
+  }
+  make_matrix();
 
   points.assign(triangulation.n_active_cells() * quadrature.size(), QuadraturePointRecord{});
+  locate_probes();
   if (prm.newton.krylov) make_rigid_body_modes();
   if (prm.contact.enabled())  // contact (issue 5)
-    rigid_contact = std::make_unique<contact::RigidToolContact>(prm.contact, prm.material.young, dof_handler, kBottom,
-                                                                kTop, comm);
+    rigid_contact = std::make_unique<contact::RigidToolContact>(prm.contact, prm.material.young, dof_handler,
+                                                                bottom_ids, top_ids, comm);
   log << "mesh: " << stats.cells << " cells, " << stats.dofs << " dofs, " << stats.ranks << " MPI rank(s), "
       << MultithreadInfo::n_threads() << " thread(s) per rank, element "
       << (prm.formulation.fbar ? "F-bar" : "plain displacement") << " Q" << prm.formulation.degree << "\n";
 }
 
-void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double top_increment) const {
+void WireSolver::Impl::locate_probes() {
+  const MappingQ1<3> mapping;
+  const auto& points = prm.output.probe_points;
+  for (unsigned k = 0; k < points.size(); ++k) {
+    const Point<3> x(points[k][0], points[k][1], points[k][2]);
+    bool found = false;
+    try {
+      const auto hit = GridTools::find_active_cell_around_point(mapping, dof_handler, x);
+      if (hit.first->is_locally_owned() && GeometryInfo<3>::distance_to_unit_cell(hit.second) < 1e-9) {
+        probes.push_back(Probe{k, hit.first, GeometryInfo<3>::project_to_unit_cell(hit.second)});
+        found = true;
+      }
+    } catch (const std::exception&) {  // not in this rank's part of the mesh
+    }
+    // A point on a cell boundary may be found by two ranks: the lowest rank keeps it.
+    const unsigned rank = Utilities::MPI::this_mpi_process(comm);
+    const unsigned owner = Utilities::MPI::min(found ? rank : numbers::invalid_unsigned_int, comm);
+    if (owner == numbers::invalid_unsigned_int)
+      throw InputError("Output/Probe points (mm)", "probe point " + std::to_string(k + 1) + " (" +
+                                                      std::to_string(x[0] * 1e3) + " " + std::to_string(x[1] * 1e3) +
+                                                      " " + std::to_string(x[2] * 1e3) + " mm) is not inside the mesh");
+    if (found && owner != rank) probes.pop_back();
+  }
+}
+
+void WireSolver::Impl::record_probes(StepRecord& record) {
+  std::vector<double> values(3 * prm.output.probe_points.size(), 0.0);
+  for (const auto& probe : probes) {
+    FEValues<3> fe_values(fe, Quadrature<3>(probe.unit_point), update_values);
+    fe_values.reinit(probe.cell);
+    std::vector<Vector<double>> u(1, Vector<double>(3));
+    fe_values.get_function_values(ghosted, u);
+    for (unsigned c = 0; c < 3; ++c) values[3 * probe.index + c] = u[0][c];
+  }
+  Utilities::MPI::sum(ArrayView<const double>(values), comm, ArrayView<double>(values));
+  record.probe_displacements.resize(prm.output.probe_points.size());
+  for (std::size_t k = 0; k < record.probe_displacements.size(); ++k)
+    for (unsigned c = 0; c < 3; ++c) record.probe_displacements[k][c] = values[3 * k + c];
+}
+
+// The matrix pattern: the cells' couplings plus, with wire contact, its candidate pairs (rebuilt
+// when sliding brings new master faces near a slave face).
+void WireSolver::Impl::make_matrix() {
+  DynamicSparsityPattern dsp(relevant);
+  DoFTools::make_sparsity_pattern(dof_handler, dsp, predictor, false);
+  if (wire_contact) wire_contact->add_sparsity(dsp, predictor);
+  SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+  matrix.reinit(owned, owned, dsp, comm);
+}
+
+void WireSolver::Impl::refresh_relevant_values() {
+  ghosted = solution;
+  relevant_values.resize(relevant.n_elements());
+  std::size_t k = 0;
+  for (const auto i : relevant) relevant_values[k++] = ghosted[i];
+}
+
+void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double t_old, double t_new) const {
   c.clear();
   c.reinit(relevant);
   const FEValuesExtractors::Scalar ux(0), uy(1), uz(2);
   const ComponentMask all(3, true), z_only = fe.component_mask(uz);
   const auto zero = Functions::ZeroFunction<3>(3);
-  Vector<double> top_value(3);
-  top_value[loaded_component().component] = top_increment;
-  const Functions::ConstantFunction<3> top(top_value);
+  const TopEndIncrement top(prm.load, load_direction, rotation_centre, t_old, t_new);
+  std::map<types::boundary_id, const Function<3>*> top_map, bottom_map;
+  for (const auto id : top_ids) top_map[id] = &top;
+  for (const auto id : bottom_ids) bottom_map[id] = &zero;
   if (prm.load.force_control) {
     // The top face translates as one along z (all u_z equal to force_dof's); clamped also
     // holds u_x, u_y.
-    if (prm.load.top == EndCondition::clamped)
-      VectorTools::interpolate_boundary_values(dof_handler, kTop, zero, c,
-                                               ComponentMask(std::vector<bool>{true, true, false}));
+    if (prm.load.top == EndCondition::clamped) {
+      std::map<types::boundary_id, const Function<3>*> fixed;
+      for (const auto id : top_ids) fixed[id] = &zero;
+      VectorTools::interpolate_boundary_values(dof_handler, fixed, c, ComponentMask(std::vector<bool>{true, true, false}));
+    }
     for (const auto i : top_loaded_dofs)
       if (i != force_dof && relevant.is_element(i)) {
         c.add_line(i);
         c.add_entry(i, force_dof, 1.0);
       }
   } else if (prm.load.top != EndCondition::free)
-    VectorTools::interpolate_boundary_values(dof_handler, kTop, top, c,
+    VectorTools::interpolate_boundary_values(dof_handler, top_map, c,
                                              prm.load.top == EndCondition::clamped ? all
                                                                                    : fe.component_mask(loaded_component()));
-  VectorTools::interpolate_boundary_values(dof_handler, kBottom, zero, c,
+  VectorTools::interpolate_boundary_values(dof_handler, bottom_map, c,
                                            prm.load.bottom == EndCondition::clamped ? all : z_only);
   if (prm.geometry.quarter) {
     VectorTools::interpolate_boundary_values(dof_handler, kSymmetryX, zero, c, fe.component_mask(ux));
@@ -229,12 +398,7 @@ void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double top
 
 AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstraints<double>& constraints) {
   Timer timer;
-  ghosted = solution;
-  relevant_values.resize(relevant.n_elements());
-  {
-    std::size_t k = 0;
-    for (const auto i : relevant) relevant_values[k++] = ghosted[i];
-  }
+  refresh_relevant_values();
   if (with_matrix) matrix = 0.0;
   rhs = 0.0;
   internal_force = 0.0;
@@ -308,6 +472,9 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
   if (rigid_contact &&  // contact (issue 5): tool tractions on the contact boundary faces
       !rigid_contact->assemble(relevant, relevant_values, with_matrix, constraints, matrix, rhs, internal_force))
     failed = true;
+  if (wire_contact &&
+      !wire_contact->assemble(relevant_values, with_matrix, constraints, matrix, rhs, internal_force))
+    failed = true;
   if (force_dof != numbers::invalid_dof_index && owned.is_element(force_dof)) rhs(force_dof) += applied_force;
   if (with_matrix) matrix.compress(VectorOperation::add);
   rhs.compress(VectorOperation::add);
@@ -335,12 +502,56 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
 void WireSolver::Impl::commit() {
   for (auto& p : points) p.committed = p.trial;
   if (rigid_contact) rigid_contact->commit();  // contact (issue 5)
+  if (wire_contact) wire_contact->commit();
+}
+
+// Force and moment of the specimen on the top end (about the moved centre), the centre's
+// translation, and the external work by the trapezoidal rule over the step: sum over the end's
+// dofs of (f_old + f_new) / 2 (u_new - u_old), plus the work of the rigid tools.
+void WireSolver::Impl::record_end(StepRecord& record) {
+  Tensor<1, 3> force, moment;
+  const Tensor<1, 3> translation = path_displacement(prm.load, record.time) * load_direction;
+  const Point<3> centre = rotation_centre + translation;
+  double work = 0.0;
+  for (std::size_t k = 0; k < top_end_dofs.size(); ++k) {
+    const auto& d = top_end_dofs[k];
+    const double f = internal_force[d.index], u = solution[d.index];
+    Tensor<1, 3> x = d.reference;
+    for (unsigned c = 0; c < 3; ++c) x[c] += ghosted[d.vertex_dofs[c]];
+    Tensor<1, 3> f_vector;
+    f_vector[d.component] = f;
+    force += f_vector;
+    moment += cross_product_3d(x - centre, f_vector);
+    work += 0.5 * (f + previous_end_force[k]) * (u - previous_end_displacement[k]);
+    previous_end_force[k] = f;
+    previous_end_displacement[k] = u;
+  }
+  const double scale = force_multiplier(), energy_scale = force_multiplier() * length_multiplier();
+  for (unsigned c = 0; c < 3; ++c) {
+    record.end_force[c] = Utilities::MPI::sum(force[c], comm) * scale;
+    record.end_moment[c] = Utilities::MPI::sum(moment[c], comm) * scale;
+    record.end_translation[c] = translation[c] * length_multiplier();
+  }
+  end_work += Utilities::MPI::sum(work, comm) * energy_scale;
+  if (rigid_contact) {  // the tools push the wire: their work is -(force on the tool) . displacement
+    const auto& forces = record.contact.tool_forces;
+    const auto& moves = record.contact.tool_displacements;
+    previous_tool_force.resize(forces.size(), {{0.0, 0.0, 0.0}});
+    previous_tool_displacement.resize(forces.size(), {{0.0, 0.0, 0.0}});
+    for (std::size_t k = 0; k < forces.size(); ++k) {
+      for (unsigned c = 0; c < 3; ++c)
+        tool_work -= 0.5 * (forces[k][c] + previous_tool_force[k][c]) * (moves[k][c] - previous_tool_displacement[k][c]);
+      previous_tool_force[k] = forces[k];
+      previous_tool_displacement[k] = moves[k];
+    }
+  }
+  record.end_rotation = path_rotation(prm.load, record.time);
+  record.external_work = end_work + tool_work;
 }
 
 double WireSolver::Impl::reaction() const {
   double local = 0.0;
-  for (const auto i : top_loaded_dofs)
-    if (owned.is_element(i)) local += internal_force[i];
+  for (const auto& d : top_end_dofs) local += internal_force[d.index] * load_direction[d.component];
   return Utilities::MPI::sum(local, comm) * force_multiplier();
 }
 
@@ -378,6 +589,7 @@ double WireSolver::Impl::neck_radius() const {
   // The surface vertex layer nearest the imperfection centre (mid-length without imperfection);
   // every rank holds all coarse cells, so the layer is the same everywhere.
   const auto& g = prm.geometry;
+  if (g.double_twist) return 0.0;  // no single neck section
   const double z_ref = g.imperfection > 0.0 ? g.imperfection_centre : 0.5 * g.length;
   double z_layer = 0.0;
   for (const auto& cell : triangulation.active_cell_iterators())  // all coarse cells, any owner
@@ -410,9 +622,8 @@ double WireSolver::Impl::neck_radius() const {
 // constraints (as in deal.II step-44). Backtracking line search when the residual did not drop.
 bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                                   unsigned& iterations, std::string& reason) {
-  const double increment_value = path_displacement(prm.load, t_new) - path_displacement(prm.load, t_old);
   applied_force = path_force(prm.load, t_new) / force_multiplier();
-  make_constraints(predictor, increment_value);
+  make_constraints(predictor, t_old, t_new);
   const unsigned first_free = extrapolation ? 0 : 1;  // first iteration with homogeneous constraints
   if (extrapolation) {
     increment = *extrapolation;
@@ -447,7 +658,9 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
     if (it >= first_free) {
       const double relative = a.residual / std::max(a.force_scale, floor);
       history << " " << relative;
-      if (a.residual <= prm.newton.relative_tolerance * std::max(a.force_scale, floor)) {
+      // Relative to the internal forces; the absolute floor (far above round-off, far below any
+      // load of interest) ends steps in which no force builds up (rigid motion before contact).
+      if (a.residual <= std::max(prm.newton.relative_tolerance * std::max(a.force_scale, floor), 1e2 * floor)) {
         iterations = it;
         log << "    newton (relative residual):" << history.str() << "\n";
         return true;
@@ -550,15 +763,27 @@ bool WireSolver::Impl::solve_contact_step(double t_old, double t_new, const PETS
                                           const PETScWrappers::MPI::Vector& start, unsigned& iterations,
                                           std::string& reason) {
   if (rigid_contact) rigid_contact->begin_step(t_old, t_new);
+  if (wire_contact) {
+    refresh_relevant_values();  // the committed state (after a cut-back too)
+    if (wire_contact->begin_step(relevant_values)) {
+      log << "    wire contact: new candidate pairs, matrix pattern rebuilt\n";
+      make_matrix();
+    }
+  }
   if (!solve_step(t_old, t_new, extrapolation, iterations, reason)) return false;
-  if (!rigid_contact) return true;
+  if (!rigid_contact && !wire_contact) return true;
   PETScWrappers::MPI::Vector converged(owned, comm);
-  while (rigid_contact->augment()) {
+  const auto augment = [&]() {  // both contacts update their multipliers (no short-circuit)
+    const bool rigid = rigid_contact && rigid_contact->augment();
+    const bool wires = wire_contact && wire_contact->augment();
+    return rigid || wires;
+  };
+  while (augment()) {
     converged = solution;
     converged -= start;
     solution = start;
     unsigned more = 0;
-    log << "    augmentation " << rigid_contact->augmentations() << "\n";
+    log << "    augmentation " << (rigid_contact ? rigid_contact->augmentations() : wire_contact->augmentations()) << "\n";
     if (!solve_step(t_old, t_new, &converged, more, reason)) return false;
     iterations += more;
   }
@@ -604,6 +829,12 @@ void WireSolver::Impl::write_fields(unsigned step, double time) {
     rigid_contact->cell_fields(contact_pressure, contact_slip);
     out.add_data_vector(contact_pressure, "contact_pressure_Pa");
     out.add_data_vector(contact_slip, "contact_slip_m");
+  }
+  Vector<float> wire_pressure(n_cells), wire_slip(n_cells);
+  if (wire_contact) {
+    wire_contact->cell_fields(wire_pressure, wire_slip);
+    out.add_data_vector(wire_pressure, "wire_contact_pressure_Pa");
+    out.add_data_vector(wire_slip, "wire_contact_slip_m");
   }
   out.build_patches();
   std::filesystem::create_directories(field_directory);
@@ -717,7 +948,7 @@ void WireSolver::set_checkpoints(const std::filesystem::path& directory, unsigne
   impl_->checkpoint_directory = directory;
   impl_->checkpoint_interval = interval;
   impl_->restart_step = restart_step;
-  if (impl_->rigid_contact && (interval > 0 || restart_step >= 0))
+  if ((impl_->rigid_contact || impl_->wire_contact) && (interval > 0 || restart_step >= 0))
     throw InputError("checkpoints", "checkpoint/restart is not available with contact tools");
 }
 
@@ -729,6 +960,7 @@ WireSolver::WireSolver(const Parameters& parameters, std::ostream& log, std::fil
 WireSolver::~WireSolver() = default;
 
 const SolverStatistics& WireSolver::statistics() const { return impl_->stats; }
+const GeometryParameters& WireSolver::geometry() const { return impl_->prm.geometry; }
 bool WireSolver::is_root() const { return Utilities::MPI::this_mpi_process(impl_->comm) == 0; }
 std::vector<std::string> WireSolver::field_files() const {
   auto files = impl_->written_fields;
@@ -769,6 +1001,9 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
     record.neck_radius = s.neck_radius();
     if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
                                                                   s.force_multiplier() * s.length_multiplier());
+    if (s.wire_contact) record.wire_contact = s.wire_contact->record(s.force_multiplier() * s.length_multiplier());
+    s.record_end(record);
+    s.record_probes(record);
     on_step(record);
     s.history.push_back(record);
     if (interval > 0) s.write_fields(0, 0.0);
@@ -815,6 +1050,15 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       s.record_damage(record);
       if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
                                                                     s.force_multiplier() * s.length_multiplier());
+      if (s.wire_contact) {
+        record.wire_contact = s.wire_contact->record(s.force_multiplier() * s.length_multiplier());
+        s.log << "  wire contact: " << record.wire_contact.active_points << " active points ("
+              << record.wire_contact.slipping_points << " slipping, " << record.wire_contact.frozen_points
+              << " frozen) of " << record.wire_contact.candidate_pairs << " candidate face pairs, normal force "
+              << record.wire_contact.normal_force << " N\n";
+      }
+      s.record_end(record);
+      s.record_probes(record);
       s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "
             << record.neck_radius * 1e3 << " mm\n";
       on_step(record);

@@ -3,6 +3,7 @@
 // line search, adaptive load stepping, reactions from the residual, field output. pimpl so
 // that callers do not compile deal.II's heavy headers.
 #include <filesystem>
+#include <array>
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -29,6 +30,13 @@ struct StepRecord {
   // parameter, height z and distance from the axis (reference configuration, m).
   double damage = 0.0, damage_triaxiality = 0.0, damage_lode = 0.0, damage_z = 0.0, damage_r = 0.0;
   contact::ContactRecord contact;  // contact (issue 5): enabled only with tools in the .prm
+  contact::WireContactRecord wire_contact;  // enabled with `subsection Wire contact`
+  // Generalised results at the top end (whole model): force and moment of the specimen on the
+  // top end's constraint, the moment about the end centre; translation of that centre and the
+  // prescribed rotation (rad); external work of the end and the tools (J, trapezoidal rule).
+  std::array<double, 3> end_force{}, end_moment{}, end_translation{};
+  std::vector<std::array<double, 3>> probe_displacements;  // m, one per Output/Probe points entry
+  double end_rotation = 0.0, external_work = 0.0;
 };
 
 struct SolverStatistics {
@@ -57,6 +65,7 @@ class WireSolver {
   void set_checkpoints(const std::filesystem::path& directory, unsigned interval, int restart_step);
 
   const SolverStatistics& statistics() const;
+  const GeometryParameters& geometry() const;  // after reading the mesh
   bool is_root() const;
   std::vector<std::string> field_files() const;  // the .pvd record and .pvtu files written
 

@@ -27,12 +27,19 @@ void read_wire_mesh(GeometryParameters& g, dealii::Triangulation<3>& target) {
   in.attach_triangulation(wire);
   std::ifstream file(g.mesh_file);
   in.read_msh(file);
-  double z_max = 0.0, r_max = 0.0;
+  g.double_twist = false;
+  for (const auto& cell : wire.active_cell_iterators()) g.double_twist = g.double_twist || cell->material_id() >= 11;
+  double z_min = 0.0, z_max = 0.0, r_max = 0.0;
   for (const auto& v : wire.get_vertices()) {
+    z_min = std::min(z_min, v[2]);
     z_max = std::max(z_max, v[2]);
     r_max = std::max(r_max, std::hypot(v[0], v[1]));
   }
-  g.length = z_max;
+  g.length = z_max - z_min;
+  if (g.double_twist) {  // two wires: keep every id; the diameter stays the .prm's
+    target.copy_triangulation(wire);
+    return;
+  }
   g.diameter = 2.0 * r_max;
   for (const auto& cell : wire.active_cell_iterators())
     for (const auto f : cell->face_indices())

@@ -21,7 +21,8 @@ enum BoundaryId : unsigned { kHull = 0, kBottom = 1, kTop = 2, kSymmetryX = 3, k
 // With geometry.mesh_file set, the SW mesh of the meshes/ module is read instead (gmsh .msh,
 // metres; its boundary ids 1 (z = 0) and 2 (z = L) are kept, the lateral ids 3, 4, 5 become 0,
 // coating and grip volumes are steel like the rest), and geometry.length and .diameter are set
-// from it.
+// from it. A double-twist mesh (material ids >= 11 present) keeps all its ids, sets
+// geometry.double_twist and the z extent as length; the diameter stays as given.
 void make_wire_mesh(GeometryParameters& geometry, dealii::Triangulation<3>& target);
 
 // The radius of the undeformed wire at height z.

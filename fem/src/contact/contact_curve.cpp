@@ -32,4 +32,23 @@ void add_contact_channels(Curve& curve, const std::vector<ContactRecord>& record
           [](const ContactRecord& r) { return r.max_penetration; });
 }
 
+void add_wire_contact_channels(Curve& curve, const std::vector<WireContactRecord>& records) {
+  using R = WireContactRecord;
+  const auto channel = [&](const std::string& name, Dimension dimension, const char* unit,
+                           const std::function<double(const R&)>& value) {
+    std::vector<double> v;
+    for (const auto& r : records) v.push_back(value(r));
+    curve.add_channel_si(name, dimension, v, *find_unit(unit));
+  };
+  channel("wire_contact_normal_force", Dimension::Force, "N", [](const R& r) { return r.normal_force; });
+  channel("wire_contact_friction_force", Dimension::Force, "N", [](const R& r) { return r.friction_force; });
+  channel("wire_friction_dissipation", Dimension::Energy, "J", [](const R& r) { return r.friction_dissipation; });
+  channel("wire_contact_energy", Dimension::Energy, "J", [](const R& r) { return r.contact_energy; });
+  channel("wire_contact_points", Dimension::Dimensionless, "1", [](const R& r) { return r.active_points; });
+  channel("wire_contact_slipping_points", Dimension::Dimensionless, "1", [](const R& r) { return r.slipping_points; });
+  channel("wire_contact_max_pressure", Dimension::Stress, "MPa", [](const R& r) { return r.max_pressure; });
+  channel("wire_contact_max_slip", Dimension::Length, "mm", [](const R& r) { return r.max_slip; });
+  channel("wire_contact_max_penetration", Dimension::Length, "mm", [](const R& r) { return r.max_penetration; });
+}
+
 }  // namespace dtwire::fem::contact

@@ -13,4 +13,10 @@ namespace dtwire::fem::contact {
 // contact_max_penetration_mm.
 void add_contact_channels(Curve& curve, const std::vector<ContactRecord>& records);
 
+// wire_contact_normal_force_N, wire_contact_friction_force_N (sum of |t_T| dA),
+// wire_friction_dissipation_J, wire_contact_energy_J, wire_contact_points_1 (active slave Gauss
+// points), wire_contact_slipping_points_1, wire_contact_max_pressure_MPa, wire_contact_max_slip_mm,
+// wire_contact_max_penetration_mm.
+void add_wire_contact_channels(Curve& curve, const std::vector<WireContactRecord>& records);
+
 }  // namespace dtwire::fem::contact

@@ -1,5 +1,6 @@
 #include "contact_kernel.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -54,7 +55,7 @@ Projection ToolGeometry::project(const Vector3& x) const {
 }
 
 ContactResponse evaluate_contact(const ToolGeometry& tool, const ContactLaw& law, const ContactHistory& history,
-                                 const Vector3& x, const Vector3& anchor) {
+                                 const Vector3& x, const Vector3& anchor, FrictionStatus forced) {
   ContactResponse out;
   const Projection proj = tool.project(x);
   out.gap = proj.gap;
@@ -87,7 +88,8 @@ ContactResponse evaluate_contact(const ToolGeometry& tool, const ContactLaw& law
 
   const double trial_norm = trial.norm();
   const double limit = law.friction * pressure;
-  if (trial_norm <= limit) {  // stick
+  const bool stick = forced == FrictionStatus::free ? trial_norm <= limit : forced == FrictionStatus::stick;
+  if (stick || !(trial_norm > 0.0)) {  // stick (or frozen as stick)
     out.tangential_traction = trial;
     out.traction += trial;
     out.stiffness += d_trial;
@@ -100,7 +102,7 @@ ContactResponse evaluate_contact(const ToolGeometry& tool, const ContactLaw& law
   out.tangential_traction = limit * m;
   out.traction += out.tangential_traction;
   out.stiffness += law.friction * outer_product(m, dp_dx) + (limit / trial_norm) * ((I - outer_product(m, m)) * d_trial);
-  out.slip_increment = (trial_norm - limit) / law.tangential_penalty;
+  out.slip_increment = std::max(0.0, trial_norm - limit) / law.tangential_penalty;
   out.dissipation = limit * out.slip_increment;
   return out;
 }

@@ -61,10 +61,15 @@ struct ContactResponse {
   double dissipation = 0.0;    // friction work in this step per reference area (J/m^2), mu p Delta gamma
 };
 
+// Stick/slip decision: free (the return map decides) or frozen by the wire-wire chattering guard
+// (a point whose status flipped too often within one step keeps its last status).
+enum class FrictionStatus { free, stick, slip };
+
 // Traction at the current point x. `anchor` is the point's position at the last converged step
 // plus the tool displacement over the step, so that x - anchor is the motion relative to the
 // tool (rigid translation of the tool).
 ContactResponse evaluate_contact(const ToolGeometry& tool, const ContactLaw& law, const ContactHistory& history,
-                                 const Vector3& x, const Vector3& anchor);
+                                 const Vector3& x, const Vector3& anchor,
+                                 FrictionStatus forced = FrictionStatus::free);
 
 }  // namespace dtwire::fem::contact

@@ -34,8 +34,9 @@ std::array<double, 3> unit(std::array<double, 3> v, const std::string& file, con
 
 void declare_contact_parameters(dealii::ParameterHandler& prm) {
   prm.enter_subsection("Contact");
-  prm.declare_entry("Boundary id", "0", Patterns::Integer(0, 255),
-                    "wire boundary in contact with the tools (0: lateral surface)");
+  prm.declare_entry("Boundary id", "0", Patterns::Anything(),
+                    "wire boundary ids in contact with the tools, comma-separated (SW: 0 lateral surface; "
+                    "DT mesh: 3, 13)");
   prm.declare_entry("Friction coefficient", "0", Patterns::Double(0.0), "Coulomb mu");
   prm.declare_entry("Normal penalty factor", "10", Patterns::Double(0.0),
                     "epsilon_N = factor * E / h, h the smallest contact face size");
@@ -59,13 +60,75 @@ void declare_contact_parameters(dealii::ParameterHandler& prm) {
     prm.leave_subsection();
   }
   prm.leave_subsection();
+
+  prm.enter_subsection("Wire contact");
+  prm.declare_entry("Enabled", "false", Patterns::Bool(), "frictional contact between the two wires of a DT mesh");
+  prm.declare_entry("Slave boundary ids", "3", Patterns::Anything(), "surface whose Gauss points are checked");
+  prm.declare_entry("Master boundary ids", "13", Patterns::Anything(), "surface of bilinear faces projected onto");
+  prm.declare_entry("Friction coefficient", "0.2", Patterns::Double(0.0), "Coulomb mu between the wires");
+  prm.declare_entry("Normal penalty factor", "10", Patterns::Double(0.0), "epsilon_N = factor * E / h");
+  prm.declare_entry("Tangential penalty factor", "10", Patterns::Double(0.0), "epsilon_T = factor * E / h");
+  prm.declare_entry("Augmentations", "0", Patterns::Integer(0), "Uzawa updates per load step; 0: pure penalty");
+  prm.declare_entry("Gap tolerance (mm)", "1e-3", Patterns::Double(0.0),
+                    "penetration accepted without a further augmentation");
+  prm.declare_entry("Search distance (mm)", "0", Patterns::Double(0.0),
+                    "candidate master faces within this distance of a slave face; 0: d / 4");
+  prm.declare_entry("Gauss points per direction", "2", Patterns::Integer(1, 6), "on each slave face");
+  prm.declare_entry("Status flip limit", "4", Patterns::Integer(1),
+                    "stick/slip changes or master-face switches of a point within one step before its "
+                    "status is frozen for the rest of the step (chattering guard)");
+  prm.leave_subsection();
+}
+
+std::vector<unsigned> parse_id_list(const std::string& text, const std::string& file, const std::string& entry) {
+  std::vector<unsigned> ids;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ',')) {
+    if (item.find_first_not_of(" \t") == std::string::npos) continue;
+    try {
+      std::size_t used = 0;
+      const int id = std::stoi(item, &used);
+      if (item.find_first_not_of(" \t", used) != std::string::npos || id < 0 || id > 255)
+        throw std::invalid_argument("bad id");
+      ids.push_back(static_cast<unsigned>(id));
+    } catch (const std::exception&) {
+      throw InputError(file, "'" + entry + "': expected comma-separated boundary ids 0-255, found '" + item + "'");
+    }
+  }
+  if (ids.empty()) throw InputError(file, "'" + entry + "': expected at least one boundary id");
+  return ids;
+}
+
+WireContactParameters parse_wire_contact_parameters(dealii::ParameterHandler& prm, const std::string& file) {
+  WireContactParameters w;
+  prm.enter_subsection("Wire contact");
+  w.enabled = prm.get_bool("Enabled");
+  w.slave_ids = parse_id_list(prm.get("Slave boundary ids"), file, "Wire contact/Slave boundary ids");
+  w.master_ids = parse_id_list(prm.get("Master boundary ids"), file, "Wire contact/Master boundary ids");
+  for (const unsigned id : w.slave_ids)
+    for (const unsigned other : w.master_ids)
+      if (id == other)
+        throw InputError(file, "'Wire contact': boundary id " + std::to_string(id) + " is both slave and master");
+  w.friction = prm.get_double("Friction coefficient");
+  w.normal_penalty_factor = prm.get_double("Normal penalty factor");
+  w.tangential_penalty_factor = prm.get_double("Tangential penalty factor");
+  if (!(w.normal_penalty_factor > 0.0) || !(w.tangential_penalty_factor > 0.0))
+    throw InputError(file, "'Wire contact': expected positive penalty factors");
+  w.maximum_augmentations = prm.get_integer("Augmentations");
+  w.gap_tolerance = prm.get_double("Gap tolerance (mm)") * 1e-3;
+  w.search_distance = prm.get_double("Search distance (mm)") * 1e-3;
+  w.points_per_direction = prm.get_integer("Gauss points per direction");
+  w.flip_limit = prm.get_integer("Status flip limit");
+  prm.leave_subsection();
+  return w;
 }
 
 ContactParameters parse_contact_parameters(dealii::ParameterHandler& prm, const std::string& file,
                                            const std::vector<double>& knot_times) {
   ContactParameters c;
   prm.enter_subsection("Contact");
-  c.boundary_id = prm.get_integer("Boundary id");
+  c.boundary_ids = parse_id_list(prm.get("Boundary id"), file, "Contact/Boundary id");
   c.friction = prm.get_double("Friction coefficient");
   c.normal_penalty_factor = prm.get_double("Normal penalty factor");
   c.tangential_penalty_factor = prm.get_double("Tangential penalty factor");

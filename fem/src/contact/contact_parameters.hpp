@@ -28,7 +28,7 @@ struct ToolParameters {
 };
 
 struct ContactParameters {
-  unsigned boundary_id = 0;             // wire boundary that touches the tools (0: lateral surface)
+  std::vector<unsigned> boundary_ids{0};  // wire boundaries that touch the tools (0: SW lateral surface)
   double friction = 0.0;                // Coulomb mu
   double normal_penalty_factor = 10.0;  // epsilon_N = factor E / h, h the smallest contact face size
   double tangential_penalty_factor = 10.0;
@@ -40,12 +40,33 @@ struct ContactParameters {
   bool enabled() const { return !tools.empty(); }
 };
 
+// `subsection Wire contact`: frictional contact between two deformable wires (the double twist),
+// Gauss points of the slave surface against the bilinear faces of the master surface.
+struct WireContactParameters {
+  bool enabled = false;
+  std::vector<unsigned> slave_ids{3}, master_ids{13};  // DT mesh: lateral surfaces of wires A and B
+  double friction = 0.2;                // Coulomb mu between the wires
+  double normal_penalty_factor = 10.0;  // epsilon_N = factor E / h
+  double tangential_penalty_factor = 10.0;
+  unsigned maximum_augmentations = 0;
+  double gap_tolerance = 1e-6;          // m
+  double search_distance = 0.0;         // m; 0: a quarter of the wire diameter
+  unsigned points_per_direction = 2;    // Gauss points per direction on each slave face
+  unsigned flip_limit = 4;              // status changes within a step before the status is frozen
+  bool keep_samples = false;            // not in the .prm: per-point samples in the step records
+};
+
 void declare_contact_parameters(dealii::ParameterHandler& prm);
 // Reads the subsection; throws InputError naming `file` and the entry on bad values. Every
 // tool-path knot inside the load path must also be a knot of the load path (`knot_times`), so
 // that load steps land on it.
 ContactParameters parse_contact_parameters(dealii::ParameterHandler& prm, const std::string& file,
                                            const std::vector<double>& knot_times);
+
+WireContactParameters parse_wire_contact_parameters(dealii::ParameterHandler& prm, const std::string& file);
+
+// Comma-separated boundary ids ("3, 13"); throws InputError naming file and entry.
+std::vector<unsigned> parse_id_list(const std::string& text, const std::string& file, const std::string& entry);
 
 // Tool displacement (m) at pseudo-time t.
 std::array<double, 3> tool_displacement(const ToolParameters& tool, double t);

@@ -41,4 +41,21 @@ struct ContactRecord {
   std::vector<ContactSample> samples;  // filled when keep_samples is set
 };
 
+// Wire-wire contact results of a converged step (totals over ranks, symmetry multipliers applied).
+struct WireContactRecord {
+  bool enabled = false;
+  double normal_force = 0.0;          // N, sum of p dA
+  double friction_force = 0.0;        // N, sum of |t_T| dA (the tangential tractions point many ways)
+  double friction_dissipation = 0.0;  // J, accumulated
+  double contact_energy = 0.0;        // J, in the penalty springs (as ContactRecord)
+  double active_area = 0.0;           // m^2, slave reference area with p > 0
+  unsigned active_points = 0;         // slave Gauss points in contact
+  unsigned slipping_points = 0;
+  unsigned candidate_pairs = 0;       // slave face x master face pairs searched
+  unsigned frozen_points = 0;         // chattering guard engaged in this step
+  double max_pressure = 0.0, max_slip = 0.0, max_penetration = 0.0;  // Pa, m, m
+  unsigned augmentations = 0;
+  std::vector<ContactSample> samples;  // filled when keep_samples is set (tool = 0)
+};
+
 }  // namespace dtwire::fem::contact

@@ -27,8 +27,8 @@ Vector3 to_vector(const std::array<double, 3>& a) {
 }  // namespace
 
 RigidToolContact::RigidToolContact(const ContactParameters& parameters, double young,
-                                   const DoFHandler<3>& dof_handler, unsigned bottom_id, unsigned top_id,
-                                   MPI_Comm comm)
+                                   const DoFHandler<3>& dof_handler, const std::set<types::boundary_id>& bottom_ids,
+                                   const std::set<types::boundary_id>& top_ids, MPI_Comm comm)
     : parameters_(parameters), comm_(comm) {
   const auto& fe = dof_handler.get_fe();
   const unsigned n_dofs = fe.n_dofs_per_cell();
@@ -42,7 +42,10 @@ RigidToolContact::RigidToolContact(const ContactParameters& parameters, double y
   for (const auto& cell : dof_handler.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     for (const auto f : cell->face_indices()) {
-      if (!cell->face(f)->at_boundary() || cell->face(f)->boundary_id() != parameters_.boundary_id) continue;
+      if (!cell->face(f)->at_boundary() ||
+          std::find(parameters_.boundary_ids.begin(), parameters_.boundary_ids.end(), cell->face(f)->boundary_id()) ==
+              parameters_.boundary_ids.end())
+        continue;
       values.reinit(cell, f);
       Face face;
       face.dofs.resize(n_dofs);
@@ -65,8 +68,7 @@ RigidToolContact::RigidToolContact(const ContactParameters& parameters, double y
   }
   smallest_face = Utilities::MPI::min(smallest_face, comm_);
   if (!(smallest_face < std::numeric_limits<double>::max()))
-    throw std::invalid_argument("contact: no face of the wire carries boundary id " +
-                                std::to_string(parameters_.boundary_id));
+    throw std::invalid_argument("contact: no face of the wire carries the contact boundary id(s)");
   law_.normal_penalty = parameters_.normal_penalty_factor * young / smallest_face;
   law_.tangential_penalty = parameters_.tangential_penalty_factor * young / smallest_face;
   law_.friction = parameters_.friction;
@@ -75,8 +77,8 @@ RigidToolContact::RigidToolContact(const ContactParameters& parameters, double y
   for (unsigned c = 0; c < 3; ++c) {
     ComponentMask mask(3, false);
     mask.set(c, true);
-    bottom_dofs_[c] = DoFTools::extract_boundary_dofs(dof_handler, mask, {static_cast<types::boundary_id>(bottom_id)});
-    top_dofs_[c] = DoFTools::extract_boundary_dofs(dof_handler, mask, {static_cast<types::boundary_id>(top_id)});
+    bottom_dofs_[c] = DoFTools::extract_boundary_dofs(dof_handler, mask, bottom_ids);
+    top_dofs_[c] = DoFTools::extract_boundary_dofs(dof_handler, mask, top_ids);
   }
   begin_step(0.0, 0.0);
 }

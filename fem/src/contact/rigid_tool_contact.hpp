@@ -14,6 +14,7 @@
 #include <deal.II/lac/vector.h>
 
 #include <array>
+#include <set>
 #include <vector>
 
 #include "contact_kernel.hpp"
@@ -26,7 +27,8 @@ class RigidToolContact {
  public:
   // `young` and the smallest contact face size set the penalties (epsilon = factor E / h).
   RigidToolContact(const ContactParameters& parameters, double young, const dealii::DoFHandler<3>& dof_handler,
-                   unsigned bottom_id, unsigned top_id, MPI_Comm comm);
+                   const std::set<dealii::types::boundary_id>& bottom_ids,
+                   const std::set<dealii::types::boundary_id>& top_ids, MPI_Comm comm);
 
   void begin_step(double t_old, double t_new);
   // Returns false if a point cannot be evaluated (on a cylinder axis).

@@ -1,0 +1,406 @@
+#include "wire_wire_contact.hpp"
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/lac/full_matrix.h>
+
+#include <boost/geometry.hpp>
+#include <boost/geometry/geometries/box.hpp>
+#include <boost/geometry/geometries/point.hpp>
+#include <boost/geometry/index/rtree.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <limits>
+#include <stdexcept>
+
+namespace dtwire::fem::contact {
+
+using namespace dealii;
+
+namespace {
+
+namespace bg = boost::geometry;
+namespace bgi = boost::geometry::index;
+using RTreePoint = bg::model::point<double, 3, bg::cs::cartesian>;
+using RTreeBox = bg::model::box<RTreePoint>;
+
+// Master and slave normals must oppose at least this much: keeps a point from projecting onto
+// the far side of the other wire.
+constexpr double kFacingCosine = -0.2;  // master and slave normals must oppose at least this much
+
+bool has_id(const std::vector<unsigned>& ids, types::boundary_id id) {
+  return std::find(ids.begin(), ids.end(), static_cast<unsigned>(id)) != ids.end();
+}
+
+RTreeBox inflated_box(const BilinearFace& face, double margin) {
+  RTreePoint low(std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                 std::numeric_limits<double>::max());
+  RTreePoint high(-low.get<0>(), -low.get<1>(), -low.get<2>());
+  for (const auto& v : face.vertex) {
+    low.set<0>(std::min(low.get<0>(), v[0] - margin));
+    low.set<1>(std::min(low.get<1>(), v[1] - margin));
+    low.set<2>(std::min(low.get<2>(), v[2] - margin));
+    high.set<0>(std::max(high.get<0>(), v[0] + margin));
+    high.set<1>(std::max(high.get<1>(), v[1] + margin));
+    high.set<2>(std::max(high.get<2>(), v[2] + margin));
+  }
+  return RTreeBox(low, high);
+}
+
+// Vertex dofs, reference vertices and the outward sign of a Q1 boundary face.
+template <typename Face>
+void describe_face(const typename DoFHandler<3>::active_cell_iterator& cell, unsigned f, Face& face) {
+  const auto fi = cell->face(f);
+  for (unsigned v = 0; v < 4; ++v) {
+    face.reference[v] = fi->vertex(v);
+    for (unsigned c = 0; c < 3; ++c) face.dofs[3 * v + c] = fi->vertex_dof_index(v, c);
+  }
+  BilinearFace geometry;
+  geometry.vertex = face.reference;
+  const Vector3 n = cross_product_3d(geometry.tangent_xi(0.5), geometry.tangent_eta(0.5));
+  const Vector3 out = fi->center() - cell->center();
+  face.normal_sign = n * out >= 0.0 ? 1.0 : -1.0;
+}
+
+}  // namespace
+
+WireWireContact::WireWireContact(const WireContactParameters& parameters, double young, double diameter,
+                                 const DoFHandler<3>& dof_handler, MPI_Comm comm)
+    : parameters_(parameters), comm_(comm) {
+  if (dof_handler.get_fe().degree != 1)
+    throw std::invalid_argument("wire contact needs Polynomial degree = 1 (bilinear faces)");
+  const QGauss<1> gauss(parameters_.points_per_direction);
+  double smallest_face = std::numeric_limits<double>::max();
+  std::vector<double> packed_masters;  // 12 dofs, 12 coordinates, sign per face
+  for (const auto& cell : dof_handler.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    for (const auto f : cell->face_indices()) {
+      if (!cell->face(f)->at_boundary()) continue;
+      const auto id = cell->face(f)->boundary_id();
+      if (has_id(parameters_.slave_ids, id)) {
+        SlaveFace face;
+        describe_face(cell, f, face);
+        face.cell = cell->active_cell_index();
+        face.first_point = points_.size();
+        BilinearFace geometry;
+        geometry.vertex = face.reference;
+        for (unsigned i = 0; i < gauss.size(); ++i)
+          for (unsigned j = 0; j < gauss.size(); ++j) {
+            SlavePoint p;
+            p.xi = gauss.point(i)[0];
+            p.eta = gauss.point(j)[0];
+            p.weight = gauss.weight(i) * gauss.weight(j) * geometry.area_element(p.xi, p.eta);
+            p.committed_position = p.position = geometry.position(p.xi, p.eta);
+            points_.push_back(p);
+          }
+        slaves_.push_back(face);
+      } else if (has_id(parameters_.master_ids, id)) {
+        MasterFace face;
+        describe_face(cell, f, face);
+        for (const auto d : face.dofs) packed_masters.push_back(static_cast<double>(d));
+        for (const auto& v : face.reference)
+          for (unsigned c = 0; c < 3; ++c) packed_masters.push_back(v[c]);
+        packed_masters.push_back(face.normal_sign);
+      } else {
+        continue;
+      }
+      smallest_face = std::min(smallest_face, cell->face(f)->minimum_vertex_distance());
+    }
+  }
+  // Every rank holds the whole master surface (it is small next to the volume mesh).
+  const auto gathered = Utilities::MPI::all_gather(comm_, packed_masters);
+  needed_ = IndexSet(dof_handler.n_dofs());
+  std::vector<types::global_dof_index> master_dofs;
+  for (const auto& block : gathered)
+    for (std::size_t k = 0; k + 25 <= block.size(); k += 25) {
+      MasterFace face;
+      for (unsigned i = 0; i < 12; ++i) {
+        face.dofs[i] = static_cast<types::global_dof_index>(block[k + i]);
+        master_dofs.push_back(face.dofs[i]);
+      }
+      for (unsigned v = 0; v < 4; ++v)
+        for (unsigned c = 0; c < 3; ++c) face.reference[v][c] = block[k + 12 + 3 * v + c];
+      face.normal_sign = block[k + 24];
+      masters_.push_back(face);
+    }
+  std::sort(master_dofs.begin(), master_dofs.end());
+  master_dofs.erase(std::unique(master_dofs.begin(), master_dofs.end()), master_dofs.end());
+  needed_.add_indices(master_dofs.begin(), master_dofs.end());
+  smallest_face = Utilities::MPI::min(smallest_face, comm_);
+  if (Utilities::MPI::sum(slaves_.size(), comm_) == 0 || masters_.empty())
+    throw std::invalid_argument("wire contact: no slave or no master face carries the given boundary ids");
+  law_.normal_penalty = parameters_.normal_penalty_factor * young / smallest_face;
+  law_.tangential_penalty = parameters_.tangential_penalty_factor * young / smallest_face;
+  law_.friction = parameters_.friction;
+  search_distance_ = parameters_.search_distance > 0.0 ? parameters_.search_distance : 0.25 * diameter;
+  committed_master_values_.assign(12 * masters_.size(), 0.0);
+  master_values_ = committed_master_values_;
+}
+
+void WireWireContact::initialise(const IndexSet& relevant, const AffineConstraints<double>& constraints,
+                                 const IndexSet& owned) {
+  for (auto& face : masters_)
+    for (unsigned i = 0; i < 12; ++i) face.value_index[i] = relevant.index_within_set(face.dofs[i]);
+  std::vector<types::global_dof_index> constrained;
+  for (auto& face : slaves_)
+    for (unsigned i = 0; i < 12; ++i) {
+      face.value_index[i] = relevant.index_within_set(face.dofs[i]);
+      if (owned.is_element(face.dofs[i]) && constraints.is_constrained(face.dofs[i])) constrained.push_back(face.dofs[i]);
+    }
+  for (const auto i : needed_)
+    if (owned.is_element(i) && constraints.is_constrained(i)) constrained.push_back(i);
+  constrained_ = IndexSet(needed_.size());
+  for (const auto& block : Utilities::MPI::all_gather(comm_, constrained))
+    for (const auto i : block) constrained_.add_index(i);
+  constrained_.compress();
+}
+
+BilinearFace WireWireContact::current_face(const std::array<Vector3, 4>& reference,
+                                           const std::array<unsigned, 12>& index, double sign,
+                                           const std::vector<double>& values) const {
+  BilinearFace face;
+  face.normal_sign = sign;
+  for (unsigned v = 0; v < 4; ++v)
+    for (unsigned c = 0; c < 3; ++c) face.vertex[v][c] = reference[v][c] + values[index[3 * v + c]];
+  return face;
+}
+
+bool WireWireContact::begin_step(const std::vector<double>& relevant_values) {
+  std::vector<std::pair<RTreeBox, unsigned>> boxes;
+  boxes.reserve(masters_.size());
+  for (unsigned m = 0; m < masters_.size(); ++m) {
+    const auto& face = masters_[m];
+    boxes.emplace_back(inflated_box(current_face(face.reference, face.value_index, face.normal_sign, relevant_values),
+                                    search_distance_),
+                       m);
+  }
+  const bgi::rtree<std::pair<RTreeBox, unsigned>, bgi::quadratic<16>> tree(boxes.begin(), boxes.end());
+  bool grown = false;
+  std::vector<std::pair<RTreeBox, unsigned>> hits;
+  for (auto& face : slaves_) {
+    hits.clear();
+    const BilinearFace geometry = current_face(face.reference, face.value_index, face.normal_sign, relevant_values);
+    tree.query(bgi::intersects(inflated_box(geometry, 0.0)), std::back_inserter(hits));
+    face.candidates.clear();
+    for (const auto& hit : hits) face.candidates.push_back(hit.second);
+    std::sort(face.candidates.begin(), face.candidates.end());
+    std::vector<unsigned> merged;
+    std::set_union(face.pattern.begin(), face.pattern.end(), face.candidates.begin(), face.candidates.end(),
+                   std::back_inserter(merged));
+    if (merged.size() != face.pattern.size()) {
+      grown = true;
+      face.pattern = std::move(merged);
+    }
+  }
+  for (auto& p : points_) {
+    p.multiplier = p.committed.multiplier;
+    p.master = p.committed_master;
+    p.flips = 0;
+    p.frozen = FrictionStatus::free;
+    p.master_frozen = false;
+    p.status = -1;  // not yet assembled in this step
+  }
+  augmentations_ = 0;
+  return Utilities::MPI::max(grown ? 1 : 0, comm_) == 1;
+}
+
+void WireWireContact::add_sparsity(DynamicSparsityPattern& pattern, const AffineConstraints<double>& constraints) const {
+  std::vector<types::global_dof_index> dofs(24);
+  for (const auto& face : slaves_)
+    for (const unsigned m : face.pattern) {
+      std::copy(face.dofs.begin(), face.dofs.end(), dofs.begin());
+      std::copy(masters_[m].dofs.begin(), masters_[m].dofs.end(), dofs.begin() + 12);
+      constraints.add_entries_local_to_global(dofs, pattern, false);
+    }
+}
+
+bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool with_matrix,
+                               const AffineConstraints<double>& constraints, PETScWrappers::MPI::SparseMatrix& matrix,
+                               PETScWrappers::MPI::Vector& rhs, PETScWrappers::MPI::Vector& internal_force) {
+  std::vector<BilinearFace> master_geometry(masters_.size());
+  for (unsigned m = 0; m < masters_.size(); ++m) {
+    const auto& face = masters_[m];
+    master_geometry[m] = current_face(face.reference, face.value_index, face.normal_sign, relevant_values);
+    for (unsigned i = 0; i < 12; ++i) master_values_[12 * m + i] = relevant_values[face.value_index[i]];
+  }
+  std::vector<types::global_dof_index> dofs(24);
+  std::vector<double> force(24), shape(24);
+  FullMatrix<double> K(24, 24);
+  Vector<double> local_rhs(24);
+  for (const auto& face : slaves_) {
+    const BilinearFace slave = current_face(face.reference, face.value_index, face.normal_sign, relevant_values);
+    const unsigned n_points = parameters_.points_per_direction * parameters_.points_per_direction;
+    for (unsigned q = face.first_point; q < face.first_point + n_points; ++q) {
+      SlavePoint& p = points_[q];
+      p.position = slave.position(p.xi, p.eta);
+      const Vector3 slave_normal = slave.outward_normal(p.xi, p.eta);
+      // Closest facing master face among the candidates (or the frozen one).
+      int best = -1;
+      FaceProjection best_projection;
+      bool best_inside = false;
+      const auto consider = [&](unsigned m) {
+        const FaceProjection proj = project_onto_face(master_geometry[m], p.position);
+        if (proj.distance > search_distance_) return;
+        if (master_geometry[m].outward_normal(proj.xi, proj.eta) * slave_normal > kFacingCosine) return;
+        const bool better = best < 0 || (proj.inside && !best_inside) ||
+                            (proj.inside == best_inside && proj.distance < best_projection.distance);
+        if (!better) return;
+        best = static_cast<int>(m);
+        best_projection = proj;
+        best_inside = proj.inside;
+      };
+      if (p.master_frozen && p.master >= 0) consider(static_cast<unsigned>(p.master));
+      else
+        for (const unsigned m : face.candidates) consider(m);
+      if (with_matrix && p.status >= 0 && best != p.master && best >= 0 && p.master >= 0) ++p.flips;
+      p.master = best;
+      if (best < 0) {
+        p.last = ContactResponse{};
+        if (with_matrix) p.status = 0;
+        continue;
+      }
+      p.master_xi = best_projection.xi;
+      p.master_eta = best_projection.eta;
+      const BilinearFace& master = master_geometry[static_cast<unsigned>(best)];
+      ToolGeometry plane;  // the master surface's tangent plane at the closest point
+      plane.shape = ToolShape::plane;
+      plane.point = master.position(p.master_xi, p.master_eta);
+      plane.direction = master.outward_normal(p.master_xi, p.master_eta);
+      // Anchor: the slave point's last converged position carried along with the master
+      // material point it now faces, so that x - anchor is the relative motion in the step.
+      const auto N = BilinearFace::shape(p.master_xi, p.master_eta);
+      Vector3 master_committed;
+      for (unsigned v = 0; v < 4; ++v)
+        for (unsigned c = 0; c < 3; ++c)
+          master_committed[c] +=
+              N[v] * (masters_[best].reference[v][c] + committed_master_values_[12 * best + 3 * v + c]);
+      const Vector3 anchor = p.committed_position + (plane.point - master_committed);
+      ContactHistory history = p.committed;
+      history.multiplier = p.multiplier;
+      p.last = evaluate_contact(plane, law_, history, p.position, anchor, p.frozen);
+      const int status = !p.last.active ? 0 : p.last.slipping ? 2 : 1;
+      if (with_matrix) {
+        if (p.status >= 0 && status != p.status && status != 0 && p.status != 0) ++p.flips;
+        p.status = status;
+        if (p.flips >= parameters_.flip_limit && !p.master_frozen && status != 0) {
+          p.master_frozen = true;
+          p.frozen = status == 2 ? FrictionStatus::slip : FrictionStatus::stick;
+        }
+      }
+      if (!p.last.active) continue;
+
+      // Relative position x_s - x_m = sum_i shape_i u_i + const: slave vertices +N, master -N.
+      const auto Ns = BilinearFace::shape(p.xi, p.eta);
+      for (unsigned v = 0; v < 4; ++v)
+        for (unsigned c = 0; c < 3; ++c) {
+          dofs[3 * v + c] = face.dofs[3 * v + c];
+          shape[3 * v + c] = Ns[v];
+          dofs[12 + 3 * v + c] = masters_[best].dofs[3 * v + c];
+          shape[12 + 3 * v + c] = -N[v];
+        }
+      const auto& r = p.last;
+      for (unsigned i = 0; i < 24; ++i) {
+        force[i] = -shape[i] * r.traction[i % 3] * p.weight;
+        local_rhs[i] = -force[i];
+        if (!with_matrix) continue;
+        for (unsigned j = 0; j < 24; ++j) K(i, j) = -shape[i] * shape[j] * r.stiffness[i % 3][j % 3] * p.weight;
+      }
+      // Constrained dofs whose constraint this rank does not hold: drop their rows and columns
+      // (the owner replaces the row by the constraint; the reaction keeps the force).
+      for (unsigned i = 0; i < 24; ++i)
+        if (constrained_.is_element(dofs[i]) && !constraints.is_constrained(dofs[i])) {
+          local_rhs[i] = 0.0;
+          if (!with_matrix) continue;
+          for (unsigned j = 0; j < 24; ++j) K(i, j) = K(j, i) = 0.0;
+        }
+      if (with_matrix) constraints.distribute_local_to_global(K, local_rhs, dofs, matrix, rhs);
+      else constraints.distribute_local_to_global(local_rhs, dofs, rhs);
+      internal_force.add(dofs, force);
+    }
+  }
+  return true;
+}
+
+// Uzawa update as for the rigid tools (Simo & Laursen 1992).
+bool WireWireContact::augment() {
+  if (augmentations_ >= parameters_.maximum_augmentations) return false;
+  double penetration = 0.0;
+  for (const auto& p : points_)
+    if (p.last.active) penetration = std::max(penetration, -p.last.gap);
+  penetration = Utilities::MPI::max(penetration, comm_);
+  if (penetration <= parameters_.gap_tolerance) return false;
+  for (auto& p : points_) p.multiplier = p.last.active ? p.last.pressure : 0.0;
+  ++augmentations_;
+  return true;
+}
+
+void WireWireContact::commit() {
+  const bool augmented = parameters_.maximum_augmentations > 0;
+  for (auto& p : points_) {
+    p.committed_position = p.position;
+    p.committed.tangential_traction = p.last.tangential_traction;
+    p.committed.multiplier = augmented && p.last.active ? p.last.pressure : 0.0;
+    p.committed.slip += p.last.slip_increment;
+    p.committed_master = p.master;
+    // mu p Delta gamma with p averaged over the step (trapezoidal rule, second order like the
+    // external work; the kernel's end-of-step value overestimates it while the load grows).
+    const double mean_pressure = 0.5 * (p.committed_pressure + p.last.pressure);
+    dissipation_ += law_.friction * mean_pressure * p.last.slip_increment * p.weight;
+    p.committed_pressure = p.last.active ? p.last.pressure : 0.0;
+  }
+  committed_master_values_ = master_values_;
+}
+
+WireContactRecord WireWireContact::record(double contact_scale) const {
+  WireContactRecord r;
+  r.enabled = true;
+  r.augmentations = augmentations_;
+  double area = 0.0, normal = 0.0, friction = 0.0, energy = 0.0;
+  unsigned active = 0, slipping = 0, frozen = 0, pairs = 0;
+  for (const auto& face : slaves_) pairs += face.candidates.size();
+  for (const auto& p : points_) {
+    if (p.master_frozen) ++frozen;
+    if (!p.last.active) continue;
+    ++active;
+    if (p.last.slipping) ++slipping;
+    area += p.weight;
+    normal += p.last.pressure * p.weight;
+    friction += p.last.tangential_traction.norm() * p.weight;
+    energy += (-p.last.gap * 0.5 * (p.last.pressure + p.multiplier) +
+               p.last.tangential_traction.norm_square() / (2.0 * law_.tangential_penalty)) *
+              p.weight;
+    r.max_pressure = std::max(r.max_pressure, p.last.pressure);
+    r.max_penetration = std::max(r.max_penetration, -p.last.gap);
+    if (parameters_.keep_samples)
+      r.samples.push_back(ContactSample{0, p.committed_position, p.position, p.weight, p.last.pressure, p.last.gap,
+                                        p.committed.slip, p.last.slipping});
+  }
+  for (const auto& p : points_) r.max_slip = std::max(r.max_slip, p.committed.slip);
+  const auto sum = [&](double x) { return Utilities::MPI::sum(x, comm_) * contact_scale; };
+  r.normal_force = sum(normal);
+  r.friction_force = sum(friction);
+  r.contact_energy = sum(energy);
+  r.active_area = sum(area);
+  r.friction_dissipation = sum(dissipation_);
+  r.active_points = Utilities::MPI::sum(active, comm_);
+  r.slipping_points = Utilities::MPI::sum(slipping, comm_);
+  r.frozen_points = Utilities::MPI::sum(frozen, comm_);
+  r.candidate_pairs = Utilities::MPI::sum(pairs, comm_);
+  r.max_pressure = Utilities::MPI::max(r.max_pressure, comm_);
+  r.max_penetration = Utilities::MPI::max(r.max_penetration, comm_);
+  r.max_slip = Utilities::MPI::max(r.max_slip, comm_);
+  return r;
+}
+
+void WireWireContact::cell_fields(Vector<float>& pressure, Vector<float>& slip) const {
+  const unsigned n = parameters_.points_per_direction * parameters_.points_per_direction;
+  for (const auto& face : slaves_)
+    for (unsigned q = face.first_point; q < face.first_point + n; ++q) {
+      pressure[face.cell] = std::max(pressure[face.cell], static_cast<float>(points_[q].last.pressure));
+      slip[face.cell] = std::max(slip[face.cell], static_cast<float>(points_[q].committed.slip));
+    }
+}
+
+}  // namespace dtwire::fem::contact

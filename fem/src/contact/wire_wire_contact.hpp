@@ -1,0 +1,108 @@
+#pragma once
+// Frictional contact between two deformable wires with finite sliding: Gauss points of the slave
+// surface (wire A) projected onto the bilinear faces of the master surface (wire B), penalty
+// normal law with optional Uzawa augmentation and Coulomb friction by the return map of the
+// rigid-tool kernel (Wriggers 2006, sec. 4.1 closest-point projection, 5.2 penalty, 10.5
+// friction; Laursen 2002, ch. 5). The search keeps, per slave face, the master faces whose
+// bounding boxes (inflated by the search distance) meet its own, found with an R-tree at the
+// start of every step; the matrix pattern holds these couplings and grows when sliding brings
+// new faces near. Chattering guards: a point whose stick/slip status or master face changed
+// `flip_limit` times within a step keeps them for the rest of the step.
+//
+// Linearisation: normal and closest-point parameters are frozen within an iteration (the
+// "frozen-normal" tangent), so Newton converges linearly while the contact zone slides and
+// quadratically once the projection settles; the curvature terms of the master surface are
+// dropped. Every rank holds the master surface (gathered once), so contact works across MPI
+// partitions; contributions to constrained dofs this rank does not know are dropped (their rows
+// are replaced by the constraint anyway; reactions still include the contact forces).
+#include <deal.II/base/index_set.h>
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/petsc_sparse_matrix.h>
+#include <deal.II/lac/petsc_vector.h>
+#include <deal.II/lac/vector.h>
+
+#include <array>
+#include <vector>
+
+#include "bilinear_face.hpp"
+#include "contact_parameters.hpp"
+#include "contact_record.hpp"
+
+namespace dtwire::fem::contact {
+
+class WireWireContact {
+ public:
+  WireWireContact(const WireContactParameters& parameters, double young, double diameter,
+                  const dealii::DoFHandler<3>& dof_handler, MPI_Comm comm);
+
+  // Every master-surface dof: the solver adds them to its locally relevant set.
+  const dealii::IndexSet& needed_dofs() const { return needed_; }
+  // Once the relevant set and the constraints are final.
+  void initialise(const dealii::IndexSet& relevant, const dealii::AffineConstraints<double>& constraints,
+                  const dealii::IndexSet& owned);
+  // Couplings of the current candidate pairs (slave face x master face).
+  void add_sparsity(dealii::DynamicSparsityPattern& pattern, const dealii::AffineConstraints<double>& constraints) const;
+  // Before each step, with the committed displacement: new candidate pairs from the R-tree.
+  // Returns true (on every rank) if a pair is new to the matrix pattern: rebuild it.
+  bool begin_step(const std::vector<double>& relevant_values);
+  bool assemble(const std::vector<double>& relevant_values, bool with_matrix,
+                const dealii::AffineConstraints<double>& constraints, dealii::PETScWrappers::MPI::SparseMatrix& matrix,
+                dealii::PETScWrappers::MPI::Vector& rhs, dealii::PETScWrappers::MPI::Vector& internal_force);
+  bool augment();
+  void commit();
+  WireContactRecord record(double contact_scale) const;
+  void cell_fields(dealii::Vector<float>& pressure, dealii::Vector<float>& slip) const;
+  unsigned augmentations() const { return augmentations_; }
+
+ private:
+  struct MasterFace {  // gathered on every rank
+    std::array<dealii::types::global_dof_index, 12> dofs;  // vertex v, component c at 3 v + c
+    std::array<Vector3, 4> reference;
+    double normal_sign = 1.0;
+    std::array<unsigned, 12> value_index{};  // positions in the relevant values
+  };
+  struct SlaveFace {  // this rank's
+    std::array<dealii::types::global_dof_index, 12> dofs;
+    std::array<Vector3, 4> reference;
+    double normal_sign = 1.0;
+    std::array<unsigned, 12> value_index{};
+    unsigned cell = 0;
+    unsigned first_point = 0;
+    std::vector<unsigned> candidates;         // master faces searched at the last begin_step
+    std::vector<unsigned> pattern;            // master faces in the matrix pattern (sorted)
+  };
+  struct SlavePoint {
+    double xi = 0.0, eta = 0.0, weight = 0.0;  // on the slave face; reference area
+    ContactHistory committed;
+    double committed_pressure = 0.0;          // at the last converged step
+    Vector3 committed_position, position;
+    double multiplier = 0.0;
+    ContactResponse last;
+    int master = -1, committed_master = -1;   // master face at the last assembly / step
+    double master_xi = 0.0, master_eta = 0.0;
+    unsigned flips = 0;
+    FrictionStatus frozen = FrictionStatus::free;
+    bool master_frozen = false;
+    int status = 0;  // 0 open, 1 stick, 2 slip (last assembly with a matrix)
+  };
+
+  BilinearFace current_face(const std::array<Vector3, 4>& reference, const std::array<unsigned, 12>& index,
+                            double sign, const std::vector<double>& values) const;
+
+  WireContactParameters parameters_;
+  ContactLaw law_;
+  MPI_Comm comm_;
+  double search_distance_ = 0.0;
+  std::vector<MasterFace> masters_;
+  std::vector<SlaveFace> slaves_;
+  std::vector<SlavePoint> points_;
+  std::vector<double> committed_master_values_;  // 12 per master face, displacement at the last step
+  std::vector<double> master_values_;            // at the last assembly
+  dealii::IndexSet needed_, constrained_;        // constrained_: every constrained contact dof (all ranks)
+  double dissipation_ = 0.0;
+  unsigned augmentations_ = 0;
+};
+
+}  // namespace dtwire::fem::contact
