@@ -184,7 +184,16 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       FeModel& fe = options->models.empty() ? none : fe_model(options->models.front());
       const gap::ForceCurve sim = !options->sims.empty() ? gap::load_force_curve(options->sims.front(), conversion)
                                                          : fe.run({});
+      if (options->modes.size() > 1)
+        throw InputError("--mode", "--lab-summary compares one simulation: give one loading mode");
+      // The loading mode: --mode, else the simulated curve's (metadata, channels, sign).
+      const gap::ModeGuess mode =
+          !options->modes.empty() ? gap::ModeGuess{gap::parse_loading_mode(options->modes.front(), "--mode"), "--mode"}
+          : !options->sims.empty() ? gap::detect_loading_mode(read_csv(options->sims.front()), sim, options->sims.front())
+                                   : gap::detect_loading_mode(Curve{}, sim, options->models.front());
       gap::SummaryOptions summary_options;
+      for (const gap::EffectSpec& e : gap::effect_catalogue())
+        if (!gap::effect_applies(e, mode.mode)) summary_options.inapplicable[e.name] = "does not apply to " + mode.mode;
       summary_options.effects = effects;
       summary_options.model = fe.run;
       summary_options.model_unsupported = fe.unsupported;

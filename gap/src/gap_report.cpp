@@ -146,10 +146,12 @@ std::string diagnosis_markdown(const Diagnosis& d) {
       << " to " << d.predictive.gap_after << " (shrink " << d.predictive.shrink << ")\n";
   else
     s << "- predictive check: not done (" << d.predictive.note << ")\n";
-  s << "\n| region | from mm | to mm | share | direction |\n|---|---|---|---|---|\n";
+  const bool modes = !d.where.empty() && !d.where.front().mode.empty();  // combined over modes
+  s << "\n|" << (modes ? " mode |" : "") << " region | from mm | to mm | share | direction |\n|"
+    << (modes ? "---|" : "") << "---|---|---|---|---|\n";
   for (const GapSegment& g : d.where)
-    s << "| " << g.region << " | " << g.from_m * 1e3 << " | " << g.to_m * 1e3 << " | " << g.share
-      << " | " << g.direction << " |\n";
+    s << "| " << (modes ? g.mode + " | " : std::string()) << g.region << " | " << g.from_m * 1e3 << " | "
+      << g.to_m * 1e3 << " | " << g.share << " | " << g.direction << " |\n";
   s << "\n| effect | gap after | shrink | score | dAICc | plausibility | region match |\n"
     << "|---|---|---|---|---|---|---|\n";
   constexpr std::size_t kShown = 10;  // the JSON has them all

@@ -373,6 +373,11 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     for (const std::string& name : options.effects) requested.push_back(&find_effect(name));
   std::mt19937 rng(options.seed);
   for (const EffectSpec* e : requested) {
+    if (const auto inapplicable = options.inapplicable.find(e->name); inapplicable != options.inapplicable.end()) {
+      d.not_tested.push_back(e->name);
+      d.not_tested_reason[e->name] = inapplicable->second;
+      continue;
+    }
     const auto unsupported = options.model_unsupported.find(e->name);
     if (e->needs_model && (!options.model || unsupported != options.model_unsupported.end())) {
       d.not_tested.push_back(e->name);

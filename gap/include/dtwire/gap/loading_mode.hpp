@@ -23,7 +23,7 @@ struct ModeGuess {
 };
 
 // In order: metadata `loading_mode` (must be a mode name, else InputError naming `file`);
-// metadata `experiment` containing a mode name; channels (moment or rotation -> bending,
+// metadata `experiment` containing a mode name; channels (moment, rotation or deflection -> bending,
 // shear_* -> shear); the force (both signs beyond 20 % of the peak -> cyclic; dominant force
 // negative -> compression; else tension).
 ModeGuess detect_loading_mode(const Curve& curve, const ForceCurve& force_curve, const std::string& file);

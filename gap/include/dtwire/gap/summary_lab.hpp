@@ -34,6 +34,7 @@ struct SummaryOptions {
   std::vector<std::string> effects;  // empty: all
   ModelRunner model;
   std::map<std::string, std::string> model_unsupported;  // effect -> reason
+  std::map<std::string, std::string> inapplicable;  // effects not acting in the loading mode -> reason
   std::size_t model_runs = 3;  // FE runs per model-only effect (the base run is given), and
                                // search points per pair with a model-only effect
   bool try_pairs = true;
