@@ -8,6 +8,7 @@
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/gap_report.hpp"
 #include "dtwire/gap/loading_mode.hpp"
+#include "dtwire/gap/model_search.hpp"
 #include "evidence.hpp"
 
 namespace dtwire::gap {
@@ -144,6 +145,61 @@ std::vector<Start> starts_from_modes(const JointEffect& e, const std::vector<Mod
   return starts;
 }
 
+// A pair with a model-only effect over all modes: the model-only parameters (specimen effects:
+// one value for all modes) by the bounded pattern search, at most `points` points (each at most
+// one FE run per mode); a curve-mode partner refitted jointly on every point's FE curves.
+JointFit model_pair(const Combined& cb, const std::vector<JointEffect>& pair, const JointFit& fa,
+                    const JointFit& fb, std::size_t points, std::mt19937& rng, int* spent) {
+  const CurveScale& scale = cb.problems.front().scale;
+  const auto with_model = [&](const std::vector<std::pair<std::size_t, double>>& values) {
+    std::vector<std::vector<AppliedEffect>> applied(cb.problems.size());
+    for (const auto& [k, v] : values)
+      for (std::size_t g = 0; g < cb.problems.size(); ++g)
+        if (pair[k].block_of[g] >= 0) applied[g].push_back({pair[k].effect, {v}});
+    return applied;
+  };
+  const double pa = fa.blocks[0][0][0], pb = fb.blocks[0][0][0];
+  if (pair[0].effect->needs_model && pair[1].effect->needs_model) {
+    const auto objective = [&](const std::vector<double>& x) {
+      return evaluate_joint(cb.problems, with_model({{0, x[0]}, {1, x[1]}})).weighted_sse;
+    };
+    const PatternSearch s = pattern_search(
+        {pair[0].effect->parameters(scale)[0], pair[1].effect->parameters(scale)[0]},
+        {{{pa, pair[1].effect->neutral}, fa.weighted_sse}, {{pair[0].effect->neutral, pb}, fb.weighted_sse}},
+        {{pa, pb}}, objective, points);
+    *spent = static_cast<int>(s.points);
+    JointFit out = evaluate_joint(cb.problems, with_model({{0, s.best[0]}, {1, s.best[1]}}));
+    out.blocks = {{{s.best[0]}}, {{s.best[1]}}};
+    out.parameter_count = 2;
+    return out;
+  }
+  const std::size_t m = pair[0].effect->needs_model ? 0 : 1;
+  const JointFit& curve_single = m == 0 ? fb : fa;
+  // The curve-mode partner fitted jointly on the FE curves at model parameter x.
+  const auto partner = [&](double x) {
+    std::vector<FitProblem> on_runs = cb.problems;
+    for (std::size_t g = 0; g < on_runs.size(); ++g) {
+      if (pair[m].block_of[g] >= 0) on_runs[g].sim = cb.problems[g].runner({{pair[m].effect, {x}}});
+      on_runs[g].runner = nullptr;
+    }
+    return fit_joint(on_runs, {pair[1 - m]}, {{curve_single.blocks[0]}}, 0, rng);
+  };
+  const PatternSearch s = pattern_search({pair[m].effect->parameters(scale)[0]}, {}, {{m == 0 ? pa : pb}},
+                                         [&](const std::vector<double>& x) { return partner(x[0]).weighted_sse; },
+                                         points);
+  *spent = static_cast<int>(s.points);
+  const JointFit best = partner(s.best[0]);
+  auto applied = with_model({{m, s.best[0]}});
+  for (std::size_t g = 0; g < applied.size(); ++g)
+    applied[g].insert(applied[g].end(), best.per_problem[g].begin(), best.per_problem[g].end());
+  JointFit out = evaluate_joint(cb.problems, applied);
+  out.blocks.resize(2);
+  out.blocks[m] = {{s.best[0]}};
+  out.blocks[1 - m] = best.blocks[0];
+  out.parameter_count = 1 + best.parameter_count;
+  return out;
+}
+
 Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDiagnosis>& modes,
                   const DiagnosisOptions& options) {
   Diagnosis c;
@@ -230,11 +286,10 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
   };
   rescore();
 
-  // Pairs of curve-mode effects, when no single one brings the gap down to the noise floor
-  // (pairs with a model-only effect are tried per mode, with the bounded FE search).
+  // Pairs, when no single effect brings the gap down to the noise floor; pairs with a model-only
+  // effect by the bounded search (at most options.model_runs points each).
   std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < ranking.size(); ++i)
-    if (!singles[i].effect->needs_model) order.push_back(i);
+  for (std::size_t i = 0; i < ranking.size(); ++i) order.push_back(i);
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return ranking[a].gap_after < ranking[b].gap_after; });
   double single_gap = INFINITY;
@@ -245,9 +300,16 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
     for (std::size_t a = 0; a < order.size(); ++a)
       for (std::size_t b = a + 1; b < order.size(); ++b) {
         const std::vector<JointEffect> pair = {singles[order[a]], singles[order[b]]};
-        const std::vector<Start> starts = {{fits[order[a]].blocks[0], fits[order[b]].blocks[0]}};
-        fits.push_back(fit_joint(cb.problems, pair, starts, 1, rng));
+        int points = 0;
+        if (pair[0].effect->needs_model || pair[1].effect->needs_model) {
+          if (options.model_runs == 0) continue;
+          fits.push_back(model_pair(cb, pair, fits[order[a]], fits[order[b]], options.model_runs, rng, &points));
+        } else {
+          const std::vector<Start> starts = {{fits[order[a]].blocks[0], fits[order[b]].blocks[0]}};
+          fits.push_back(fit_joint(cb.problems, pair, starts, 1, rng));
+        }
         ranking.push_back(rank_combined(cb, pair, fits.back(), mode_names, c.gap_before));
+        ranking.back().search_points = points;
       }
     rescore();
     evidence::demote_weak_pairs(ranking, first_pair, single_gap);
@@ -278,6 +340,8 @@ MultiModeDiagnosis diagnose_modes(const std::vector<ModeInput>& inputs, const Di
   for (const ModeInput& in : inputs) {
     if (!seen.insert(in.mode).second) throw InputError("--mode", "loading mode " + in.mode + " given twice");
     if (in.labs.empty()) throw InputError("--lab", "loading mode " + in.mode + " has no laboratory curve");
+  }
+  for (const ModeInput& in : inputs) {
     DiagnosisOptions o = options;
     o.model = in.model;
     o.model_unsupported = in.model_unsupported;

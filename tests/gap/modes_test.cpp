@@ -172,6 +172,51 @@ TEST(GapModes, ModelOnlyEffectIsFittedJointlyThroughEachModesRunner) {
   EXPECT_GT(compression_runs, 0);
 }
 
+TEST(GapModes, PairWithAModelOnlyEffectIsFittedOverTheModesWithinItsBudget) {
+  int tension_runs = 0, compression_runs = 0;
+  const ModelRunner tension = stand_in_fe(false, &tension_runs), compression = stand_in_fe(true, &compression_runs);
+  const EffectSpec& imperfection = find_effect("geometry_imperfection");
+  const ForceCurve tension_sim = tension({});
+  // Imperfection x 2.5 in both modes, a compliance of 0.5 mm/kN in the tension grips only.
+  const ForceCurve tension_lab = apply_effects(tension({{&imperfection, {2.5}}}),
+                                               {{&find_effect("machine_compliance"), {0.5}}}, curve_scale(tension_sim));
+  std::vector<ModeInput> inputs(2);
+  inputs[0].mode = "tension";
+  inputs[0].labs = {noisy(tension_lab, 9, 6.0, "t1")};
+  inputs[0].sim = tension_sim;
+  inputs[0].model = tension;
+  inputs[1].mode = "compression";
+  inputs[1].labs = {noisy(compression({{&imperfection, {2.5}}}), 10, 6.0, "c1")};
+  inputs[1].sim = compression({});
+  inputs[1].model = compression;
+  DiagnosisOptions options;
+  // Not strain_rate: the stand-in imperfection is a uniform force scaling, which it mimics.
+  options.effects = {"geometry_imperfection", "machine_compliance", "gauge_length"};
+  options.model_runs = 6;
+  const MultiModeDiagnosis d = diagnose_modes(inputs, options);
+  EXPECT_EQ(d.modes[0].diagnosis.cause, "geometry_imperfection+machine_compliance");
+  EXPECT_EQ(d.modes[1].diagnosis.cause, "geometry_imperfection");
+  ASSERT_EQ(d.combined.cause, "geometry_imperfection+machine_compliance") << d.combined.reason;
+  const RankedEffect& pair = d.combined.ranking.front();
+  EXPECT_LE(pair.search_points, 6);
+  EXPECT_EQ(pair.parameters, 3);  // one imperfection, a compliance per mode
+  for (const RankedEffect& r : d.combined.ranking)
+    if (r.effect == "geometry_imperfection" || r.effect == "machine_compliance") {
+      EXPECT_GT(pair.score, r.score) << r.effect;
+      EXPECT_LT(pair.aicc, r.aicc) << r.effect;
+    }
+  for (const auto& [mode, fitted] : pair.fitted_by_mode)
+    for (const AppliedEffect& a : fitted) {
+      if (a.effect->name == "geometry_imperfection") {
+        EXPECT_NEAR(a.params[0], 2.5, 0.25) << mode;  // the search's resolution (quarter-range steps halved twice)
+      } else if (mode == "tension") {
+        EXPECT_NEAR(a.params[0], 0.5, 0.05);  // 10 %
+      } else {
+        EXPECT_LT(a.params[0], 0.05);  // the clean compression grips
+      }
+    }
+}
+
 TEST(GapModes, ModeFromMetadataThenChannelsThenSign) {
   ForceCurve c;
   c.source = "c.csv";
