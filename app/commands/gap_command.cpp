@@ -3,7 +3,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <sstream>
+
+#include <unistd.h>
 
 #include "../cli.hpp"
 #include "../plotting.hpp"
@@ -11,7 +14,10 @@
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
+#include "dtwire/core/csv.hpp"
 #include "dtwire/gap/gap_report.hpp"
+#include "dtwire/gap/loading_mode.hpp"
+#include "dtwire/gap/modes.hpp"
 #include "dtwire/gap/selfcheck.hpp"
 #include "dtwire/gap/summary_lab.hpp"
 #include "gap_model_runner.hpp"
@@ -49,12 +55,38 @@ void render_plot(const nlohmann::json& data, const std::string& png) {
   }
 }
 
+// The run directory goes when empty (a failed run's directory is kept for diagnosis).
+struct RemoveWhenEmpty {
+  std::filesystem::path dir;
+  ~RemoveWhenEmpty() {
+    std::error_code ignored;
+    if (!dir.empty()) std::filesystem::remove(dir, ignored);
+  }
+};
+
+// `values` given once for all laboratory curves, or once per curve (in the order of --lab).
+std::vector<std::string> per_lab(const std::vector<std::string>& values, std::size_t labs,
+                                 const std::string& option, const std::string& what) {
+  if (values.empty() || values.size() == labs) return values;
+  if (values.size() == 1) return std::vector<std::string>(labs, values.front());
+  throw InputError(option, std::to_string(values.size()) + " " + what + " for " + std::to_string(labs) +
+                               " laboratory curves: give one " + option + " for all, or one per --lab in "
+                               "the same order");
+}
+
+std::string png_for_mode(const std::string& png, const std::string& mode) {
+  std::filesystem::path p(png);
+  const std::string extension = p.extension().string();
+  p.replace_extension();
+  return p.string() + "_" + mode + (extension.empty() ? ".png" : extension);
+}
+
 }  // namespace
 
 void add_gap_command(CLI::App& root, CommandSet& commands) {
   struct Options {
-    std::vector<std::string> labs;
-    std::string sim, model, lab_summary, effects, json, plot, report;
+    std::vector<std::string> labs, sims, models, modes;
+    std::string lab_summary, effects, json, plot, report;
     std::size_t model_runs = 3;
     double gauge_mm = 0.0, area_mm2 = 0.0;
     bool no_pairs = false;
@@ -63,16 +95,33 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   auto options = std::make_shared<Options>();
   CLI::App* command = root.add_subcommand(
       "gap", "Diagnose the gap between simulation and laboratory curves (where, which effect, how far)");
+  command->footer(
+      "Several loading modes: each --lab curve's mode is its CSV metadata `# loading_mode: ...`, "
+      "else a mode name inside `# experiment: ...`, else its channels (moment/rotation/deflection "
+      "-> bending, shear_* -> shear), else its force (both signs -> cyclic, mostly negative -> "
+      "compression, else tension); --mode overrides. Curves are diagnosed per mode, and jointly: "
+      "the JSON top level is the combined diagnosis (test-setup effects with one parameter set per "
+      "mode, specimen effects shared over all modes) and \"modes\" lists each mode's diagnosis "
+      "(mode, curves, gap_before, where, ranking, cause, ...). Give --sim (or --model) once for all "
+      "curves of one mode, or once per --lab in the same order; curves of one mode must share their "
+      "simulation. With several modes --plot OUT.png writes OUT_<mode>.png per mode.");
   command->add_option("--lab", options->labs, "Laboratory curve CSV (repeat for several)");
-  command->add_option("--sim", options->sim, "Simulated curve CSV (curve-only mode)");
-  command->add_option("--model", options->model,
+  command->add_option("--sim", options->sims,
+                      "Simulated curve CSV (curve-only mode): once, or once per --lab");
+  command->add_option("--model", options->models,
                       "FE experiment (.prm) re-run through `dtwire run` with model-only effects "
-                      "switched on (the base run is the simulation unless --sim is given)");
+                      "switched on (the base run is the simulation unless --sim is given): once, or "
+                      "once per --lab");
+  command->add_option("--mode", options->modes,
+                      "Loading mode of each --lab in order (comma-separated or repeated; one name "
+                      "for all): " + gap::loading_mode_list() + " (default: from each curve)")
+      ->delimiter(',');
   command->add_option("--lab-summary", options->lab_summary,
                       "Laboratory summary figures instead of curves, name=mean:sd,...: " +
                           gap::summary_feature_names() + " (e.g. peak_force_N=1510:196)");
   command->add_option("--model-runs", options->model_runs,
-                      "FE runs per model-only effect with --lab-summary")->capture_default_str();
+                      "FE runs per model-only effect with --lab-summary, and search points per pair "
+                      "with a model-only effect (each at most one FE run)")->capture_default_str();
   command->add_option("--effects", options->effects,
                       "Comma-separated effects to test (default: all that apply): " +
                           gap::effect_names());
@@ -91,10 +140,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       throw InputError("--lab", "give at least one laboratory curve (or --lab-summary)");
     if (!options->labs.empty() && !options->lab_summary.empty())
       throw InputError("--lab-summary", "give either --lab curves or --lab-summary figures, not both");
-    if (options->sim.empty() && options->model.empty())
+    if (options->sims.empty() && options->models.empty())
       throw InputError("--sim", "give the simulated curve (or --model)");
-    std::vector<gap::SummaryFeature> summary;
-    if (!options->lab_summary.empty()) summary = gap::parse_lab_summary(options->lab_summary);
     std::vector<std::string> effects;
     try {
       for (const auto& name : split_names(options->effects)) {
@@ -107,26 +154,51 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     gap::CurveConversion conversion;
     if (options->gauge_mm > 0) conversion.gauge_length_m = options->gauge_mm * 1e-3;
     if (options->area_mm2 > 0) conversion.area_m2 = options->area_mm2 * 1e-6;
-    std::vector<gap::ForceCurve> labs;
-    for (const auto& lab : options->labs) labs.push_back(gap::load_force_curve(lab, conversion));
-    FeModel fe;
-    if (!options->model.empty()) fe = make_fe_model(options->model);
-    // The run directory goes when empty (a failed run's directory is kept for diagnosis).
-    struct RemoveWhenEmpty {
-      std::filesystem::path dir;
-      ~RemoveWhenEmpty() {
-        std::error_code ignored;
-        if (!dir.empty()) std::filesystem::remove(dir, ignored);
+    // One FE model per .prm (its runs cached across the modes that use it).
+    std::map<std::string, FeModel> fe_models;
+    std::vector<RemoveWhenEmpty> cleanup;
+    cleanup.reserve(options->models.size());
+    const auto fe_model = [&](const std::string& prm) -> FeModel& {
+      auto found = fe_models.find(prm);
+      if (found == fe_models.end()) {
+        const std::filesystem::path work = std::filesystem::temp_directory_path() /
+            ("dtwire_gap_model_" + std::to_string(::getpid()) + "_" + std::to_string(fe_models.size()));
+        found = fe_models.emplace(prm, make_fe_model(prm, work)).first;
+        cleanup.push_back({found->second.work});
       }
-    } cleanup{fe.work};
-    const gap::ForceCurve sim = !options->sim.empty() ? gap::load_force_curve(options->sim, conversion)
-                                                      : fe.run({});
-    if (!summary.empty()) {
+      return found->second;
+    };
+    const auto report_runs = [&] {
+      for (const auto& [prm, fe] : fe_models)
+        if (fe.runs) std::cout << "FE runs (" << prm << "): " << *fe.runs << "\n";
+    };
+
+    if (!options->lab_summary.empty()) {
+      const std::vector<gap::SummaryFeature> summary = gap::parse_lab_summary(options->lab_summary);
+      if (options->sims.size() > 1 || options->models.size() > 1)
+        throw InputError(options->sims.size() > 1 ? "--sim" : "--model",
+                         "--lab-summary compares one simulation: give --sim and --model at most once");
+      if (!options->plot.empty())
+        throw InputError("--plot", "not available with --lab-summary (no laboratory curve to draw)");
+      FeModel none;
+      FeModel& fe = options->models.empty() ? none : fe_model(options->models.front());
+      const gap::ForceCurve sim = !options->sims.empty() ? gap::load_force_curve(options->sims.front(), conversion)
+                                                         : fe.run({});
+      if (options->modes.size() > 1)
+        throw InputError("--mode", "--lab-summary compares one simulation: give one loading mode");
+      // The loading mode: --mode, else the simulated curve's (metadata, channels, sign).
+      const gap::ModeGuess mode =
+          !options->modes.empty() ? gap::ModeGuess{gap::parse_loading_mode(options->modes.front(), "--mode"), "--mode"}
+          : !options->sims.empty() ? gap::detect_loading_mode(read_csv(options->sims.front()), sim, options->sims.front())
+                                   : gap::detect_loading_mode(Curve{}, sim, options->models.front());
       gap::SummaryOptions summary_options;
+      for (const gap::EffectSpec& e : gap::effect_catalogue())
+        if (!gap::effect_applies(e, mode.mode)) summary_options.inapplicable[e.name] = "does not apply to " + mode.mode;
       summary_options.effects = effects;
       summary_options.model = fe.run;
       summary_options.model_unsupported = fe.unsupported;
       summary_options.model_runs = options->model_runs;
+      summary_options.try_pairs = !options->no_pairs;
       summary_options.seed = options->seed;
       const gap::SummaryDiagnosis d = gap::diagnose_summary(sim, summary, summary_options);
       write_text(options->json, gap::summary_json(d).dump(2) + "\n");
@@ -136,32 +208,93 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       if (!d.ranking.empty())
         std::cout << "; best: " << d.ranking.front().effect << ", shrink " << d.ranking.front().shrink;
       std::cout << "\n";
-      if (fe.runs) std::cout << "FE runs: " << *fe.runs << "\n";
-      if (!options->plot.empty())
-        throw InputError("--plot", "not available with --lab-summary (no laboratory curve to draw)");
+      report_runs();
       return 0;
+    }
+
+    const std::size_t n = options->labs.size();
+    const auto sims = per_lab(options->sims, n, "--sim", "simulations");
+    const auto models = per_lab(options->models, n, "--model", "models");
+    const auto given_modes = per_lab(options->modes, n, "--mode", "loading modes");
+    // Each laboratory curve's mode, then the curves grouped by mode (in order of appearance).
+    std::vector<gap::ModeInput> inputs;
+    std::vector<std::string> input_sim, input_model, input_first_lab;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::string& path = options->labs[k];
+      const gap::ForceCurve lab = gap::load_force_curve(path, conversion);
+      const gap::ModeGuess guess = given_modes.empty()
+                                       ? gap::detect_loading_mode(read_csv(path), lab, path)
+                                       : gap::ModeGuess{gap::parse_loading_mode(given_modes[k], "--mode"), "--mode"};
+      const std::string sim = sims.empty() ? "" : sims[k];
+      const std::string model = models.empty() ? "" : models[k];
+      auto in = std::find_if(inputs.begin(), inputs.end(), [&](const gap::ModeInput& i) { return i.mode == guess.mode; });
+      if (in == inputs.end()) {
+        inputs.push_back({guess.mode, guess.basis, {}, {}, {}, {}});
+        input_sim.push_back(sim);
+        input_model.push_back(model);
+        input_first_lab.push_back(path);
+        in = inputs.end() - 1;
+      }
+      const auto m = static_cast<std::size_t>(in - inputs.begin());
+      if (input_sim[m] != sim || input_model[m] != model)
+        throw InputError(input_sim[m] != sim ? "--sim" : "--model",
+                         "laboratory curves " + input_first_lab[m] + " and " + path + " are both " + guess.mode +
+                             " (" + guess.basis + ") but name different simulations: curves of one loading "
+                             "mode share one simulation (or set their modes with --mode)");
+      if (in->basis != guess.basis && in->basis.find(guess.basis) == std::string::npos)
+        in->basis += "; " + guess.basis;
+      in->labs.push_back(lab);
+    }
+    if (inputs.size() > 1 && options->sims.size() <= 1 && options->models.size() <= 1)
+      throw InputError("--sim", "the laboratory curves are of " + std::to_string(inputs.size()) +
+                                    " loading modes (" + [&] {
+                                      std::string list;
+                                      for (const auto& i : inputs) list += (list.empty() ? "" : ", ") + i.mode;
+                                      return list;
+                                    }() + ") but one simulation was given: give one --sim (or --model) per --lab, "
+                                          "in the same order");
+    for (std::size_t m = 0; m < inputs.size(); ++m) {
+      if (!input_model[m].empty()) {
+        FeModel& fe = fe_model(input_model[m]);
+        inputs[m].model = fe.run;
+        inputs[m].model_unsupported = fe.unsupported;
+      }
+      inputs[m].sim = !input_sim[m].empty() ? gap::load_force_curve(input_sim[m], conversion) : inputs[m].model({});
     }
     gap::DiagnosisOptions diagnosis_options;
     diagnosis_options.effects = effects;
-    diagnosis_options.model = fe.run;
-    diagnosis_options.model_unsupported = fe.unsupported;
     diagnosis_options.try_pairs = !options->no_pairs;
     diagnosis_options.seed = options->seed;
-    const gap::Diagnosis d = gap::diagnose(labs, sim, diagnosis_options);
-    const nlohmann::json json = gap::diagnosis_json(d);
-    write_text(options->json, json.dump(2) + "\n");
-    write_text(options->report, gap::diagnosis_markdown(d));
-    std::cout << "gap " << d.gap_before << " (noise floor " << d.noise_floor << "), cause: " << d.cause
-              << " (" << d.reason << ")";
-    if (!d.ranking.empty())
-      std::cout << "; best: " << d.ranking.front().effect << ", shrink " << d.ranking.front().shrink;
-    std::cout << "\n";
+    diagnosis_options.model_runs = options->model_runs;
+    const gap::MultiModeDiagnosis result = gap::diagnose_modes(inputs, diagnosis_options);
+    write_text(options->json, gap::multimode_json(result).dump(2) + "\n");
+    write_text(options->report, gap::multimode_markdown(result));
+    const auto summary_line = [](const gap::Diagnosis& d) {
+      std::ostringstream line;
+      line << "gap " << d.gap_before << " (noise floor " << d.noise_floor << "), cause: " << d.cause << " ("
+           << d.reason << ")";
+      if (!d.ranking.empty())
+        line << "; best: " << d.ranking.front().effect << ", shrink " << d.ranking.front().shrink;
+      return line.str();
+    };
+    std::cout << (result.modes.size() > 1 ? "combined: " : "") << summary_line(result.combined) << "\n";
+    if (result.modes.size() > 1)
+      for (const gap::ModeDiagnosis& m : result.modes)
+        std::cout << m.mode << " (" << m.diagnosis.labs.size() << " curves): " << summary_line(m.diagnosis) << "\n";
+    const gap::Diagnosis& d = result.combined;
     if (!d.not_tested.empty()) {
       std::cout << "not tested:";
-      for (const auto& n : d.not_tested) std::cout << " " << n << " (" << d.not_tested_reason.at(n) << ")";
+      for (const auto& name : d.not_tested) std::cout << " " << name << " (" << d.not_tested_reason.at(name) << ")";
       std::cout << "\n";
     }
-    if (!options->plot.empty()) render_plot(gap::plot_data_json(d), options->plot);
+    report_runs();
+    if (!options->plot.empty()) {
+      if (result.modes.size() == 1)
+        render_plot(gap::plot_data_json(result.modes.front().diagnosis), options->plot);
+      else
+        for (const gap::ModeDiagnosis& m : result.modes)
+          render_plot(gap::plot_data_json(m.diagnosis), png_for_mode(options->plot, m.mode));
+    }
     return 0;
   });
 

@@ -6,7 +6,9 @@
 #include <sstream>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/gap/model_search.hpp"
 #include "dtwire/gap/noise.hpp"
+#include "evidence.hpp"
 
 namespace dtwire::gap {
 namespace {
@@ -45,29 +47,10 @@ double mean_gap(const ForceCurve& model, const std::vector<Comparison>& labs) {
   return sum / static_cast<double>(labs.size());
 }
 
-double aicc(double mse, double n_eff, int k) {
-  const double kk = k;
-  const double correction = n_eff - kk - 1 > 0 ? 2 * kk * (kk + 1) / (n_eff - kk - 1) : 1e9;
-  return n_eff * std::log(std::max(mse, 1e-300)) + 2 * kk + correction;
-}
-
 std::string joined_name(const std::vector<AppliedEffect>& effects) {
   std::vector<std::string> names;
   for (const AppliedEffect& a : effects) names.push_back(a.effect->name);
-  std::sort(names.begin(), names.end());
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : "+") + n;
-  return out;
-}
-
-// Shares of `values` (non-negative); uniform when they sum to zero.
-std::vector<double> shares(const std::vector<double>& values) {
-  double total = 0.0;
-  for (double v : values) total += v;
-  std::vector<double> out(values.size(), values.empty() ? 0.0 : 1.0 / static_cast<double>(values.size()));
-  if (total > 0)
-    for (std::size_t i = 0; i < values.size(); ++i) out[i] = values[i] / total;
-  return out;
+  return evidence::joined_name(names);
 }
 
 struct Context {
@@ -103,7 +86,7 @@ RankedEffect rank_entry(const Context& ctx, const EffectFit& fit) {
       area += first.weight[i] * std::abs(forces[i] - ctx.sim_forces_first[i]);
     change.push_back(area);
   }
-  const auto signature = shares(change);
+  const auto signature = evidence::shares(change);
   double distance = 0.0;
   for (std::size_t k = 0; k < ctx.where.size(); ++k)
     distance += std::abs(signature[k] - ctx.where[k].share);
@@ -113,33 +96,11 @@ RankedEffect rank_entry(const Context& ctx, const EffectFit& fit) {
 
 void score_ranking(std::vector<RankedEffect>& ranking, const std::vector<EffectFit>& fits,
                    const Context& ctx, double baseline_mse, Diagnosis& d) {
-  // One effective sample size for every candidate: from the residual of the best fit, whose
-  // autocorrelation is closest to that of the noise.
-  std::size_t best = 0;
-  for (std::size_t i = 1; i < fits.size(); ++i)
-    if (fits[i].weighted_sse < fits[best].weighted_sse) best = i;
-  d.lag1_autocorrelation = fits.empty() ? 0.0 : lag1_autocorrelation(fits[best].residual);
-  const std::size_t n = fits.empty() ? 0 : fits[best].residual.size();
-  d.effective_sample_size = effective_sample_size(n, d.lag1_autocorrelation, 8.0);
-  const double n_eff = d.effective_sample_size;
-  const double labs = static_cast<double>(ctx.problem.labs.size());
-  const double baseline = aicc(baseline_mse, n_eff, 0);
-  double lowest = baseline;
-  for (std::size_t i = 0; i < ranking.size(); ++i) {
-    const double mse = fits[i].weighted_sse / labs;
-    ranking[i].aicc = aicc(mse, n_eff, ranking[i].parameters);
-    ranking[i].bic = n_eff * std::log(std::max(mse, 1e-300)) + ranking[i].parameters * std::log(n_eff);
-    ranking[i].delta_aicc = ranking[i].aicc - baseline;
-    lowest = std::min(lowest, ranking[i].aicc);
-  }
-  double total = std::exp(-0.5 * (baseline - lowest));
-  for (const RankedEffect& r : ranking) total += std::exp(-0.5 * (r.aicc - lowest));
-  for (RankedEffect& r : ranking) {
-    const double weight = std::exp(-0.5 * (r.aicc - lowest)) / total;
-    r.score = weight * r.plausibility * 0.5 * (1.0 + r.region_match);
-    r.qualifies = ctx.gap_before > ctx.floor && ctx.gap_before - r.gap_after > kMinimumReduction * ctx.noise_area &&
-                  r.delta_aicc < -kInformationMargin;
-  }
+  std::vector<evidence::FitStatistics> statistics;
+  for (const EffectFit& f : fits) statistics.push_back({f.weighted_sse, f.residual});
+  evidence::score(ranking, statistics, static_cast<double>(ctx.problem.labs.size()), baseline_mse,
+                  {ctx.gap_before, ctx.floor, ctx.noise_area}, &d.lag1_autocorrelation,
+                  &d.effective_sample_size);
 }
 
 std::vector<std::vector<double>> params_of(const RankedEffect& r) {
@@ -166,6 +127,100 @@ ForceCurve densified(const ForceCurve& c) {
   out.u.push_back(c.u.back());
   out.f.push_back(c.f.back());
   return out;
+}
+
+std::vector<double> centre_of(const EffectSpec& e, const CurveScale& scale) {
+  std::vector<double> p;
+  for (const auto& s : e.parameters(scale)) p.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
+  return p;
+}
+
+// Start of a pair of model-only effects: each single fit's change of the residual, taken as
+// linear in its parameter, added (superposition); the weighted least-squares combination of the
+// two changes gives the start (clamped to the bounds). A single fitted at its neutral value shows
+// no change: one FE run at its plausible centre (counted in `probes`) gives it.
+std::vector<double> superposition_start(const Context& ctx, const EffectSpec& a, const EffectFit& fa,
+                                        const EffectSpec& b, const EffectFit& fb, int* probes) {
+  const EffectFit base = evaluate_fit(ctx.problem, {});
+  auto change = [&](const EffectSpec& e, const EffectFit& f) {
+    double p = f.effects[0].params[0];
+    std::vector<double> r = f.residual;
+    if (p == e.neutral) {
+      const ParameterSpec spec = e.parameters(ctx.problem.scale)[0];
+      p = 0.5 * (spec.plausible_lower + spec.plausible_upper);
+      if (p == e.neutral) p = spec.plausible_upper;
+      r = evaluate_fit(ctx.problem, {{&e, {p}}}).residual;
+      ++*probes;
+    }
+    for (std::size_t k = 0; k < r.size(); ++k) r[k] -= base.residual[k];
+    return std::make_pair(p, r);
+  };
+  const auto [pa, da] = change(a, fa);
+  const auto [pb, db] = change(b, fb);
+  double aa = 0, ab = 0, bb = 0, ar = 0, br = 0;
+  std::size_t k = 0;
+  for (const Comparison& c : ctx.problem.labs)
+    for (std::size_t i = 0; i < c.lab.size(); ++i, ++k) {
+      const double w = c.weight[i];
+      aa += w * da[k] * da[k];
+      ab += w * da[k] * db[k];
+      bb += w * db[k] * db[k];
+      ar += w * da[k] * base.residual[k];
+      br += w * db[k] * base.residual[k];
+    }
+  const double det = aa * bb - ab * ab;
+  if (!(std::abs(det) > 1e-12 * aa * bb)) return {fa.effects[0].params[0], fb.effects[0].params[0]};
+  // Minimise |r0 + x da + y db|^2 for the fractions x, y of the changes.
+  const double x = (-ar * bb + br * ab) / det, y = (-br * aa + ar * ab) / det;
+  const auto sa = a.parameters(ctx.problem.scale)[0], sb = b.parameters(ctx.problem.scale)[0];
+  return {std::clamp(a.neutral + x * (pa - a.neutral), sa.lower, sa.upper),
+          std::clamp(b.neutral + y * (pb - b.neutral), sb.lower, sb.upper)};
+}
+
+// A pair from its single fits. Curve-mode pairs: Ceres from the single optima. With a model-only
+// effect: its parameter by the bounded pattern search (at most `model_runs` points, each at most
+// one FE run), a curve-mode partner refitted by Ceres on every FE curve (no FE cost).
+EffectFit fit_pair(const Context& ctx, const RankedEffect& ra, const EffectFit& fa, const RankedEffect& rb,
+                   const EffectFit& fb, std::size_t model_runs, std::mt19937& rng, int* points) {
+  const EffectSpec* a = ra.fitted[0].effect;
+  const EffectSpec* b = rb.fitted[0].effect;
+  const std::vector<double>& pa = ra.fitted[0].params;
+  const std::vector<double>& pb = rb.fitted[0].params;
+  const CurveScale& scale = ctx.problem.scale;
+  if (!a->needs_model && !b->needs_model)
+    return fit_effects(ctx.problem, {a, b}, {{pa, pb}, {pa, centre_of(*b, scale)}, {centre_of(*a, scale), pb}}, 1, rng);
+  if (a->needs_model && b->needs_model) {
+    const std::vector<ParameterSpec> specs = {a->parameters(scale)[0], b->parameters(scale)[0]};
+    const auto objective = [&](const std::vector<double>& x) {
+      return evaluate_fit(ctx.problem, {{a, {x[0]}}, {b, {x[1]}}}).weighted_sse;
+    };
+    int probes = 0;
+    const std::vector<double> start = superposition_start(ctx, *a, fa, *b, fb, &probes);
+    // The single fits are the pair with the partner switched off.
+    const PatternSearch s = pattern_search(specs, {{{pa[0], b->neutral}, fa.weighted_sse}, {{a->neutral, pb[0]}, fb.weighted_sse}},
+                                           {start, {pa[0], pb[0]}}, objective,
+                                           model_runs > static_cast<std::size_t>(probes) ? model_runs - probes : 0);
+    *points = static_cast<int>(s.points) + probes;
+    return evaluate_fit(ctx.problem, {{a, {s.best[0]}}, {b, {s.best[1]}}});
+  }
+  const bool a_model = a->needs_model;
+  const EffectSpec* model = a_model ? a : b;
+  const EffectSpec* curve = a_model ? b : a;
+  const std::vector<double>& p_model = a_model ? pa : pb;
+  const std::vector<double>& p_curve = a_model ? pb : pa;
+  // The curve-mode partner fitted on the FE curve at model parameter x.
+  const auto partner = [&](double x) {
+    FitProblem on_run = ctx.problem;
+    on_run.sim = ctx.problem.runner({{model, {x}}});
+    on_run.runner = nullptr;
+    return fit_effects(on_run, {curve}, {{p_curve}}, 0, rng);
+  };
+  const PatternSearch s = pattern_search({model->parameters(scale)[0]}, {}, {{p_model[0]}},
+                                         [&](const std::vector<double>& x) { return partner(x[0]).weighted_sse; },
+                                         model_runs);
+  *points = static_cast<int>(s.points);
+  const EffectFit best = partner(s.best[0]);
+  return evaluate_fit(ctx.problem, {{model, {s.best[0]}}, {curve, best.effects[0].params}});
 }
 
 }  // namespace
@@ -251,7 +306,11 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
     for (const std::string& name : options.effects) requested.push_back(&find_effect(name));
   for (const EffectSpec* e : requested) {
     const auto unsupported = options.model_unsupported.find(e->name);
-    if (e->needs_model && !options.model) {
+    const auto inapplicable = options.inapplicable.find(e->name);
+    if (inapplicable != options.inapplicable.end()) {
+      d.not_tested.push_back(e->name);
+      d.not_tested_reason[e->name] = inapplicable->second;
+    } else if (e->needs_model && !options.model) {
       d.not_tested.push_back(e->name);
       d.not_tested_reason[e->name] = "needs --model";
     } else if (e->needs_model && unsupported != options.model_unsupported.end()) {
@@ -284,28 +343,17 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
     const std::size_t singles = ranking.size();
     for (std::size_t a = 0; a < order.size(); ++a)
       for (std::size_t b = a + 1; b < order.size(); ++b) {
-        const RankedEffect& ra = ranking[order[a]];
-        const RankedEffect& rb = ranking[order[b]];
-        const std::vector<const EffectSpec*> pair = {ra.fitted[0].effect, rb.fitted[0].effect};
-        const auto pa = params_of(ra), pb = params_of(rb);
-        const auto& spec_a = pair[0]->parameters(ctx.problem.scale);
-        const auto& spec_b = pair[1]->parameters(ctx.problem.scale);
-        auto centre = [](const std::vector<ParameterSpec>& specs) {
-          std::vector<double> p;
-          for (const auto& s : specs) p.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
-          return p;
-        };
-        std::vector<std::vector<std::vector<double>>> starts = {
-            {pa[0], pb[0]}, {pa[0], centre(spec_b)}, {centre(spec_a), pb[0]}};
-        fits.push_back(fit_effects(ctx.problem, pair, starts, 1, rng));
+        const bool model_pair = ranking[order[a]].fitted[0].effect->needs_model ||
+                                ranking[order[b]].fitted[0].effect->needs_model;
+        if (model_pair && options.model_runs == 0) continue;  // no FE run allowed for pairs
+        int points = 0;
+        fits.push_back(fit_pair(ctx, ranking[order[a]], fits[order[a]], ranking[order[b]],
+                                fits[order[b]], options.model_runs, rng, &points));
         ranking.push_back(rank_entry(ctx, fits.back()));
+        ranking.back().search_points = points;
       }
     score_ranking(ranking, fits, ctx, baseline_mse, d);
-    for (std::size_t i = singles; i < ranking.size(); ++i)
-      if (!(ranking[i].gap_after < kPairGapRatio * single_gap)) {
-        ranking[i].qualifies = false;
-        ranking[i].score *= 0.1;  // a refinement of a single effect, not a second cause
-      }
+    evidence::demote_weak_pairs(ranking, singles, single_gap);
   }
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });

@@ -4,35 +4,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace dtwire::gap {
 namespace {
 
-struct Layout {
-  std::vector<const EffectSpec*> effects;
-  std::vector<ParameterSpec> specs;     // flattened
-  std::vector<std::size_t> offset;      // first flat index of each effect
+// A least-squares problem on a flat parameter vector: `residuals` gives sqrt(w) r for it.
+struct FlatObjective {
+  std::vector<ParameterSpec> specs;
+  std::size_t count = 0;
+  std::function<std::vector<double>(const std::vector<double>&)> residuals;
+  double sse(const std::vector<double>& flat) const {
+    double s = 0.0;
+    for (double r : residuals(flat)) s += r * r;
+    return s;
+  }
 };
-
-Layout make_layout(const std::vector<const EffectSpec*>& effects, const CurveScale& scale) {
-  Layout l;
-  l.effects = effects;
-  for (const EffectSpec* e : effects) {
-    l.offset.push_back(l.specs.size());
-    for (const ParameterSpec& s : e->parameters(scale)) l.specs.push_back(s);
-  }
-  return l;
-}
-
-std::vector<AppliedEffect> unflatten(const Layout& l, const std::vector<double>& flat) {
-  std::vector<AppliedEffect> out;
-  for (std::size_t k = 0; k < l.effects.size(); ++k) {
-    const std::size_t end = k + 1 < l.effects.size() ? l.offset[k + 1] : flat.size();
-    out.push_back({l.effects[k], std::vector<double>(flat.begin() + static_cast<std::ptrdiff_t>(l.offset[k]),
-                                                     flat.begin() + static_cast<std::ptrdiff_t>(end))});
-  }
-  return out;
-}
 
 // Scaled coordinates: x = (p - plausible_lower) / plausible width, so every unknown is O(1).
 double width_of(const ParameterSpec& s) {
@@ -41,63 +28,48 @@ double width_of(const ParameterSpec& s) {
 }
 
 struct Residuals {
-  const FitProblem* problem;
-  const Layout* layout;
+  const FlatObjective* objective;
   std::vector<double> fixed;  // full flat vector; free entries overwritten
   std::vector<std::size_t> free;
-  std::size_t count;
 
   bool operator()(double const* const* x, double* r) const {
     std::vector<double> flat = fixed;
     for (std::size_t j = 0; j < free.size(); ++j) {
-      const ParameterSpec& s = layout->specs[free[j]];
+      const ParameterSpec& s = objective->specs[free[j]];
       flat[free[j]] = s.plausible_lower + x[0][j] * width_of(s);
     }
-    const EffectFit fit = evaluate_fit(*problem, unflatten(*layout, flat));
-    if (fit.residual.size() != count) return false;
-    std::size_t k = 0;
-    for (const Comparison& c : problem->labs)
-      for (std::size_t i = 0; i < c.lab.size(); ++i, ++k)
-        r[k] = std::sqrt(c.weight[i]) * fit.residual[k];
+    const std::vector<double> residual = objective->residuals(flat);
+    if (residual.size() != objective->count) return false;
+    std::copy(residual.begin(), residual.end(), r);
     return true;
   }
 };
 
-std::size_t residual_count(const FitProblem& p) {
-  std::size_t n = 0;
-  for (const Comparison& c : p.labs) n += c.lab.size();
-  return n;
-}
-
 // Ceres on the continuous parameters, grid ones held at their values in `flat`.
-std::vector<double> solve_continuous(const FitProblem& problem, const Layout& layout,
-                                     std::vector<double> flat) {
+std::vector<double> solve_continuous(const FlatObjective& objective, std::vector<double> flat) {
   auto functor = std::make_unique<Residuals>();
-  functor->problem = &problem;
-  functor->layout = &layout;
+  functor->objective = &objective;
   functor->fixed = flat;
-  functor->count = residual_count(problem);
-  for (std::size_t j = 0; j < layout.specs.size(); ++j)
-    if (layout.specs[j].grid.empty()) functor->free.push_back(j);
+  for (std::size_t j = 0; j < objective.specs.size(); ++j)
+    if (objective.specs[j].grid.empty()) functor->free.push_back(j);
   const std::size_t m = functor->free.size();
   if (m == 0) return flat;
   std::vector<double> x(m);
   for (std::size_t j = 0; j < m; ++j) {
-    const ParameterSpec& s = layout.specs[functor->free[j]];
+    const ParameterSpec& s = objective.specs[functor->free[j]];
     x[j] = (std::clamp(flat[functor->free[j]], s.lower, s.upper) - s.plausible_lower) / width_of(s);
   }
   const std::vector<std::size_t> free = functor->free;
-  const std::size_t count = functor->count;
   ceres::NumericDiffOptions diff;
   diff.relative_step_size = 1e-4;  // curves are piecewise linear: a step above the kinks' scale
   auto* cost = new ceres::DynamicNumericDiffCostFunction<Residuals, ceres::CENTRAL>(
       functor.release(), ceres::TAKE_OWNERSHIP, diff);
   cost->AddParameterBlock(static_cast<int>(m));
-  cost->SetNumResiduals(static_cast<int>(count));
+  cost->SetNumResiduals(static_cast<int>(objective.count));
   ceres::Problem ceres_problem;
   ceres_problem.AddResidualBlock(cost, nullptr, x.data());
   for (std::size_t j = 0; j < m; ++j) {
-    const ParameterSpec& s = layout.specs[free[j]];
+    const ParameterSpec& s = objective.specs[free[j]];
     ceres_problem.SetParameterLowerBound(x.data(), static_cast<int>(j),
                                          (s.lower - s.plausible_lower) / width_of(s));
     ceres_problem.SetParameterUpperBound(x.data(), static_cast<int>(j),
@@ -113,28 +85,23 @@ std::vector<double> solve_continuous(const FitProblem& problem, const Layout& la
   ceres::Solver::Summary summary;
   ceres::Solve(options, &ceres_problem, &summary);
   for (std::size_t j = 0; j < m; ++j) {
-    const ParameterSpec& s = layout.specs[free[j]];
+    const ParameterSpec& s = objective.specs[free[j]];
     flat[free[j]] = std::clamp(s.plausible_lower + x[j] * width_of(s), s.lower, s.upper);
   }
   return flat;
 }
 
-double sse_of(const FitProblem& problem, const Layout& layout, const std::vector<double>& flat) {
-  return evaluate_fit(problem, unflatten(layout, flat)).weighted_sse;
-}
-
 // Each grid value of each grid parameter in turn, the continuous parameters refitted for it.
-std::vector<double> search_grid(const FitProblem& problem, const Layout& layout,
-                                std::vector<double> flat) {
-  for (std::size_t j = 0; j < layout.specs.size(); ++j) {
-    if (layout.specs[j].grid.empty()) continue;
-    double best = sse_of(problem, layout, flat);
+std::vector<double> search_grid(const FlatObjective& objective, std::vector<double> flat) {
+  for (std::size_t j = 0; j < objective.specs.size(); ++j) {
+    if (objective.specs[j].grid.empty()) continue;
+    double best = objective.sse(flat);
     std::vector<double> best_flat = flat;
-    for (double v : layout.specs[j].grid) {
+    for (double v : objective.specs[j].grid) {
       std::vector<double> trial = flat;
       trial[j] = v;
-      trial = solve_continuous(problem, layout, trial);
-      const double sse = sse_of(problem, layout, trial);
+      trial = solve_continuous(objective, trial);
+      const double sse = objective.sse(trial);
       if (sse < best) {
         best = sse;
         best_flat = trial;
@@ -143,6 +110,91 @@ std::vector<double> search_grid(const FitProblem& problem, const Layout& layout,
     flat = best_flat;
   }
   return flat;
+}
+
+// Every start solved; the best one is refined on the grid parameters. The starts given are
+// followed by the plausible centre, the effects switched off (`neutral`) and random plausible
+// values, so the fit can always fall back to the bare simulation.
+std::vector<double> minimise(const FlatObjective& objective, std::vector<std::vector<double>> starts,
+                             const std::vector<double>& neutral, std::size_t random_starts,
+                             std::mt19937& rng) {
+  std::vector<double> centre;
+  for (const ParameterSpec& s : objective.specs)
+    centre.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
+  starts.push_back(centre);
+  starts.push_back(neutral);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (std::size_t k = 0; k < random_starts; ++k) {
+    std::vector<double> flat;
+    for (const ParameterSpec& s : objective.specs)
+      flat.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * width_of(s) : 0.0);
+    starts.push_back(flat);
+  }
+  std::vector<double> best;
+  double best_sse = INFINITY;
+  for (const auto& start : starts) {
+    if (start.size() != objective.specs.size()) continue;
+    const std::vector<double> flat = solve_continuous(objective, start);
+    const double sse = objective.sse(flat);
+    if (sse < best_sse) {
+      best_sse = sse;
+      best = flat;
+    }
+  }
+  return search_grid(objective, best);
+}
+
+std::vector<double> weighted(const FitProblem& problem, const EffectFit& fit) {
+  std::vector<double> r(fit.residual.size());
+  std::size_t k = 0;
+  for (const Comparison& c : problem.labs)
+    for (std::size_t i = 0; i < c.lab.size() && k < r.size(); ++i, ++k)
+      r[k] = std::sqrt(c.weight[i]) * fit.residual[k];
+  return r;
+}
+
+std::size_t residual_count(const FitProblem& p) {
+  std::size_t n = 0;
+  for (const Comparison& c : p.labs) n += c.lab.size();
+  return n;
+}
+
+// Flat layout of a joint fit: effect k, block b occupies specs [offset[k][b], +size of k).
+struct JointLayout {
+  std::vector<std::vector<std::size_t>> offset;
+  std::vector<ParameterSpec> specs;
+};
+
+JointLayout joint_layout(const std::vector<JointEffect>& effects, const CurveScale& scale) {
+  JointLayout l;
+  for (const JointEffect& e : effects) {
+    const auto specs = e.effect->parameters(scale);
+    l.offset.emplace_back();
+    for (int b = 0; b < e.blocks; ++b) {
+      l.offset.back().push_back(l.specs.size());
+      l.specs.insert(l.specs.end(), specs.begin(), specs.end());
+    }
+  }
+  return l;
+}
+
+std::vector<double> block_of(const JointLayout& l, const std::vector<JointEffect>& effects,
+                             const std::vector<double>& flat, std::size_t k, int b) {
+  const std::size_t size = effects[k].effect->parameters(CurveScale{}).size();
+  const auto first = flat.begin() + static_cast<std::ptrdiff_t>(l.offset[k][static_cast<std::size_t>(b)]);
+  return std::vector<double>(first, first + static_cast<std::ptrdiff_t>(size));
+}
+
+std::vector<std::vector<AppliedEffect>> per_problem(const JointLayout& l,
+                                                    const std::vector<JointEffect>& effects,
+                                                    const std::vector<double>& flat,
+                                                    std::size_t problems) {
+  std::vector<std::vector<AppliedEffect>> out(problems);
+  for (std::size_t k = 0; k < effects.size(); ++k)
+    for (std::size_t p = 0; p < problems; ++p)
+      if (effects[k].block_of[p] >= 0)
+        out[p].push_back({effects[k].effect, block_of(l, effects, flat, k, effects[k].block_of[p])});
+  return out;
 }
 
 }  // namespace
@@ -165,41 +217,77 @@ EffectFit evaluate_fit(const FitProblem& problem, std::vector<AppliedEffect> eff
 EffectFit fit_effects(const FitProblem& problem, const std::vector<const EffectSpec*>& effects,
                       std::vector<std::vector<std::vector<double>>> starts,
                       std::size_t random_starts, std::mt19937& rng) {
-  const Layout layout = make_layout(effects, problem.scale);
+  std::vector<JointEffect> joint;
+  for (const EffectSpec* e : effects) joint.push_back({e, {0}, 1});
+  std::vector<std::vector<std::vector<std::vector<double>>>> joint_starts;
+  for (const auto& start : starts) {
+    joint_starts.emplace_back();
+    for (const auto& p : start) joint_starts.back().push_back({p});
+  }
+  const JointFit fit = fit_joint({problem}, joint, joint_starts, random_starts, rng);
+  return evaluate_fit(problem, fit.per_problem.front());
+}
+
+JointFit evaluate_joint(const std::vector<FitProblem>& problems,
+                        std::vector<std::vector<AppliedEffect>> per_problem) {
+  JointFit out;
+  for (std::size_t p = 0; p < problems.size(); ++p) {
+    const EffectFit fit = evaluate_fit(problems[p], per_problem[p]);
+    out.weighted_sse += fit.weighted_sse;
+    out.residual.insert(out.residual.end(), fit.residual.begin(), fit.residual.end());
+  }
+  out.per_problem = std::move(per_problem);
+  return out;
+}
+
+JointFit fit_joint(const std::vector<FitProblem>& problems, const std::vector<JointEffect>& effects,
+                   const std::vector<std::vector<std::vector<std::vector<double>>>>& starts,
+                   std::size_t random_starts, std::mt19937& rng) {
+  const CurveScale& scale = problems.front().scale;  // parameter layout only (sizes, grids)
+  const JointLayout layout = joint_layout(effects, scale);
+  FlatObjective objective;
+  for (const FitProblem& p : problems) objective.count += residual_count(p);
+  // Bounds and plausible ranges scale with the simulated curve: each block takes them from the
+  // first problem it applies to.
+  objective.specs = layout.specs;
+  for (std::size_t k = 0; k < effects.size(); ++k)
+    for (int b = 0; b < effects[k].blocks; ++b)
+      for (std::size_t p = 0; p < problems.size(); ++p)
+        if (effects[k].block_of[p] == b) {
+          const auto specs = effects[k].effect->parameters(problems[p].scale);
+          std::copy(specs.begin(), specs.end(),
+                    objective.specs.begin() + static_cast<std::ptrdiff_t>(layout.offset[k][static_cast<std::size_t>(b)]));
+          break;
+        }
+  objective.residuals = [&](const std::vector<double>& flat) {
+    const auto applied = per_problem(layout, effects, flat, problems.size());
+    std::vector<double> r;
+    for (std::size_t p = 0; p < problems.size(); ++p) {
+      const auto w = weighted(problems[p], evaluate_fit(problems[p], applied[p]));
+      r.insert(r.end(), w.begin(), w.end());
+    }
+    return r;
+  };
   std::vector<std::vector<double>> flat_starts;
   for (const auto& start : starts) {
     std::vector<double> flat;
-    for (const auto& p : start) flat.insert(flat.end(), p.begin(), p.end());
-    if (flat.size() == layout.specs.size()) flat_starts.push_back(flat);
+    for (const auto& blocks : start)
+      for (const auto& p : blocks) flat.insert(flat.end(), p.begin(), p.end());
+    if (flat.size() == objective.specs.size()) flat_starts.push_back(flat);
   }
-  std::vector<double> centre;
-  for (const ParameterSpec& s : layout.specs)
-    centre.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
-  flat_starts.push_back(centre);
-  // The effect switched off: the fit can always fall back to the bare simulation.
-  std::vector<double> neutral = centre;
-  for (std::size_t k = 0; k < layout.effects.size(); ++k)
-    neutral[layout.offset[k] + layout.effects[k]->magnitude] = layout.effects[k]->neutral;
-  flat_starts.push_back(neutral);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (std::size_t k = 0; k < random_starts; ++k) {
-    std::vector<double> flat;
-    for (const ParameterSpec& s : layout.specs)
-      flat.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * width_of(s) : 0.0);
-    flat_starts.push_back(flat);
+  std::vector<double> neutral;
+  for (const ParameterSpec& s : objective.specs)
+    neutral.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
+  for (std::size_t k = 0; k < effects.size(); ++k)
+    for (std::size_t offset : layout.offset[k]) neutral[offset + effects[k].effect->magnitude] = effects[k].effect->neutral;
+  const std::vector<double> best = minimise(objective, flat_starts, neutral, random_starts, rng);
+  JointFit out = evaluate_joint(problems, per_problem(layout, effects, best, problems.size()));
+  out.parameter_count = static_cast<int>(objective.specs.size());
+  for (std::size_t k = 0; k < effects.size(); ++k) {
+    out.blocks.emplace_back();
+    for (int b = 0; b < effects[k].blocks; ++b) out.blocks.back().push_back(block_of(layout, effects, best, k, b));
   }
-  std::vector<double> best;
-  double best_sse = INFINITY;
-  for (const auto& start : flat_starts) {
-    const std::vector<double> flat = solve_continuous(problem, layout, start);
-    const double sse = sse_of(problem, layout, flat);
-    if (sse < best_sse) {
-      best_sse = sse;
-      best = flat;
-    }
-  }
-  best = search_grid(problem, layout, best);
-  return evaluate_fit(problem, unflatten(layout, best));
+  return out;
 }
 
 }  // namespace dtwire::gap

@@ -4,19 +4,25 @@
 #include <sstream>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/gap/loading_mode.hpp"
 
 namespace dtwire::gap {
 namespace {
 
-nlohmann::json params_json(const std::vector<AppliedEffect>& fitted, const CurveScale& scale) {
+// `<parameter>`, `<effect>.<parameter>` for a pair; in the combined ranking of several loading
+// modes a test-setup effect's parameters are per mode: `<mode>.<parameter>`.
+nlohmann::json params_json(const RankedEffect& r, const CurveScale& scale) {
   nlohmann::json out = nlohmann::json::object();
-  for (const AppliedEffect& a : fitted) {
-    const auto specs = a.effect->parameters(scale);
-    for (std::size_t i = 0; i < specs.size(); ++i) {
-      const std::string key = fitted.size() > 1 ? a.effect->name + "." + specs[i].name : specs[i].name;
-      out[key] = a.params[i];
+  auto add = [&](const std::vector<AppliedEffect>& fitted, const std::string& mode) {
+    for (const AppliedEffect& a : fitted) {
+      const auto specs = a.effect->parameters(scale);
+      const std::string prefix = (r.fitted.size() > 1 ? a.effect->name + "." : std::string()) +
+                                 (!mode.empty() && effect_per_mode(*a.effect) ? mode + "." : std::string());
+      for (std::size_t i = 0; i < specs.size(); ++i) out[prefix + specs[i].name] = a.params[i];
     }
-  }
+  };
+  if (r.fitted_by_mode.empty()) add(r.fitted, "");
+  for (const auto& [mode, fitted] : r.fitted_by_mode) add(fitted, mode);
   return out;
 }
 
@@ -43,17 +49,19 @@ void require_finite(const nlohmann::json& value, const std::string& path) {
 nlohmann::json diagnosis_json(const Diagnosis& d) {
   const CurveScale scale = curve_scale(d.sim);
   nlohmann::json where = nlohmann::json::array();
-  for (const GapSegment& g : d.where)
+  for (const GapSegment& g : d.where) {
     where.push_back({{"region", g.region},
                      {"from_mm", g.from_m * 1e3},
                      {"to_mm", g.to_m * 1e3},
                      {"share", g.share},
                      {"direction", g.direction},
                      {"gap", g.gap}});
+    if (!g.mode.empty()) where.back()["mode"] = g.mode;
+  }
   nlohmann::json ranking = nlohmann::json::array();
-  for (const RankedEffect& r : d.ranking)
+  for (const RankedEffect& r : d.ranking) {
     ranking.push_back({{"effect", r.effect},
-                       {"params", params_json(r.fitted, scale)},
+                       {"params", params_json(r, scale)},
                        {"gap_after", r.gap_after},
                        {"shrink", r.shrink},
                        {"score", r.score},
@@ -65,7 +73,15 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                        {"frechet_after", r.frechet_after},
                        {"pcm_after", r.pcm_after},
                        {"gap_after_by_region", r.gap_after_by_segment},
+                       {"parameters", r.parameters},
                        {"qualifies", r.qualifies}});
+    if (r.search_points > 0) ranking.back()["search_points"] = r.search_points;
+    if (!r.fitted_by_mode.empty()) {
+      std::vector<std::string> modes;
+      for (const auto& [mode, fitted] : r.fitted_by_mode) modes.push_back(mode);
+      ranking.back()["modes"] = modes;
+    }
+  }
   nlohmann::json labs = nlohmann::json::array();
   for (const ForceCurve& lab : d.labs) labs.push_back(lab.source);
   nlohmann::json predictive = {{"done", d.predictive.done}};
@@ -130,10 +146,12 @@ std::string diagnosis_markdown(const Diagnosis& d) {
       << " to " << d.predictive.gap_after << " (shrink " << d.predictive.shrink << ")\n";
   else
     s << "- predictive check: not done (" << d.predictive.note << ")\n";
-  s << "\n| region | from mm | to mm | share | direction |\n|---|---|---|---|---|\n";
+  const bool modes = !d.where.empty() && !d.where.front().mode.empty();  // combined over modes
+  s << "\n|" << (modes ? " mode |" : "") << " region | from mm | to mm | share | direction |\n|"
+    << (modes ? "---|" : "") << "---|---|---|---|---|\n";
   for (const GapSegment& g : d.where)
-    s << "| " << g.region << " | " << g.from_m * 1e3 << " | " << g.to_m * 1e3 << " | " << g.share
-      << " | " << g.direction << " |\n";
+    s << "| " << (modes ? g.mode + " | " : std::string()) << g.region << " | " << g.from_m * 1e3 << " | "
+      << g.to_m * 1e3 << " | " << g.share << " | " << g.direction << " |\n";
   s << "\n| effect | gap after | shrink | score | dAICc | plausibility | region match |\n"
     << "|---|---|---|---|---|---|---|\n";
   constexpr std::size_t kShown = 10;  // the JSON has them all

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <set>
 #include <sstream>
@@ -11,6 +12,8 @@
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/gap/gap_report.hpp"
+#include "dtwire/gap/model_search.hpp"
+#include "evidence.hpp"
 
 namespace dtwire::gap {
 namespace {
@@ -129,7 +132,7 @@ struct ModelSearch {
   double value;
   ForceCurve curve;
   int runs = 0;
-  std::vector<std::pair<double, std::vector<double>>> samples;
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> samples;
 };
 
 ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, const EffectSpec& effect,
@@ -176,7 +179,8 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
     if (known) break;
     run(best_v);
   }
-  ModelSearch out{effect.neutral, sim, spent, {sampled.begin(), sampled.end()}};
+  ModelSearch out{effect.neutral, sim, spent, {}};
+  for (const auto& [v, f] : sampled) out.samples.push_back({{v}, f});
   double best_gap = INFINITY;
   for (const auto& [v, f] : sampled) {
     const double g = summary_gap(lab, f);
@@ -187,6 +191,113 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
     }
   }
   return out;
+}
+
+// Features of a single model-only effect at value v: piecewise linear between its FE runs.
+std::vector<double> interpolated(const std::vector<std::pair<std::vector<double>, std::vector<double>>>& samples,
+                                 double v) {
+  auto sorted = samples;
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t k = 1;
+  while (k + 1 < sorted.size() && sorted[k].first[0] < v) ++k;
+  const auto& [x0, f0] = sorted[k - 1];
+  const auto& [x1, f1] = sorted[k];
+  const double t = x1[0] > x0[0] ? std::clamp((v - x0[0]) / (x1[0] - x0[0]), 0.0, 1.0) : 0.0;
+  std::vector<double> f;
+  for (std::size_t i = 0; i < f0.size(); ++i) f.push_back(f0[i] + t * (f1[i] - f0[i]));
+  return f;
+}
+
+// Start of a pair of model-only effects without an FE run: the changes of the features that
+// each single effect's runs show, added (superposition), minimised on a 41 x 41 grid over the
+// values run. The model effect's value comes first.
+std::vector<double> superposition_start(const SummaryCandidate& a, const SummaryCandidate& b,
+                                        const EffectSpec* first, const std::vector<SummaryFeature>& lab) {
+  const SummaryCandidate& p = a.fitted.front().effect == first ? a : b;
+  const SummaryCandidate& q = a.fitted.front().effect == first ? b : a;
+  const std::vector<double> base = interpolated(p.samples, p.fitted.front().effect->neutral);
+  auto range = [](const SummaryCandidate& c) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& [x, f] : c.samples) {
+      lo = std::min(lo, x[0]);
+      hi = std::max(hi, x[0]);
+    }
+    return std::make_pair(lo, hi);
+  };
+  const auto [p_lo, p_hi] = range(p);
+  const auto [q_lo, q_hi] = range(q);
+  std::vector<double> best = {p.fitted.front().params[0], q.fitted.front().params[0]};
+  double best_gap = INFINITY;
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 40; ++j) {
+      const double vp = p_lo + (p_hi - p_lo) * i / 40.0, vq = q_lo + (q_hi - q_lo) * j / 40.0;
+      const auto fp = interpolated(p.samples, vp), fq = interpolated(q.samples, vq);
+      std::vector<double> f;
+      for (std::size_t k = 0; k < base.size(); ++k) f.push_back(fp[k] + fq[k] - base[k]);
+      const double g = summary_gap(lab, f);
+      if (g < best_gap) {
+        best_gap = g;
+        best = {vp, vq};
+      }
+    }
+  return best;
+}
+
+double aic_of(const std::vector<SummaryFeature>& lab, double gap, int parameters) {
+  return static_cast<double>(lab.size()) * gap * gap + 2.0 * parameters;
+}
+
+int parameter_count(const std::vector<AppliedEffect>& effects) {
+  int k = 0;
+  for (const AppliedEffect& a : effects) k += static_cast<int>(a.params.size());
+  return k;
+}
+
+// A pair with a model-only effect from its single fits: the model-only parameters by the bounded
+// pattern search (at most `points` FE runs), a curve-mode partner refitted on every FE curve.
+std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryCandidate& a,
+                          const SummaryCandidate& b, const std::vector<SummaryFeature>& lab,
+                          const ModelRunner& runner, std::size_t points, std::mt19937& rng) {
+  const AppliedEffect& fa = a.fitted.front();
+  const AppliedEffect& fb = b.fitted.front();
+  const bool both_model = fa.effect->needs_model && fb.effect->needs_model;
+  const AppliedEffect& model = fa.effect->needs_model ? fa : fb;
+  const AppliedEffect& other = fa.effect->needs_model ? fb : fa;
+  SummaryCandidate c;
+  std::map<std::vector<double>, std::pair<std::vector<AppliedEffect>, ForceCurve>> tried;
+  const auto evaluate = [&](const std::vector<double>& x) {
+    std::vector<AppliedEffect> effects = {{model.effect, {x[0]}}};
+    if (both_model) effects.push_back({other.effect, {x[1]}});
+    ForceCurve curve = oriented(runner(effects));
+    validate_force_curve(curve);
+    if (!both_model) {
+      effects.push_back({other.effect, fit_curve_effect(curve, scale, *other.effect, lab, rng)});
+      curve = apply_effects(curve, {effects.back()}, scale);
+    }
+    const auto f = features_of(curve, lab);
+    c.samples.push_back({x, f});
+    tried[x] = {effects, curve};
+    return summary_gap(lab, f);
+  };
+  std::vector<ParameterSpec> specs = {model.effect->parameters(scale).front()};
+  std::vector<std::pair<std::vector<double>, double>> known;
+  std::vector<double> start = {model.params[0]};
+  if (both_model) {
+    specs.push_back(other.effect->parameters(scale).front());
+    known = {{{model.params[0], other.effect->neutral}, (fa.effect == model.effect ? a : b).gap_after},
+             {{model.effect->neutral, other.params[0]}, (fa.effect == model.effect ? b : a).gap_after}};
+    start.push_back(other.params[0]);
+  }
+  std::vector<std::vector<double>> starts = {start};
+  if (both_model) starts.insert(starts.begin(), superposition_start(a, b, model.effect, lab));
+  const PatternSearch s = pattern_search(specs, known, starts, evaluate, points);
+  c.runs = static_cast<int>(s.points);
+  if (!tried.count(s.best)) return std::nullopt;  // no point beats the singles: the pair adds nothing
+  c.fitted = tried[s.best].first;
+  c.curve = tried[s.best].second;
+  std::vector<std::string> names = {fa.effect->name, fb.effect->name};
+  c.effect = evidence::joined_name(names);
+  return c;
 }
 
 }  // namespace
@@ -262,6 +373,11 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     for (const std::string& name : options.effects) requested.push_back(&find_effect(name));
   std::mt19937 rng(options.seed);
   for (const EffectSpec* e : requested) {
+    if (const auto inapplicable = options.inapplicable.find(e->name); inapplicable != options.inapplicable.end()) {
+      d.not_tested.push_back(e->name);
+      d.not_tested_reason[e->name] = inapplicable->second;
+      continue;
+    }
     const auto unsupported = options.model_unsupported.find(e->name);
     if (e->needs_model && (!options.model || unsupported != options.model_unsupported.end())) {
       d.not_tested.push_back(e->name);
@@ -287,8 +403,46 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     c.shrink = d.gap_before > 0 ? 1.0 - c.gap_after / d.gap_before : 0.0;
     c.plausibility = plausibility(*e, c.fitted.front().params, scale);
     c.score = c.plausibility * std::max(0.0, c.shrink);
+    c.parameters = parameter_count(c.fitted);
+    c.aic = aic_of(lab, c.gap_after, c.parameters);
     c.qualifies = d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5;
     d.ranking.push_back(c);
+  }
+  // Pairs with a model-only effect, when no single effect brings the features within the scatter.
+  // A pair counts as a cause only when its AIC (the extra parameters cost 2 each) is below every
+  // single's and it cuts the best single's gap by 20 %; else its score is divided by 10.
+  const std::size_t singles = d.ranking.size();
+  double best_gap = INFINITY, best_aic = INFINITY;
+  for (const SummaryCandidate& c : d.ranking) {
+    best_gap = std::min(best_gap, c.gap_after);
+    best_aic = std::min(best_aic, c.aic);
+  }
+  if (options.try_pairs && options.model && d.gap_before > d.noise_floor && best_gap > d.noise_floor) {
+    std::vector<std::size_t> order(singles);
+    for (std::size_t i = 0; i < singles; ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return d.ranking[a].gap_after < d.ranking[b].gap_after; });
+    order.resize(std::min(order.size(), kSummaryPairCandidates));
+    for (std::size_t i = 0; i < order.size(); ++i)
+      for (std::size_t j = i + 1; j < order.size(); ++j) {
+        const SummaryCandidate& a = d.ranking[order[i]];
+        const SummaryCandidate& b = d.ranking[order[j]];
+        if (!a.fitted.front().effect->needs_model && !b.fitted.front().effect->needs_model) continue;
+        std::optional<SummaryCandidate> pair = fit_pair(scale, a, b, lab, options.model, options.model_runs, rng);
+        if (!pair) continue;
+        SummaryCandidate c = *pair;
+        c.features = features_of(c.curve, lab);
+        c.gap_after = summary_gap(lab, c.features);
+        c.shrink = d.gap_before > 0 ? 1.0 - c.gap_after / d.gap_before : 0.0;
+        for (const AppliedEffect& e : c.fitted) c.plausibility *= plausibility(*e.effect, e.params, scale);
+        c.score = c.plausibility * std::max(0.0, c.shrink);
+        c.parameters = parameter_count(c.fitted);
+        c.aic = aic_of(lab, c.gap_after, c.parameters);
+        c.qualifies = c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && c.aic < best_aic &&
+                      c.gap_after < kPairGapRatio * best_gap;
+        if (!(c.aic < best_aic && c.gap_after < kPairGapRatio * best_gap)) c.score *= 0.1;
+        d.ranking.push_back(c);
+      }
   }
   std::stable_sort(d.ranking.begin(), d.ranking.end(),
                    [](const SummaryCandidate& a, const SummaryCandidate& b) { return a.score > b.score; });
@@ -308,6 +462,21 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
                                     : (cause != d.ranking.end() ? *cause : d.ranking.front()).curve;
   return d;
 }
+
+namespace {
+
+// Parameter names with their values; `<effect>.<parameter>` for a pair.
+std::vector<std::pair<std::string, double>> named_params(const SummaryCandidate& c, const CurveScale& scale) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const AppliedEffect& a : c.fitted) {
+    const auto specs = a.effect->parameters(scale);
+    for (std::size_t j = 0; j < specs.size(); ++j)
+      out.emplace_back((c.fitted.size() > 1 ? a.effect->name + "." : std::string()) + specs[j].name, a.params[j]);
+  }
+  return out;
+}
+
+}  // namespace
 
 nlohmann::json summary_json(const SummaryDiagnosis& d) {
   const CurveScale scale = curve_scale(d.sim);
@@ -338,14 +507,15 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
   nlohmann::json ranking = nlohmann::json::array();
   for (const SummaryCandidate& c : d.ranking) {
     nlohmann::json params = nlohmann::json::object();
-    const auto specs = c.fitted.front().effect->parameters(scale);
-    for (std::size_t j = 0; j < specs.size(); ++j) params[specs[j].name] = c.fitted.front().params[j];
+    for (const auto& [name, value] : named_params(c, scale)) params[name] = value;
     ranking.push_back({{"effect", c.effect}, {"params", params}, {"gap_after", c.gap_after},
                        {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility},
+                       {"aic", c.aic}, {"parameters", c.parameters},
                        {"features_after", c.features}, {"fe_runs", c.runs}, {"qualifies", c.qualifies}});
     if (!c.samples.empty()) {
       nlohmann::json samples = nlohmann::json::array();
-      for (const auto& [v, f] : c.samples) samples.push_back({{"value", v}, {"features", f}});
+      for (const auto& [v, f] : c.samples)
+        samples.push_back({{"value", v.size() == 1 ? nlohmann::json(v.front()) : nlohmann::json(v)}, {"features", f}});
       ranking.back()["fe_samples"] = samples;
     }
   }
@@ -379,19 +549,21 @@ std::string summary_markdown(const SummaryDiagnosis& d) {
     << "|---|---|---|---|---|---|---|\n";
   const CurveScale scale = curve_scale(d.sim);
   for (const SummaryCandidate& c : d.ranking) {
-    const auto specs = c.fitted.front().effect->parameters(scale);
     s << "| " << c.effect << " | ";
-    for (std::size_t j = 0; j < specs.size(); ++j) s << specs[j].name << " " << c.fitted.front().params[j] << " ";
+    for (const auto& [name, value] : named_params(c, scale)) s << name << " " << value << " ";
     s << "| ";
     for (double f : c.features) s << f << " ";
     s << "| " << c.gap_after << " | " << c.shrink << " | " << c.plausibility << " | " << c.runs << " |\n";
   }
   for (const SummaryCandidate& c : d.ranking) {
     if (c.samples.empty()) continue;
-    const auto specs = c.fitted.front().effect->parameters(scale);
-    s << "\nFE runs of " << c.effect << " (" << specs.front().name << " -> features, rms z):";
+    std::string names;
+    for (const AppliedEffect& a : c.fitted)
+      if (a.effect->needs_model) names += (names.empty() ? "" : ", ") + a.effect->parameters(scale).front().name;
+    s << "\nFE runs of " << c.effect << " (" << names << " -> features, rms z):";
     for (const auto& [v, f] : c.samples) {
-      s << " " << v << " ->";
+      for (double x : v) s << " " << x;
+      s << " ->";
       for (double x : f) s << " " << x;
       s << " (" << summary_gap(d.lab, f) << ");";
     }

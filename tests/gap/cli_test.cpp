@@ -133,6 +133,74 @@ TEST_F(GapCli, LabSummaryWritesTheContractAndRejectsBadFigures) {
   }
 }
 
+// A compression curve of the same wire (signs turned), labelled by its CSV metadata.
+void save_with_mode(const ForceCurve& c, const fs::path& path, const std::string& mode, double sign) {
+  Curve curve;
+  std::vector<double> mm, force;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    mm.push_back(sign * c.u[i] * 1e3);
+    force.push_back(sign * c.f[i]);
+  }
+  curve.add_channel("displacement", *find_unit("mm"), mm);
+  curve.add_channel("force", *find_unit("N"), force);
+  if (!mode.empty()) curve.set_metadata("loading_mode", mode);
+  write_csv(curve, path);
+}
+
+TEST_F(GapCli, SeveralLoadingModesGiveTheModesArrayAndCountsAreChecked) {
+  const ForceCurve sim = voce_tension_curve();
+  std::mt19937 rng(12);
+  LabSampling s;
+  s.points = 500;
+  s.noise_sigma_N = 6.0;
+  save_with_mode(sample_lab_curve(sim, s, rng), dir / "compression_lab.csv", "compression", -1.0);
+  save_with_mode(sim, dir / "compression_sim.csv", "", -1.0);
+  const fs::path json = dir / "modes.json";
+  fs::remove(json);
+  const std::string t1 = (dir / "lab1.csv").string(), t2 = (dir / "lab2.csv").string(),
+                    c1 = (dir / "compression_lab.csv").string(), ts = (dir / "sim.csv").string(),
+                    cs = (dir / "compression_sim.csv").string();
+  const CommandResult r = run({"gap", "--lab", t1, "--lab", c1, "--lab", t2, "--sim", ts, "--sim", cs, "--sim", ts,
+                               "--effects", "gauge_length,machine_compliance", "--json", json.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  for (const char* key : {"metric", "noise_floor", "gap_before", "where", "ranking", "cause"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  ASSERT_EQ(j.at("modes").size(), 2u);
+  EXPECT_EQ(j.at("modes")[0].at("mode"), "tension");
+  EXPECT_EQ(j.at("modes")[0].at("mode_basis"), "dominant force positive");
+  EXPECT_EQ(j.at("modes")[0].at("curves"), nlohmann::json::array({t1, t2}));
+  EXPECT_EQ(j.at("modes")[0].at("cause"), "gauge_length");
+  EXPECT_EQ(j.at("modes")[1].at("mode"), "compression");
+  EXPECT_EQ(j.at("modes")[1].at("mode_basis"), "metadata loading_mode");
+  EXPECT_EQ(j.at("modes")[1].at("cause"), "none");
+  EXPECT_EQ(j.at("modes")[1].at("not_tested_reason").at("gauge_length"), "does not apply to compression");
+  EXPECT_EQ(j.at("cause"), "gauge_length");
+  // --mode overrides the metadata: all three as tension share one simulation -> refused.
+  const CommandResult overridden = run({"gap", "--lab", t1, "--lab", c1, "--sim", ts, "--sim", cs,
+                                        "--mode", "tension,tension"});
+  EXPECT_EQ(overridden.code, 2);
+  EXPECT_NE(overridden.err.find("share one simulation"), std::string::npos) << overridden.err;
+
+  // Mismatched counts and one simulation for two modes: exit 2 naming the option.
+  const CommandResult two_for_three = run({"gap", "--lab", t1, "--lab", c1, "--lab", t2, "--sim", ts, "--sim", cs});
+  EXPECT_EQ(two_for_three.code, 2);
+  EXPECT_NE(two_for_three.err.find("--sim"), std::string::npos) << two_for_three.err;
+  EXPECT_NE(two_for_three.err.find("2 simulations for 3 laboratory curves"), std::string::npos) << two_for_three.err;
+  const CommandResult one_for_two_modes = run({"gap", "--lab", t1, "--lab", c1, "--sim", ts});
+  EXPECT_EQ(one_for_two_modes.code, 2);
+  EXPECT_NE(one_for_two_modes.err.find("2 loading modes (tension, compression)"), std::string::npos)
+      << one_for_two_modes.err;
+  const CommandResult bad_mode = run({"gap", "--lab", t1, "--sim", ts, "--mode", "twisting"});
+  EXPECT_EQ(bad_mode.code, 2);
+  EXPECT_NE(bad_mode.err.find("twisting"), std::string::npos) << bad_mode.err;
+  const CommandResult modes_count = run({"gap", "--lab", t1, "--lab", c1, "--lab", t2, "--sim", ts, "--mode",
+                                         "tension,compression"});
+  EXPECT_EQ(modes_count.code, 2);
+  EXPECT_NE(modes_count.err.find("--mode"), std::string::npos) << modes_count.err;
+}
+
 TEST_F(GapCli, PlotIsRenderedWhenPythonWithMatplotlibIsThere) {
   if (std::system("/usr/bin/python3 -c 'import matplotlib' >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "python3-matplotlib not installed";

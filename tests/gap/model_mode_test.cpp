@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <set>
 
 #include "dtwire/gap/diagnosis.hpp"
+#include "dtwire/gap/gap_report.hpp"
 #include "dtwire/gap/synthetic_curves.hpp"
 
 namespace dtwire::gap {
@@ -42,6 +44,84 @@ TEST(GapModelMode, ModelOnlyEffectIsFoundThroughTheRunner) {
   const Diagnosis without = diagnose({lab}, sim, options);
   EXPECT_EQ(without.not_tested, std::vector<std::string>{"geometry_imperfection"});
   EXPECT_NE(without.cause, "geometry_imperfection");
+}
+
+// Stand-in FE model with two model-only effects: the imperfection as above (the force scaled
+// uniformly), and a twisting pre-strain p raising the force by up to 10 % x p, growing along the
+// test (f' = f (1 + 0.1 p u / u_end)).
+ForceCurve fake_fe_run_two(const std::vector<AppliedEffect>& effects) {
+  ForceCurve c = fake_fe_run(effects);
+  const double end = c.u.back();
+  for (const AppliedEffect& a : effects)
+    if (a.effect->name == "residual_stress")
+      for (std::size_t i = 0; i < c.size(); ++i) c.f[i] *= 1.0 + 0.1 * a.params[0] * c.u[i] / end;
+  return c;
+}
+
+TEST(GapModelMode, PairOfModelOnlyEffectsIsRankedAboveEitherSingleWithinItsRunBudget) {
+  const EffectSpec& imperfection = find_effect("geometry_imperfection");
+  const EffectSpec& prestrain = find_effect("residual_stress");
+  const ForceCurve sim = fake_fe_run_two({});
+  std::mt19937 rng(5);
+  LabSampling s;
+  s.points = 600;
+  s.noise_sigma_N = 6.0;
+  ForceCurve lab = sample_lab_curve(fake_fe_run_two({{&imperfection, {2.5}}, {&prestrain, {0.5}}}), s, rng);
+  lab.source = "lab";
+  // Distinct parameter sets asked of the stand-in during the pair's search.
+  std::set<std::vector<double>> pair_runs;
+  DiagnosisOptions options;
+  options.effects = {"geometry_imperfection", "residual_stress", "machine_compliance"};
+  options.model = [&](const std::vector<AppliedEffect>& effects) {
+    if (effects.size() == 2) pair_runs.insert({effects[0].params[0], effects[1].params[0]});
+    return fake_fe_run_two(effects);
+  };
+  options.model_runs = 8;
+  const Diagnosis d = diagnose({lab}, sim, options);
+  ASSERT_EQ(d.cause, "geometry_imperfection+residual_stress") << d.reason << diagnosis_json(d).dump(1);
+  const RankedEffect& pair = d.ranking.front();
+  EXPECT_EQ(pair.effect, "geometry_imperfection+residual_stress");
+  EXPECT_EQ(pair.parameters, 2);
+  for (const RankedEffect& r : d.ranking)
+    if (r.effect == "geometry_imperfection" || r.effect == "residual_stress") {
+      EXPECT_GT(pair.score, r.score) << r.effect;
+      EXPECT_LT(pair.aicc, r.aicc) << r.effect;  // the extra parameter pays for itself
+      EXPECT_LT(pair.gap_after, r.gap_after) << r.effect;
+    }
+  // Bounded: at most 8 points of the pair search (the final evaluation reuses the best one).
+  EXPECT_LE(pair.search_points, 8);
+  EXPECT_LE(pair_runs.size(), 8u);
+  EXPECT_LT(pair.gap_after, 0.5 * d.gap_before);
+}
+
+TEST(GapModelMode, ModelOnlyEffectPairsWithACurveModeEffect) {
+  const EffectSpec& imperfection = find_effect("geometry_imperfection");
+  const ForceCurve sim = fake_fe_run({});
+  const ForceCurve with = apply_effects(fake_fe_run({{&imperfection, {2.5}}}),
+                                        {{&find_effect("machine_compliance"), {0.5}}}, curve_scale(sim));
+  std::mt19937 rng(6);
+  LabSampling s;
+  s.points = 600;
+  s.noise_sigma_N = 6.0;
+  ForceCurve lab = sample_lab_curve(with, s, rng);
+  lab.source = "lab";
+  DiagnosisOptions options;
+  options.effects = {"geometry_imperfection", "machine_compliance", "gauge_length"};
+  options.model = fake_fe_run;
+  options.model_runs = 6;
+  const Diagnosis d = diagnose({lab}, sim, options);
+  ASSERT_EQ(d.cause, "geometry_imperfection+machine_compliance") << d.reason;
+  const RankedEffect& pair = d.ranking.front();
+  EXPECT_LE(pair.search_points, 6);
+  // Both magnitudes back: s = 2.5 within 0.25 (the bounded search's resolution: a quarter-range
+  // step of 0.875 halved twice), compliance within 10 %.
+  for (const AppliedEffect& a : pair.fitted) {
+    if (a.effect->name == "geometry_imperfection") {
+      EXPECT_NEAR(a.params[0], 2.5, 0.25);
+    } else {
+      EXPECT_NEAR(a.params[0], 0.5, 0.05);
+    }
+  }
 }
 
 }  // namespace

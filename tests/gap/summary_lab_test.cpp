@@ -2,6 +2,8 @@
 // feature, curve features, and the diagnosis on a stand-in FE runner.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/summary_lab.hpp"
 
@@ -98,6 +100,60 @@ TEST(GapSummaryLab, ImperfectionRecoveredThroughAStandInRunner) {
   // Within the scatter the answer is none.
   const std::vector<SummaryFeature> wide = {{"peak_force_N", lab[0].mean, 300.0}, {"residual_force_N", 600.0, 50.0}};
   EXPECT_EQ(diagnose_summary(stand_in_column(1.0), wide, options).cause, "none");
+}
+
+// Stand-in column with two model-only effects: the imperfection s lowers the peak (as above); a
+// twisting pre-strain p raises the residual force by 50 % x p and the peak by 10 % x p.
+ForceCurve stand_in_column_two(const std::vector<AppliedEffect>& effects) {
+  double s = 1.0, p = 0.0;
+  for (const AppliedEffect& a : effects) {
+    if (a.effect->name == "geometry_imperfection") s = a.params[0];
+    if (a.effect->name == "residual_stress") p = a.params[0];
+  }
+  ForceCurve c = stand_in_column(s);
+  for (double& f : c.f) {
+    const double hinge = std::min(f, 600.0);  // the part set by the plastic hinge
+    f = (f - hinge) * (1.0 + 0.1 * p) + hinge * (1.0 + 0.5 * p);
+  }
+  return c;
+}
+
+TEST(GapSummaryLab, PairOfModelOnlyEffectsIsRankedAboveEitherSingle) {
+  const EffectSpec& imperfection = find_effect("geometry_imperfection");
+  const EffectSpec& prestrain = find_effect("residual_stress");
+  const ForceCurve truth = stand_in_column_two({{&imperfection, {3.0}}, {&prestrain, {0.6}}});
+  const double peak = curve_feature(truth, "peak_force_N"), residual = curve_feature(truth, "residual_force_N");
+  const std::vector<SummaryFeature> lab = {{"peak_force_N", peak, 0.02 * peak},
+                                           {"residual_force_N", residual, 0.02 * residual}};
+  std::set<std::vector<double>> runs;
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection", "residual_stress"};
+  options.model = [&](const std::vector<AppliedEffect>& effects) {
+    std::vector<double> key;
+    for (const AppliedEffect& a : effects) key.push_back(a.params[0]);
+    runs.insert(key);
+    return stand_in_column_two(effects);
+  };
+  options.model_runs = 8;
+  const SummaryDiagnosis d = diagnose_summary(stand_in_column_two({}), lab, options);
+  ASSERT_EQ(d.cause, "geometry_imperfection+residual_stress") << d.reason;
+  const SummaryCandidate& pair = d.ranking.front();
+  EXPECT_EQ(pair.parameters, 2);
+  for (const SummaryCandidate& c : d.ranking)
+    if (c.fitted.size() == 1) {
+      EXPECT_GT(pair.score, c.score) << c.effect;
+      EXPECT_LT(pair.aic, c.aic) << c.effect;  // chi^2 + 2 k: the extra parameter pays for itself
+    }
+  EXPECT_LT(pair.gap_after, d.noise_floor) << summary_json(d).dump(1);  // within the laboratory scatter
+  EXPECT_LE(pair.runs, 8);
+  // Singles: at most 8 runs each; the pair: at most 8 points.
+  EXPECT_LE(runs.size(), 3u * 8u);
+  const auto j = summary_json(d);
+  EXPECT_TRUE(j.at("ranking")[0].at("params").contains("geometry_imperfection.imperfection_scale_1"));
+  EXPECT_TRUE(j.at("ranking")[0].at("fe_samples")[0].at("value").is_array());
+
+  options.try_pairs = false;
+  EXPECT_EQ(diagnose_summary(stand_in_column_two({}), lab, options).ranking.size(), 2u);
 }
 
 }  // namespace

@@ -20,6 +20,11 @@ struct DiagnosisOptions {
   ModelRunner model;
   // Model-only effects the runner cannot switch on for this model, with the reason.
   std::map<std::string, std::string> model_unsupported;
+  // Effects that do not act in this loading mode, with the reason (listed as not tested).
+  std::map<std::string, std::string> inapplicable;
+  // Pairs with a model-only effect: at most this many points of the bounded search (each at most
+  // one FE run; cached runs are free).
+  std::size_t model_runs = 3;
 };
 
 struct RankedEffect {
@@ -36,6 +41,9 @@ struct RankedEffect {
   double pcm_after = 0.0;
   std::vector<double> gap_after_by_segment;  // per entry of Diagnosis::where
   bool qualifies = false;  // beats the noise floor and the information criterion
+  int search_points = 0;   // pairs with a model-only effect: points of the bounded search
+  // Combined ranking over several loading modes: the effects as applied in each mode.
+  std::vector<std::pair<std::string, std::vector<AppliedEffect>>> fitted_by_mode;
 };
 
 struct PredictiveCheck {

@@ -33,4 +33,30 @@ EffectFit fit_effects(const FitProblem& problem, const std::vector<const EffectS
                       std::vector<std::vector<std::vector<double>>> starts, std::size_t random_starts,
                       std::mt19937& rng);
 
+// Joint fit over several problems (e.g. one per loading mode). An effect has `blocks` parameter
+// sets; `block_of[p]` is the set used on problem p, or -1 where the effect does not apply. One
+// block shared by every problem fits one value over all of them.
+struct JointEffect {
+  const EffectSpec* effect;
+  std::vector<int> block_of;  // per problem
+  int blocks = 1;
+};
+
+struct JointFit {
+  std::vector<std::vector<AppliedEffect>> per_problem;  // effects as applied to each problem
+  std::vector<std::vector<std::vector<double>>> blocks; // [effect][block] fitted parameters
+  double weighted_sse = 0.0;     // summed over problems
+  std::vector<double> residual;  // stacked in problem order
+  int parameter_count = 0;
+};
+
+JointFit evaluate_joint(const std::vector<FitProblem>& problems,
+                        std::vector<std::vector<AppliedEffect>> per_problem);
+
+// `starts`: each a [effect][block] parameter set; the plausible centre, the effects switched
+// off and `random_starts` random plausible values are added.
+JointFit fit_joint(const std::vector<FitProblem>& problems, const std::vector<JointEffect>& effects,
+                   const std::vector<std::vector<std::vector<std::vector<double>>>>& starts,
+                   std::size_t random_starts, std::mt19937& rng);
+
 }  // namespace dtwire::gap

@@ -26,6 +26,7 @@ struct GapSegment {
   double gap = 0.0;       // normalised area inside the segment
   double share = 0.0;     // gap / total gap
   std::string direction;  // "horizontal offset", "vertical offset" or "slope"
+  std::string mode;       // loading mode, in the combined diagnosis of several modes
 };
 
 // Named regions of the laboratory curve, covering every point in order.

@@ -34,7 +34,10 @@ struct SummaryOptions {
   std::vector<std::string> effects;  // empty: all
   ModelRunner model;
   std::map<std::string, std::string> model_unsupported;  // effect -> reason
-  std::size_t model_runs = 3;  // FE runs per model-only effect (the base run is given)
+  std::map<std::string, std::string> inapplicable;  // effects not acting in the loading mode -> reason
+  std::size_t model_runs = 3;  // FE runs per model-only effect (the base run is given), and
+                               // search points per pair with a model-only effect
+  bool try_pairs = true;
   unsigned seed = 1;
 };
 
@@ -44,9 +47,13 @@ struct SummaryCandidate {
   std::vector<double> features;  // of the augmented simulation, in feature order
   ForceCurve curve;              // the augmented simulation
   double gap_after = 0.0, shrink = 0.0, plausibility = 1.0, score = 0.0;
-  int runs = 0;  // FE runs spent
-  // Model-only effects: every value run (the neutral one is the simulation) and its features.
-  std::vector<std::pair<double, std::vector<double>>> samples;
+  // Akaike's criterion with the laboratory sd known: sum of z^2 + 2 x parameters.
+  double aic = 0.0;
+  int parameters = 0;
+  int runs = 0;  // FE runs spent (pairs: search points, each at most one FE run)
+  // Model-only effects: every value run (the neutral one is the simulation; a pair's values of its
+  // model-only parameters) and the features.
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> samples;
   bool qualifies = false;
 };
 
@@ -75,5 +82,7 @@ std::string summary_markdown(const SummaryDiagnosis& d);
 
 // A qualifying effect must remove at least this fraction of the gap.
 inline constexpr double kSummaryMinimumShrink = 0.3;
+// Pairs (with a model-only effect) are tried among this many best single effects.
+inline constexpr std::size_t kSummaryPairCandidates = 4;
 
 }  // namespace dtwire::gap

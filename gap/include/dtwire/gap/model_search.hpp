@@ -1,0 +1,31 @@
+#pragma once
+// Bounded search over the model-only parameters of a pair of effects: every new point is one FE
+// run per model, so the number of points is capped. A compass (pattern) search (Torczon 1997;
+// Kolda, Lewis and Torczon 2003): from the best start, steps of a quarter of the plausible range
+// along each parameter, halved when no step improves, until the budget is spent or the steps
+// fall below 2 % of the range. Derivative-free, so it tolerates the threshold responses of
+// buckling models.
+#include <functional>
+#include <vector>
+
+#include "dtwire/gap/effects.hpp"
+
+namespace dtwire::gap {
+
+struct PatternSearch {
+  std::vector<double> best;
+  double value = 0.0;
+  std::vector<std::pair<std::vector<double>, double>> samples;  // known and evaluated points
+  std::size_t points = 0;  // evaluated (objective calls)
+};
+
+// `known` points (e.g. the single effects' fits) are taken as given; `starts` are evaluated
+// first. At most `points` objective calls (cached FE runs are free, so the FE runs spent are at
+// most `points` per model). Parameters stay within their fit bounds.
+PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
+                             const std::vector<std::pair<std::vector<double>, double>>& known,
+                             const std::vector<std::vector<double>>& starts,
+                             const std::function<double(const std::vector<double>&)>& objective,
+                             std::size_t points);
+
+}  // namespace dtwire::gap

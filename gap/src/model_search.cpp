@@ -1,0 +1,82 @@
+#include "dtwire/gap/model_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dtwire::gap {
+
+PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
+                             const std::vector<std::pair<std::vector<double>, double>>& known,
+                             const std::vector<std::vector<double>>& starts,
+                             const std::function<double(const std::vector<double>&)>& objective,
+                             std::size_t points) {
+  PatternSearch out;
+  out.value = INFINITY;
+  auto clamped = [&](std::vector<double> x) {
+    for (std::size_t d = 0; d < specs.size(); ++d) x[d] = std::clamp(x[d], specs[d].lower, specs[d].upper);
+    return x;
+  };
+  auto seen = [&](const std::vector<double>& x) {
+    for (const auto& [y, v] : out.samples) {
+      bool same = true;
+      for (std::size_t d = 0; d < x.size(); ++d) same = same && std::abs(x[d] - y[d]) <= 1e-12 * (1 + std::abs(y[d]));
+      if (same) return true;
+    }
+    return false;
+  };
+  auto record = [&](const std::vector<double>& x, double v) {
+    out.samples.emplace_back(x, v);
+    if (v < out.value) {
+      out.value = v;
+      out.best = x;
+      return true;
+    }
+    return false;
+  };
+  // Returns true when x improves on the best.
+  auto evaluate = [&](const std::vector<double>& x) {
+    ++out.points;
+    return record(x, objective(x));
+  };
+  for (const auto& [x, v] : known) record(clamped(x), v);
+  for (const auto& start : starts) {
+    const auto x = clamped(start);
+    if (out.points < points && !seen(x)) evaluate(x);
+  }
+  if (out.samples.empty()) return out;
+  std::vector<double> step;
+  for (const ParameterSpec& s : specs) step.push_back(0.25 * (s.plausible_upper - s.plausible_lower));
+  // The last successful direction is tried first again (a pattern move, Hooke and Jeeves 1961).
+  std::size_t last_d = 0;
+  double last_sign = 1.0;
+  while (out.points < points) {
+    std::vector<std::pair<std::size_t, double>> directions = {{last_d, last_sign}};
+    for (std::size_t d = 0; d < specs.size(); ++d)
+      for (double sign : {1.0, -1.0})
+        if (d != last_d || sign != last_sign) directions.emplace_back(d, sign);
+    bool moved = false;
+    for (const auto& [d, sign] : directions) {
+      std::vector<double> x = out.best;
+      x[d] += sign * step[d];
+      x = clamped(x);
+      if (seen(x)) continue;
+      if (out.points >= points) break;
+      if (evaluate(x)) {
+        moved = true;
+        last_d = d;
+        last_sign = sign;
+        break;
+      }
+    }
+    if (moved) continue;
+    bool fine = true;
+    for (std::size_t d = 0; d < specs.size(); ++d) {
+      step[d] *= 0.5;
+      fine = fine && step[d] < 0.02 * (specs[d].plausible_upper - specs[d].plausible_lower);
+    }
+    if (fine) break;
+  }
+  return out;
+}
+
+}  // namespace dtwire::gap
