@@ -12,11 +12,15 @@
 #include <deal.II/grid/tria.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "parameters.hpp"
 #include "solver.hpp"
@@ -38,7 +42,7 @@ double graded(double t, double beta) { return beta > 0.0 ? std::expm1(beta * t) 
 // faces on x = 0 and y = 0 are recognised by the solver as symmetry planes, the rest is hull (0).
 struct GradedQuarterWire {
   double radius = 1.35e-3, length = 4.05e-3;
-  unsigned section_refinements = 3, axial_cells = 24;
+  unsigned section_refinements = 2, axial_cells = 12;  // level 2 of the test
   double depth_grading = 2.4, angle_grading = 3.0, axial_grading = 3.4;  // betas of graded()
 };
 
@@ -213,9 +217,8 @@ HertzErrors hertz_errors(const std::string& name, const HertzRun& run, double R,
 // level has 0.04 < a/R < 0.11; the level-2 mesh has 3-6 elements across the contact radius.
 TEST(HertzCrossedCylinders, ApproachAndContactRadius) {
   const double E = 200e9, nu = 0.3, E_star = E / (1.0 - nu * nu);
-  GradedQuarterWire level1, level2;
+  GradedQuarterWire level1, level2;  // level 2: the mesh of contact_hertz_crossed.prm
   level1.section_refinements = 1, level1.axial_cells = 6;
-  level2.section_refinements = 2, level2.axial_cells = 12;
   const double R = level2.radius;
   const HertzErrors coarse = hertz_errors("level 1", run_crossed_cylinders("level1", level1, 0.016, 8), R, E_star);
   const HertzErrors fine = hertz_errors("level 2", run_crossed_cylinders("level2", level2, 0.016, 8), R, E_star);
