@@ -227,6 +227,8 @@ TEST(HertzCrossedCylinders, ApproachAndContactRadius) {
   EXPECT_LT(fine.worst_radius, 0.05);         // contact radius within 5 % at every load level
   EXPECT_LT(std::abs(fine.approach), 0.05);   // approach coefficient within 5 %
   EXPECT_LT(std::abs(fine.far_field), 0.15);  // the fitted finite-body term stays a correction
+  EXPECT_LT(fine.worst_radius, coarse.worst_radius);                // both converge with the mesh
+  EXPECT_LT(std::abs(fine.approach), std::abs(coarse.approach));
 }
 
 }  // namespace
