@@ -9,6 +9,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "dtwire/core/error.hpp"
+
 namespace dtwire::fem {
 
 double wire_radius(const GeometryParameters& g, double z) {
@@ -41,11 +43,28 @@ void read_wire_mesh(GeometryParameters& g, dealii::Triangulation<3>& target) {
     return;
   }
   g.diameter = 2.0 * r_max;
+  // A quarter-section mesh (x >= 0, y >= 0) has plane boundary faces on x = 0 and y = 0: they
+  // become the symmetry planes and the model a quarter section. A full wire has none (its
+  // lateral faces lie on the circle).
+  const double tol = 1e-9 * r_max;
+  const auto on_plane = [&](const auto& face, unsigned axis) {
+    for (const auto v : face->vertex_indices())
+      if (std::abs(face->vertex(v)[axis]) > tol) return false;
+    return true;
+  };
+  bool symmetry_x = false, symmetry_y = false;
   for (const auto& cell : wire.active_cell_iterators())
-    for (const auto f : cell->face_indices())
-      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() != kBottom &&
-          cell->face(f)->boundary_id() != kTop)
-        cell->face(f)->set_boundary_id(kHull);
+    for (const auto f : cell->face_indices()) {
+      const auto face = cell->face(f);
+      if (!face->at_boundary() || face->boundary_id() == kBottom || face->boundary_id() == kTop) continue;
+      types::boundary_id id = kHull;
+      if (on_plane(face, 0)) id = kSymmetryX, symmetry_x = true;
+      else if (on_plane(face, 1)) id = kSymmetryY, symmetry_y = true;
+      face->set_boundary_id(id);
+    }
+  if (symmetry_x != symmetry_y)
+    throw InputError(g.mesh_file.string(), "a quarter-section mesh needs boundary faces on both planes x = 0 and y = 0");
+  g.quarter = symmetry_x;
   target.copy_triangulation(wire);
 }
 

@@ -22,7 +22,9 @@ enum BoundaryId : unsigned { kHull = 0, kBottom = 1, kTop = 2, kSymmetryX = 3, k
 // metres; its boundary ids 1 (z = 0) and 2 (z = L) are kept, the lateral ids 3, 4, 5 become 0,
 // coating and grip volumes are steel like the rest), and geometry.length and .diameter are set
 // from it. A double-twist mesh (material ids >= 11 present) keeps all its ids, sets
-// geometry.double_twist and the z extent as length; the diameter stays as given.
+// geometry.double_twist and the z extent as length; the diameter stays as given. A mesh of the
+// quarter x >= 0, y >= 0 (boundary faces on both planes x = 0 and y = 0, e.g. the graded mesh of
+// the crossed-cylinder Hertz test) sets geometry.quarter: those faces get the symmetry ids 3 and 4.
 void make_wire_mesh(GeometryParameters& geometry, dealii::Triangulation<3>& target);
 
 // The radius of the undeformed wire at height z.
