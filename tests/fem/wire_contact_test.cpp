@@ -199,6 +199,31 @@ TEST_F(WireContactBlocks, CoulombSlipForceDissipationAndEnergy) {
             << stored / last.external_work - 1.0 << ", active points " << last.wire_contact.active_points << "\n";
 }
 
+// Gap offset: an extra clearance c delays the contact by c along z; pressing the top face
+// straight down, the normal force is that of the run without offset at c less press.
+TEST_F(WireContactBlocks, GapOffsetShiftsTheContactOnset) {
+  const auto base = run_blocks("offset0", "blocks.msh", "0 0 -1", 0.3, 10.0, true);
+  const auto dir = case_directory("offset");
+  Parameters p = read_parameters(dir.parent_path() / "dtwire_wire_contact_test_offset0" / "blocks.prm");
+  p.wire_contact.gap_offset = 0.02e-3;  // 20 um more clearance
+  const auto shifted = run(p, dir);
+  // Interpolate the reference normal force at (press - 20 um); the press is 0.1 mm over t in [0, 1].
+  const auto force_at = [&](double press) {
+    for (std::size_t i = 1; i < base.size(); ++i) {
+      const double p0 = 0.1e-3 * base[i - 1].time, p1 = 0.1e-3 * base[i].time;
+      if (press <= p1) return -base[i - 1].end_force[2] + (press - p0) / (p1 - p0) * (base[i - 1].end_force[2] - base[i].end_force[2]);
+    }
+    return -base.back().end_force[2];
+  };
+  const double expected = force_at(0.1e-3 - 0.02e-3), measured = -shifted.back().end_force[2];
+  EXPECT_NEAR(measured / expected, 1.0, 0.01);
+  for (const auto& r : shifted) {  // no contact force before the press exceeds gap + offset (21 um)
+    if (0.1e-3 * r.time < 0.02e-3) {
+      EXPECT_EQ(r.wire_contact.active_points, 0u) << "t = " << r.time;
+    }
+  }
+}
+
 // Stick: drag equal to the press with mu = 1 (stuck shear ratio ~0.4 < mu) on matching faces:
 // no point slips and the forces equal those of the monolithic block within 1 % (penalty 100 E/h).
 TEST_F(WireContactBlocks, StuckBlocksActAsOneBody) {

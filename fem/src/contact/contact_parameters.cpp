@@ -74,6 +74,9 @@ void declare_contact_parameters(dealii::ParameterHandler& prm) {
   prm.declare_entry("Search distance (mm)", "0", Patterns::Double(0.0),
                     "candidate master faces within this distance of a slave face; 0: d / 4");
   prm.declare_entry("Gauss points per direction", "2", Patterns::Integer(1, 6), "on each slave face");
+  prm.declare_entry("Gap offset (mm)", "0", Patterns::Double(),
+                    "added to every wire-wire gap: extra initial clearance (> 0, slack of the twist) or "
+                    "interference (< 0, a twist tighter than meshed)");
   prm.declare_entry("Status flip limit", "4", Patterns::Integer(1),
                     "stick/slip changes or master-face switches of a point within one step before its "
                     "status is frozen for the rest of the step (chattering guard)");
@@ -119,6 +122,9 @@ WireContactParameters parse_wire_contact_parameters(dealii::ParameterHandler& pr
   w.gap_tolerance = prm.get_double("Gap tolerance (mm)") * 1e-3;
   w.search_distance = prm.get_double("Search distance (mm)") * 1e-3;
   w.points_per_direction = prm.get_integer("Gauss points per direction");
+  w.gap_offset = prm.get_double("Gap offset (mm)") * 1e-3;
+  if (!(w.gap_offset > -0.25e-3))  // deeper interference would reach beyond the contact search
+    throw InputError(file, "'Wire contact/Gap offset (mm)': expected an interference smaller than 0.25 mm");
   w.flip_limit = prm.get_integer("Status flip limit");
   prm.leave_subsection();
   return w;

@@ -51,6 +51,9 @@ struct WireContactParameters {
   unsigned maximum_augmentations = 0;
   double gap_tolerance = 1e-6;          // m
   double search_distance = 0.0;         // m; 0: a quarter of the wire diameter
+  // m, added to every wire-wire gap: the initial clearance (> 0) or interference (< 0) of the
+  // interweavement beyond the meshed one; the twist-tightening unknown of calibration fit (2).
+  double gap_offset = 0.0;
   unsigned points_per_direction = 2;    // Gauss points per direction on each slave face
   unsigned flip_limit = 4;              // status changes within a step before the status is frozen
   bool keep_samples = false;            // not in the .prm: per-point samples in the step records

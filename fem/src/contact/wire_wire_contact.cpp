@@ -264,10 +264,11 @@ bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool 
       p.master_xi = best_projection.xi;
       p.master_eta = best_projection.eta;
       const BilinearFace& master = master_geometry[static_cast<unsigned>(best)];
-      ToolGeometry plane;  // the master surface's tangent plane at the closest point
-      plane.shape = ToolShape::plane;
-      plane.point = master.position(p.master_xi, p.master_eta);
+      const Vector3 master_point = master.position(p.master_xi, p.master_eta);
+      ToolGeometry plane;  // the master surface's tangent plane at the closest point, moved
+      plane.shape = ToolShape::plane;  // back by the gap offset
       plane.direction = master.outward_normal(p.master_xi, p.master_eta);
+      plane.point = master_point - parameters_.gap_offset * plane.direction;
       // Anchor: the slave point's last converged position carried along with the master
       // material point it now faces, so that x - anchor is the relative motion in the step.
       const auto N = BilinearFace::shape(p.master_xi, p.master_eta);
@@ -276,7 +277,7 @@ bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool 
         for (unsigned c = 0; c < 3; ++c)
           master_committed[c] +=
               N[v] * (masters_[best].reference[v][c] + committed_master_values_[12 * best + 3 * v + c]);
-      const Vector3 anchor = p.committed_position + (plane.point - master_committed);
+      const Vector3 anchor = p.committed_position + (master_point - master_committed);
       ContactHistory history = p.committed;
       history.multiplier = p.multiplier;
       p.last = evaluate_contact(plane, law_, history, p.position, anchor, p.frozen);
