@@ -108,7 +108,7 @@ struct EndDof {  // an owned dof of the top end
   types::global_dof_index index;
   unsigned component;
   Point<3> reference;
-  std::array<types::global_dof_index, 3> vertex_dofs;  // all components at its vertex
+  std::array<types::global_dof_index, 3> vertex_dofs;  // all components at its support point
 };
 
 struct AssemblyOutcome {
@@ -233,27 +233,38 @@ void WireSolver::Impl::setup() {
   if (!prm.load.pull_direction.empty())
     for (unsigned c = 0; c < 3; ++c) load_direction[c] = prm.load.pull_direction[c];
   top_loaded_dofs = DoFTools::extract_boundary_dofs(dof_handler, fe.component_mask(loaded_component()), top_ids);
-  {  // the top end's owned dofs with their reference positions; its vertex centroid
+  {  // the top end's owned dofs (all support points of its faces) with their reference positions
+    std::map<types::global_dof_index, Point<3>> support;
+    DoFTools::map_dofs_to_support_points(MappingQ1<3>(), dof_handler, support);
+    std::map<std::array<double, 3>, std::array<types::global_dof_index, 3>> point_dofs;  // same support point
     std::map<types::global_dof_index, EndDof> found;
+    std::set<types::global_dof_index> counted_vertices;
     Tensor<1, 3> sum;
     double vertices = 0.0;
+    std::vector<types::global_dof_index> face_dofs(fe.n_dofs_per_face());
     for (const auto& cell : dof_handler.active_cell_iterators()) {
       if (!cell->is_locally_owned()) continue;
       for (const auto f : cell->face_indices()) {
         if (!cell->face(f)->at_boundary() || top_ids.count(cell->face(f)->boundary_id()) == 0) continue;
-        for (const auto v : cell->face(f)->vertex_indices())
-          for (unsigned c = 0; c < 3; ++c) {
-            const auto i = cell->face(f)->vertex_dof_index(v, c);
-            if (!owned.is_element(i) || found.count(i)) continue;
-            found[i] = EndDof{i, c, cell->face(f)->vertex(v),
-                              {{cell->face(f)->vertex_dof_index(v, 0), cell->face(f)->vertex_dof_index(v, 1),
-                                cell->face(f)->vertex_dof_index(v, 2)}}};
-            if (c == 0) {
-              sum += cell->face(f)->vertex(v);
-              vertices += 1.0;
-            }
-          }
+        cell->face(f)->get_dof_indices(face_dofs);
+        for (unsigned k = 0; k < face_dofs.size(); ++k) {
+          const auto i = face_dofs[k];
+          const Point<3>& X = support.at(i);
+          point_dofs[{{X[0], X[1], X[2]}}][fe.face_system_to_component_index(k).first] = i;
+          if (!owned.is_element(i) || found.count(i)) continue;
+          found[i] = EndDof{i, fe.face_system_to_component_index(k).first, X, {}};
+        }
+        for (const auto v : cell->face(f)->vertex_indices()) {  // each owned vertex once
+          const auto i = cell->face(f)->vertex_dof_index(v, 0);
+          if (!owned.is_element(i) || !counted_vertices.insert(i).second) continue;
+          sum += cell->face(f)->vertex(v);
+          vertices += 1.0;
+        }
       }
+    }
+    for (auto& entry : found) {
+      const Point<3>& X = entry.second.reference;
+      entry.second.vertex_dofs = point_dofs.at({{X[0], X[1], X[2]}});
     }
     for (const auto& entry : found) top_end_dofs.push_back(entry.second);
     for (unsigned c = 0; c < 3; ++c) rotation_centre[c] = Utilities::MPI::sum(sum[c], comm);
@@ -660,7 +671,7 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
       history << " " << relative;
       // Relative to the internal forces; the absolute floor (far above round-off, far below any
       // load of interest) ends steps in which no force builds up (rigid motion before contact).
-      if (a.residual <= std::max(prm.newton.relative_tolerance * std::max(a.force_scale, floor), 1e2 * floor)) {
+      if (a.residual <= std::max(prm.newton.relative_tolerance * std::max(a.force_scale, floor), 1e-2 * floor)) {
         iterations = it;
         log << "    newton (relative residual):" << history.str() << "\n";
         return true;
