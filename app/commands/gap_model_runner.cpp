@@ -46,6 +46,47 @@ std::string edit_entries(const std::string& text,
   return out.str();
 }
 
+// Sets `name` inside `subsection section` (one level deep) to value; adds the line at the end of
+// the subsection when it is missing there.
+std::string set_in_subsection(const std::string& text, const std::string& section, const std::string& name,
+                              const std::string& value) {
+  std::istringstream in(text);
+  std::ostringstream out;
+  std::string line;
+  bool inside = false, done = false;
+  const std::regex open("^\\s*subsection\\s+(.*?)\\s*$"), close("^\\s*end\\s*$");
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, open)) inside = m[1].str() == section;
+    if (inside && std::regex_match(line, m, set_line()) && m[2].str() == name) {
+      line = m[1].str() + m[2].str() + m[3].str() + value + m[5].str();
+      done = true;
+    }
+    if (inside && std::regex_match(line, close)) {
+      if (!done) out << "  set " << name << " = " << value << "\n";
+      inside = false;
+      done = true;
+    }
+    out << line << "\n";
+  }
+  return out.str();
+}
+
+// Whether `subsection Wire contact` enables the contact between the wires of a DT mesh.
+bool wire_contact_enabled(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  bool inside = false;
+  const std::regex open("^\\s*subsection\\s+(.*?)\\s*$"), close("^\\s*end\\s*$");
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, open)) inside = m[1].str() == "Wire contact";
+    else if (std::regex_match(line, close)) inside = false;
+    else if (inside && std::regex_match(line, m, set_line()) && m[2].str() == "Enabled") return m[4].str() == "true";
+  }
+  return false;
+}
+
 std::map<std::string, std::string> entries(const std::string& text) {
   std::map<std::string, std::string> out;
   edit_entries(text, [&](const std::string& name, const std::string& value) {
@@ -122,6 +163,10 @@ std::string edit_prm(const std::string& text, const std::vector<gap::AppliedEffe
         }
         return std::string();
       });
+    } else if (effect == "wire_friction") {  // the DT model's Coulomb coefficient between the wires
+      out = set_in_subsection(out, "Wire contact", "Friction coefficient", number_text(p));
+    } else if (effect == "twist_tightening") {  // extra clearance of the interweavement (mm)
+      out = set_in_subsection(out, "Wire contact", "Gap offset (mm)", number_text(p));
     } else {
       throw ComputationError("gap --model: effect " + effect + " cannot be switched on in a .prm");
     }
@@ -146,8 +191,11 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
   const std::string law = values.count("Hardening law") ? values.at("Hardening law") : "linear";
   if (law != "table" && law != "linear")
     model.unsupported["residual_stress"] = "plastic pre-strain only for table and linear hardening";
-  for (const char* name : {"wire_friction", "twist_tightening", "shear_failure", "coating_slip"})
-    model.unsupported[name] = "the single-wire FE model has no such parameter (needs the DT contact model)";
+  if (!wire_contact_enabled(text))
+    for (const char* name : {"wire_friction", "twist_tightening"})
+      model.unsupported[name] = "the .prm has no enabled `subsection Wire contact` (a DT model, docs/fem_dt.md)";
+  model.unsupported["shear_failure"] = "the FE failure locus has no shear branch (Johnson-Cook, triaxiality only)";
+  model.unsupported["coating_slip"] = "the meshes bond the PVC sheath to the steel (no interface to slide)";
 
   if (work.empty())
     work = std::filesystem::temp_directory_path() / ("dtwire_gap_model_" + std::to_string(::getpid()));

@@ -1,6 +1,7 @@
 #include "dtwire/calibrate/fit_file.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -344,7 +345,14 @@ FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets
       std::ostringstream text;
       text << in.rdbuf();
       CommandSpecification spec = command;
-      spec.input_template = text.str();
+      // {template_dir}: the template's own folder, for inputs next to it (e.g. a mesh file),
+      // since the instantiated copy runs in the work directory.
+      std::string template_text = text.str();
+      const std::string template_folder = std::filesystem::absolute(template_file).parent_path().string();
+      for (auto at = template_text.find("{template_dir}"); at != std::string::npos;
+           at = template_text.find("{template_dir}", at + template_folder.size()))
+        template_text.replace(at, 14, template_folder);
+      spec.input_template = template_text;
       spec.input_name = template_file.stem().string();  // "sw_tension.prm.in" -> "sw_tension.prm"
       if (spec.input_name.empty()) spec.input_name = "input";
       def.inputs.push_back(template_file);
