@@ -28,8 +28,9 @@ struct FaceProjection {
   bool inside = false;    // the unconstrained minimiser lies in the face (with a small tolerance)
 };
 
-// Closest point of the face to x: Gauss-Newton on |x - x(xi, eta)|^2 with the parameters
-// clamped to [0, 1]^2 (Wriggers 2006, sec. 4.1, closest-point projection).
+// Closest point of the face to x: Newton on |x - x(xi, eta)|^2 / 2 with the parameters kept in
+// [0, 1]^2 by an active set (a clamped parameter stays on its edge and the other is minimised
+// there) (Wriggers 2006, sec. 4.1, closest-point projection).
 FaceProjection project_onto_face(const BilinearFace& face, const Vector3& x);
 
 }  // namespace dtwire::fem::contact

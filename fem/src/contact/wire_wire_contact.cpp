@@ -1,5 +1,7 @@
 #include "wire_wire_contact.hpp"
 
+#include "wire_contact_point.hpp"
+
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/lac/full_matrix.h>
@@ -226,7 +228,7 @@ bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool 
     for (unsigned i = 0; i < 12; ++i) master_values_[12 * m + i] = relevant_values[face.value_index[i]];
   }
   std::vector<types::global_dof_index> dofs(24);
-  std::vector<double> force(24), shape(24);
+  std::vector<double> force(24);
   FullMatrix<double> K(24, 24);
   Vector<double> local_rhs(24);
   for (const auto& face : slaves_) {
@@ -263,24 +265,28 @@ bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool 
       }
       p.master_xi = best_projection.xi;
       p.master_eta = best_projection.eta;
-      const BilinearFace& master = master_geometry[static_cast<unsigned>(best)];
-      const Vector3 master_point = master.position(p.master_xi, p.master_eta);
-      ToolGeometry plane;  // the master surface's tangent plane at the closest point, moved
-      plane.shape = ToolShape::plane;  // back by the gap offset
-      plane.direction = master.outward_normal(p.master_xi, p.master_eta);
-      plane.point = master_point - parameters_.gap_offset * plane.direction;
-      // Anchor: the slave point's last converged position carried along with the master
-      // material point it now faces, so that x - anchor is the relative motion in the step.
-      const auto N = BilinearFace::shape(p.master_xi, p.master_eta);
-      Vector3 master_committed;
-      for (unsigned v = 0; v < 4; ++v)
-        for (unsigned c = 0; c < 3; ++c)
-          master_committed[c] +=
-              N[v] * (masters_[best].reference[v][c] + committed_master_values_[12 * best + 3 * v + c]);
-      const Vector3 anchor = p.committed_position + (master_point - master_committed);
-      ContactHistory history = p.committed;
-      history.multiplier = p.multiplier;
-      p.last = evaluate_contact(plane, law_, history, p.position, anchor, p.frozen);
+      const MasterFace& master = masters_[static_cast<unsigned>(best)];
+      WireContactPointInput in;
+      in.slave_reference = face.reference;
+      in.master_reference = master.reference;
+      for (unsigned i = 0; i < 12; ++i) {
+        in.slave_displacement[i] = relevant_values[face.value_index[i]];
+        in.master_displacement[i] = master_values_[12 * best + i];
+        in.master_committed_displacement[i] = committed_master_values_[12 * best + i];
+      }
+      in.master_sign = master.normal_sign;
+      in.slave_xi = p.xi;
+      in.slave_eta = p.eta;
+      in.weight = p.weight;
+      in.master_xi = p.master_xi;
+      in.master_eta = p.master_eta;
+      in.committed_slave_position = p.committed_position;
+      in.gap_offset = parameters_.gap_offset;
+      in.history = p.committed;
+      in.history.multiplier = p.multiplier;
+      in.forced = p.frozen;
+      const WireContactPointOutput point = evaluate_wire_contact_point(in, law_, with_matrix);
+      p.last = point.response;
       const int status = !p.last.active ? 0 : p.last.slipping ? 2 : 1;
       if (with_matrix) {
         if (p.status >= 0 && status != p.status && status != 0 && p.status != 0) ++p.flips;
@@ -292,21 +298,15 @@ bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool 
       }
       if (!p.last.active) continue;
 
-      // Relative position x_s - x_m = sum_i shape_i u_i + const: slave vertices +N, master -N.
-      const auto Ns = BilinearFace::shape(p.xi, p.eta);
-      for (unsigned v = 0; v < 4; ++v)
-        for (unsigned c = 0; c < 3; ++c) {
-          dofs[3 * v + c] = face.dofs[3 * v + c];
-          shape[3 * v + c] = Ns[v];
-          dofs[12 + 3 * v + c] = masters_[best].dofs[3 * v + c];
-          shape[12 + 3 * v + c] = -N[v];
-        }
-      const auto& r = p.last;
+      for (unsigned i = 0; i < 12; ++i) {
+        dofs[i] = face.dofs[i];
+        dofs[12 + i] = master.dofs[i];
+      }
       for (unsigned i = 0; i < 24; ++i) {
-        force[i] = -shape[i] * r.traction[i % 3] * p.weight;
+        force[i] = point.force[i];
         local_rhs[i] = -force[i];
         if (!with_matrix) continue;
-        for (unsigned j = 0; j < 24; ++j) K(i, j) = -shape[i] * shape[j] * r.stiffness[i % 3][j % 3] * p.weight;
+        for (unsigned j = 0; j < 24; ++j) K(i, j) = point.stiffness[i][j];
       }
       // Constrained dofs whose constraint this rank does not hold: drop their rows and columns
       // (the owner replaces the row by the constraint; the reaction keeps the force).

@@ -9,10 +9,10 @@
 // new faces near. Chattering guards: a point whose stick/slip status or master face changed
 // `flip_limit` times within a step keeps them for the rest of the step.
 //
-// Linearisation: normal and closest-point parameters are frozen within an iteration (the
-// "frozen-normal" tangent), so Newton converges linearly while the contact zone slides and
-// quadratically once the projection settles; the curvature terms of the master surface are
-// dropped. Every rank holds the master surface (gathered once), so contact works across MPI
+// Linearisation: consistent (wire_contact_point.hpp): the variations of the master normal, of the
+// closest-point parameters and of the friction anchor are differentiated exactly (forward AD), so
+// Newton converges quadratically once the stick/slip status and the master faces settle. Every
+// rank holds the master surface (gathered once), so contact works across MPI
 // partitions; contributions to constrained dofs this rank does not know are dropped (their rows
 // are replaced by the constraint anyway; reactions still include the contact forces).
 #include <deal.II/base/index_set.h>
