@@ -35,6 +35,7 @@
 #include <sstream>
 
 #include "dtwire/core/error.hpp"
+#include "direct_solver.hpp"
 #include "contact/rigid_tool_contact.hpp"  // contact (issue 5)
 #include "contact/wire_wire_contact.hpp"
 #include "fbar_element.hpp"
@@ -151,6 +152,7 @@ struct WireSolver::Impl {
   std::vector<PETScWrappers::MPI::Vector> rigid_body_modes;
   AffineConstraints<double> homogeneous, predictor;
   PETScWrappers::MPI::SparseMatrix matrix;
+  DirectSolver direct_solver{MPI_COMM_WORLD};  // keeps MUMPS's analysis while the pattern stays
   PETScWrappers::MPI::Vector solution, rhs, internal_force, increment;
   PETScWrappers::MPI::Vector ghosted;  // solution with ghost entries
   std::vector<double> relevant_values;  // plain copy of `ghosted`: PETSc element reads are not thread-safe
@@ -361,6 +363,7 @@ void WireSolver::Impl::make_matrix() {
   DoFTools::make_sparsity_pattern(dof_handler, dsp, predictor, false);
   if (wire_contact) wire_contact->add_sparsity(dsp, predictor);
   SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
+  direct_solver.reset();
   matrix.reinit(owned, owned, dsp, comm);
 }
 
@@ -398,8 +401,11 @@ void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double t_o
     VectorTools::interpolate_boundary_values(dof_handler, top_map, c,
                                              prm.load.top == EndCondition::clamped ? all
                                                                                    : fe.component_mask(loaded_component()));
+  const ComponentMask x_and_z(std::vector<bool>{true, false, true});
   VectorTools::interpolate_boundary_values(dof_handler, bottom_map, c,
-                                           prm.load.bottom == EndCondition::clamped ? all : z_only);
+                                           prm.load.bottom == EndCondition::clamped  ? all
+                                           : prm.load.bottom == EndCondition::guided ? x_and_z
+                                                                                     : z_only);
   if (prm.geometry.quarter) {
     VectorTools::interpolate_boundary_values(dof_handler, kSymmetryX, zero, c, fe.component_mask(ux));
     VectorTools::interpolate_boundary_values(dof_handler, kSymmetryY, zero, c, fe.component_mask(uy));
@@ -683,9 +689,7 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
       if (prm.newton.krylov) {
         history << " (gmres " << solve_krylov() << ")";
       } else {
-        SolverControl control(1, 0.0);
-        PETScWrappers::SparseDirectMUMPS direct(control, comm);
-        direct.solve(matrix, increment, rhs);
+        direct_solver.solve(matrix, increment, rhs);
       }
     } catch (const std::exception& e) {
       reason = prm.newton.krylov ? std::string("Krylov solver failed: ") + e.what() : "direct solver failed";

@@ -1,0 +1,42 @@
+#include "direct_solver.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace dtwire::fem {
+namespace {
+
+void check(PetscErrorCode code, const char* what) {
+  if (code != 0) throw std::runtime_error(std::string("PETSc error in ") + what + " (" + std::to_string(code) + ")");
+}
+
+}  // namespace
+
+void DirectSolver::reset() {
+  if (ksp_) KSPDestroy(&ksp_);
+  ksp_ = nullptr;
+}
+
+void DirectSolver::solve(const dealii::PETScWrappers::MPI::SparseMatrix& A, dealii::PETScWrappers::MPI::Vector& x,
+                         const dealii::PETScWrappers::MPI::Vector& b) {
+  if (!ksp_) {
+    check(KSPCreate(comm_, &ksp_), "KSPCreate");
+    check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+    PC pc;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    check(PCSetType(pc, PCLU), "PCSetType");
+    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    check(KSPSetErrorIfNotConverged(ksp_, PETSC_FALSE), "KSPSetErrorIfNotConverged");
+  }
+  // Same Mat object with the same nonzero state: PETSc keeps the symbolic factorisation.
+  check(KSPSetOperators(ksp_, A, A), "KSPSetOperators");
+  check(KSPSolve(ksp_, b, x), "KSPSolve");
+  KSPConvergedReason reason;
+  check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+  if (reason < 0) {
+    reset();  // a failed factorisation is not reused
+    throw std::runtime_error("MUMPS factorisation failed (KSP reason " + std::to_string(reason) + ")");
+  }
+}
+
+}  // namespace dtwire::fem
