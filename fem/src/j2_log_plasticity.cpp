@@ -188,10 +188,8 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
   r.state.plastic_metric_inverse = symmetric_part(F_inv * Tensor2(from_principal(s, b_e)) * F_inv_T);
   r.state.damage = committed.damage;
   if (dgamma > 0.0 && failure_.enabled()) {
-    const double q = std::sqrt(1.5) * 2.0 * G * dev_norm * shrink;
-    const double eta = K * volumetric / q;
-    const double strain_to_failure = failure_.d1 + failure_.d2 * std::exp(failure_.d3 * eta);
-    r.state.damage += dgamma / std::max(strain_to_failure, 1e-6);
+    const StressInvariants inv = stress_invariants(r.kirchhoff);
+    r.state.damage += dgamma / failure_.strain_to_failure(inv.triaxiality, inv.lode_parameter);
   }
   if (!with_tangent) return r;
 
@@ -262,9 +260,8 @@ StressUpdate J2LogPlasticity::update_kinematic(const Tensor2& F, const Tensor2& 
   r.state.plastic_metric_inverse = symmetric_part(F_inv * Tensor2(from_principal(e, b_e)) * F_inv_T);
   r.state.damage = committed.damage;
   if (dalpha > 0.0 && failure_.enabled()) {
-    const double q = std::sqrt(1.5) * deviator.norm();
-    const double strain_to_failure = failure_.d1 + failure_.d2 * std::exp(failure_.d3 * K * volumetric / q);
-    r.state.damage += dalpha / std::max(strain_to_failure, 1e-6);
+    const StressInvariants inv = stress_invariants(r.kirchhoff);
+    r.state.damage += dalpha / failure_.strain_to_failure(inv.triaxiality, inv.lode_parameter);
   }
   if (!with_tangent) return r;
 
@@ -285,6 +282,12 @@ StressUpdate J2LogPlasticity::update_kinematic(const Tensor2& F, const Tensor2& 
     return dtau;
   });
   return r;
+}
+
+double FailureParameters::strain_to_failure(double triaxiality, double lode_parameter) const {
+  const double lode_angle = 1.0 - 2.0 / dealii::numbers::PI * std::acos(std::clamp(lode_parameter, -1.0, 1.0));
+  const double lode_factor = shear_ductility_ratio + (1.0 - shear_ductility_ratio) * lode_angle * lode_angle;
+  return std::max((d1 + d2 * std::exp(d3 * triaxiality)) * lode_factor, 1e-6);
 }
 
 StressInvariants stress_invariants(const SymTensor2& cauchy) {

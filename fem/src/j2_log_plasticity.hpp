@@ -42,11 +42,20 @@ struct KinematicParameters {
   bool enabled() const { return modulus > 0.0; }
 };
 
-// Uncoupled ductile failure indicator (Johnson & Cook 1985, EFM 21): D = sum d(alpha) / eps_f,
-// eps_f = d1 + d2 exp(d3 eta) with eta the stress triaxiality. Off when d1 = d2 = 0.
+// Uncoupled ductile failure indicator D = sum d(alpha) / eps_f(eta, theta) with eta the stress
+// triaxiality and theta = 1 - (2/pi) arccos(xi) the Lode angle parameter (xi = 27 J3 / (2 q^3);
+// +1 axisymmetric tension, 0 shear or plane strain, -1 axisymmetric compression):
+//   eps_f = (d1 + d2 exp(d3 eta)) (s + (1 - s) theta^2).
+// The first factor is Johnson & Cook (1985, EFM 21); the second the symmetric form of the Bai &
+// Wierzbicki (2008, IJP 24, eq. 25) locus with its shear branch (theta = 0) at s times the
+// axisymmetric one, D3 exp(-D4 eta) = s (d1 + d2 exp(d3 eta)), D5 = D1, D6 = D2. s = 1 (the default)
+// is plain Johnson-Cook; s < 1 makes shear-dominated states fail earlier. Off when d1 = d2 = 0.
 struct FailureParameters {
   double d1 = 0.0, d2 = 0.0, d3 = 0.0;
+  double shear_ductility_ratio = 1.0;  // s in (0, 1]
   bool enabled() const { return d1 != 0.0 || d2 != 0.0; }
+  // Plastic strain to failure (floored at 1e-6 so that D stays finite).
+  double strain_to_failure(double triaxiality, double lode_parameter) const;
 };
 
 struct StressUpdate {

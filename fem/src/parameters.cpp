@@ -53,6 +53,9 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Failure d1", "0", Patterns::Double(), "Johnson-Cook eps_f = d1 + d2 exp(d3 eta); 0, 0: off");
   prm.declare_entry("Failure d2", "0", Patterns::Double(), "");
   prm.declare_entry("Failure d3", "0", Patterns::Double(), "");
+  prm.declare_entry("Failure shear ductility ratio", "1", Patterns::Double(0.01, 1.0),
+                    "s: strain to failure in shear (Lode angle parameter 0) over that in axisymmetric "
+                    "tension at the same triaxiality, eps_f = JC(eta) (s + (1 - s) theta^2); 1: Johnson-Cook");
   prm.declare_entry("Stop at failure", "true", Patterns::Bool(), "end the run when the indicator reaches 1");
   prm.declare_entry("Kinematic modulus (MPa)", "0", Patterns::Double(0.0),
                     "Armstrong-Frederick C (0: no kinematic hardening), combined with the isotropic law");
@@ -67,8 +70,9 @@ void declare(ParameterHandler& prm) {
   prm.leave_subsection();
 
   prm.enter_subsection("Boundary conditions");
-  prm.declare_entry("Bottom end", "clamped", Patterns::Selection("clamped|axial|symmetry"),
-                    "z = 0: clamped (u = 0), axial (u_z = 0), symmetry (mid-plane: u_z = 0, "
+  prm.declare_entry("Bottom end", "clamped", Patterns::Selection("clamped|axial|guided|symmetry"),
+                    "z = 0: clamped (u = 0), axial (u_z = 0), guided (u_x = u_z = 0: free to move along y "
+                    "only, e.g. a double twist resting on rollers), symmetry (mid-plane: u_z = 0, "
                     "curve displacement and energies doubled)");
   prm.declare_entry("Top end", "clamped", Patterns::Selection("clamped|axial|free"),
                     "z = length: the load-path displacement; clamped also fixes the other components, "
@@ -155,6 +159,7 @@ std::vector<std::pair<double, double>> parse_pairs(const std::string& text, cons
 EndCondition end_condition(const std::string& s) {
   if (s == "axial") return EndCondition::axial;
   if (s == "symmetry") return EndCondition::symmetry;
+  if (s == "guided") return EndCondition::guided;
   if (s == "free") return EndCondition::free;
   return EndCondition::clamped;
 }
@@ -218,6 +223,7 @@ Parameters read_parameters(const std::filesystem::path& file) {
   p.material.failure.d1 = prm.get_double("Failure d1");
   p.material.failure.d2 = prm.get_double("Failure d2");
   p.material.failure.d3 = prm.get_double("Failure d3");
+  p.material.failure.shear_ductility_ratio = prm.get_double("Failure shear ductility ratio");
   p.material.stop_at_failure = prm.get_bool("Stop at failure");
   p.material.kinematic.modulus = prm.get_double("Kinematic modulus (MPa)") * 1e6;
   p.material.kinematic.saturation_rate = prm.get_double("Kinematic saturation rate");

@@ -44,7 +44,8 @@ struct FormulationParameters {
   unsigned degree = 1;
 };
 
-enum class EndCondition { clamped, axial, symmetry, free };  // free: top end only (bending on rollers)
+// free: top end only (bending on rollers); guided (u_x = u_z = 0): bottom end only.
+enum class EndCondition { clamped, axial, guided, symmetry, free };
 enum class LoadDirection { axial, lateral };  // top displacement along z, or along x
 
 struct LoadParameters {

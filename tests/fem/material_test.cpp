@@ -202,6 +202,32 @@ TEST(FailureIndicator, UniaxialDamageIsPlasticStrainOverStrainToFailure) {
   EXPECT_NEAR(state.damage, state.equivalent_plastic_strain / strain_to_failure, 1e-9);
 }
 
+// Shear branch (symmetric Bai-Wierzbicki form): isochoric plane strain F = diag(l, 1/l, 1) is a
+// pure shear state, triaxiality 0 and Lode parameter 0 (principal Hencky strains e, -e, 0), so
+// D = alpha / (s (d1 + d2)) exactly; uniaxial tension (Lode angle parameter 1) is unaffected.
+TEST(FailureIndicator, PlaneStrainDamageUsesTheShearBranch) {
+  HardeningParameters h;
+  h.law = HardeningLaw::linear;
+  h.yield_stress = 400e6;
+  h.linear_modulus = 1e9;
+  FailureParameters locus{0.05, 3.44, -2.12};
+  locus.shear_ductility_ratio = 0.4;
+  const J2LogPlasticity m(ElasticParameters{200e9, 0.3}, IsotropicHardening(h), locus);
+  PlasticState state;
+  for (int n = 1; n <= 20; ++n) {
+    const double l = std::exp(0.01 * n);
+    Tensor2 F;
+    F[0][0] = l;
+    F[1][1] = 1.0 / l;
+    F[2][2] = 1.0;
+    state = m.update(F, state, false).state;
+  }
+  ASSERT_GT(state.equivalent_plastic_strain, 0.1);
+  EXPECT_NEAR(state.damage, state.equivalent_plastic_strain / (0.4 * (0.05 + 3.44)), 1e-12);
+  EXPECT_NEAR(locus.strain_to_failure(1.0 / 3.0, 1.0), 0.05 + 3.44 * std::exp(-2.12 / 3.0), 1e-15);
+  EXPECT_NEAR(locus.strain_to_failure(-1.0 / 3.0, -1.0), 0.05 + 3.44 * std::exp(2.12 / 3.0), 1e-14);
+}
+
 }  // namespace
 }  // namespace dtwire::fem
 
