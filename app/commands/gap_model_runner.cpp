@@ -167,6 +167,8 @@ std::string edit_prm(const std::string& text, const std::vector<gap::AppliedEffe
       out = set_in_subsection(out, "Wire contact", "Friction coefficient", number_text(p));
     } else if (effect == "twist_tightening") {  // extra clearance of the interweavement (mm)
       out = set_in_subsection(out, "Wire contact", "Gap offset (mm)", number_text(p));
+    } else if (effect == "shear_failure") {  // shear branch of the failure locus (docs/fem.md)
+      out = set_in_subsection(out, "Material", "Failure shear ductility ratio", number_text(p));
     } else {
       throw ComputationError("gap --model: effect " + effect + " cannot be switched on in a .prm");
     }
@@ -194,7 +196,8 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
   if (!wire_contact_enabled(text))
     for (const char* name : {"wire_friction", "twist_tightening"})
       model.unsupported[name] = "the .prm has no enabled `subsection Wire contact` (a DT model, docs/fem_dt.md)";
-  model.unsupported["shear_failure"] = "the FE failure locus has no shear branch (Johnson-Cook, triaxiality only)";
+  if (!has_amplitude("Failure d1") && !has_amplitude("Failure d2"))
+    model.unsupported["shear_failure"] = "the .prm has no failure locus (Failure d1, d2) whose shear branch to lower";
   model.unsupported["coating_slip"] = "the meshes bond the PVC sheath to the steel (no interface to slide)";
 
   if (work.empty())

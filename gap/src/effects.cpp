@@ -159,8 +159,8 @@ std::vector<EffectSpec> make_catalogue() {
        {"initial_gap_mm", 0.0, 2.0, 0.0, 0.5, {}}, 0.0},
       {"residual_stress", "plasticity left by twisting, as a fraction of the twisting strain",
        {"twist_plasticity_1", 0.0, 1.0, 0.0, 1.0, {}}, 0.0},
-      {"shear_failure", "failure by combined tension and shear at the SW/DT junction",
-       {"shear_strength_ratio_1", 0.3, 1.0, 0.5, 0.8, {}}, 1.0},
+      {"shear_failure", "failure by combined tension and shear (e.g. at the SW/DT junction): the FE locus's shear branch lowered",
+       {"shear_ductility_ratio_1", 0.3, 1.0, 0.5, 0.8, {}}, 1.0},
       {"coating_slip", "sliding between steel and PVC sheath (interface shear strength)",
        {"interface_strength_MPa", 0.0, 20.0, 0.5, 5.0, {}}, 20.0},
       // The imperfection amplitudes of the FE experiment (bow, radius reduction) times a factor:

@@ -59,6 +59,19 @@ TEST(GapModelPrm, DoubleTwistEffectsEditTheWireContact) {
   EXPECT_EQ(column.unsupported.count("wire_friction"), 1u);
 }
 
+// shear_failure lowers the shear branch of the failure locus (Material subsection); a model
+// without a failure locus cannot show it.
+TEST(GapModelPrm, ShearFailureEditsTheFailureLocus) {
+  const std::string prm = "subsection Material\n  set Failure d1 = 0.05\n  set Failure d2 = 3.44\nend\n";
+  const std::string edited = edit_prm(prm, {{&gap::find_effect("shear_failure"), {0.55}}}, ".");
+  EXPECT_NE(edited.find("  set Failure shear ductility ratio = 0.55\nend\n"), std::string::npos) << edited;
+  const FeModel dt = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
+                                   fs::temp_directory_path() / "dtwire_gap_fe_test_s");
+  EXPECT_EQ(dt.unsupported.count("shear_failure"), 0u);
+  const FeModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_s2");
+  EXPECT_NE(column.unsupported.at("shear_failure").find("failure locus"), std::string::npos);
+}
+
 TEST(GapModelPrm, UnsupportedEffectsAreNamedWithTheirReason) {
   const FeModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_a");
   EXPECT_EQ(model.unsupported.count("geometry_imperfection"), 0u);
