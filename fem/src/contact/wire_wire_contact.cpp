@@ -137,6 +137,7 @@ WireWireContact::WireWireContact(const WireContactParameters& parameters, double
   law_.tangential_penalty = parameters_.tangential_penalty_factor * young / smallest_face;
   law_.friction = parameters_.friction;
   search_distance_ = parameters_.search_distance > 0.0 ? parameters_.search_distance : 0.25 * diameter;
+  keep_margin_ = 1e-3 * smallest_face;
   committed_master_values_.assign(12 * masters_.size(), 0.0);
   master_values_ = committed_master_values_;
 }
@@ -238,7 +239,10 @@ bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool 
       SlavePoint& p = points_[q];
       p.position = slave.position(p.xi, p.eta);
       const Vector3 slave_normal = slave.outward_normal(p.xi, p.eta);
-      // Closest facing master face among the candidates (or the frozen one).
+      // Closest facing master face among the candidates (or the frozen one). The current face is
+      // considered first and another must be nearer by a margin to replace it: over an edge two
+      // faces give the same clamped distance, and a tie broken by round-off would flip the normal
+      // by the facet angle from one iteration to the next.
       int best = -1;
       FaceProjection best_projection;
       bool best_inside = false;
@@ -246,16 +250,20 @@ bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool 
         const FaceProjection proj = project_onto_face(master_geometry[m], p.position);
         if (proj.distance > search_distance_) return;
         if (master_geometry[m].outward_normal(proj.xi, proj.eta) * slave_normal > kFacingCosine) return;
+        const double margin = best == p.master ? keep_margin_ : 0.0;
         const bool better = best < 0 || (proj.inside && !best_inside) ||
-                            (proj.inside == best_inside && proj.distance < best_projection.distance);
+                            (proj.inside == best_inside && proj.distance < best_projection.distance - margin);
         if (!better) return;
         best = static_cast<int>(m);
         best_projection = proj;
         best_inside = proj.inside;
       };
-      if (p.master_frozen && p.master >= 0) consider(static_cast<unsigned>(p.master));
-      else
-        for (const unsigned m : face.candidates) consider(m);
+      const bool current_is_candidate =
+          p.master >= 0 && std::binary_search(face.candidates.begin(), face.candidates.end(), unsigned(p.master));
+      if (p.master >= 0 && (p.master_frozen || current_is_candidate)) consider(static_cast<unsigned>(p.master));
+      if (!p.master_frozen)
+        for (const unsigned m : face.candidates)
+          if (static_cast<int>(m) != p.master) consider(m);
       if (with_matrix && p.status >= 0 && best != p.master && best >= 0 && p.master >= 0) ++p.flips;
       p.master = best;
       if (best < 0) {

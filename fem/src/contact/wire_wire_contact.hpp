@@ -95,6 +95,7 @@ class WireWireContact {
   ContactLaw law_;
   MPI_Comm comm_;
   double search_distance_ = 0.0;
+  double keep_margin_ = 0.0;  // m: how much nearer another master face must be to replace the current one
   std::vector<MasterFace> masters_;
   std::vector<SlaveFace> slaves_;
   std::vector<SlavePoint> points_;
