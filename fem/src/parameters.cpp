@@ -2,6 +2,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <cmath>
 #include <regex>
 #include <sstream>
@@ -127,6 +128,12 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Probe points (mm)", "", Patterns::Anything(),
                     "semicolon-separated 'x y z' material points (reference configuration) whose displacement "
                     "is written every step (probe<k>_displacement_{x,y,z}_mm)");
+  prm.declare_entry("Extensometer (mm)", "", Patterns::Anything(),
+                    "pairs of material points 'x y z, x y z' separated by ';': a virtual extensometer whose "
+                    "elongation (mean change of distance of the pairs) is written as extensometer_elongation_mm");
+  prm.declare_entry("Curve displacement", "load path", Patterns::Selection("load path|extensometer"),
+                    "what the curve's displacement_mm column holds: the load-path displacement, or the "
+                    "extensometer elongation (the load path then goes to grip_displacement_mm)");
   prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
                     "write a restart checkpoint every n steps (0: none)");
   prm.leave_subsection();
@@ -362,6 +369,30 @@ Parameters read_parameters(const std::filesystem::path& file) {
       for (auto& v : x) v *= 1e-3;
       p.output.probe_points.push_back(x);
     }
+  }
+  {
+    const std::string entry = "'Extensometer (mm)'";
+    std::stringstream list(prm.get("Extensometer (mm)"));
+    std::string item;
+    while (std::getline(list, item, ';')) {
+      if (item.find_first_not_of(" \t") == std::string::npos) continue;
+      std::istringstream in(item);
+      std::array<double, 6> x{};
+      char comma = 0;
+      const bool ok = (in >> x[0] >> x[1] >> x[2]) && (in >> comma) && comma == ',' && (in >> x[3] >> x[4] >> x[5]) &&
+                      (in >> std::ws).eof() && std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); });
+      if (!ok)
+        throw InputError(name, entry + ": expected pairs 'x y z, x y z' separated by ';', found '" + item + "'");
+      if (x[0] == x[3] && x[1] == x[4] && x[2] == x[5])
+        throw InputError(name, entry + ": the two points of '" + item + "' coincide (no gauge length)");
+      const std::size_t first = p.output.probe_points.size();
+      p.output.probe_points.push_back({x[0] * 1e-3, x[1] * 1e-3, x[2] * 1e-3});
+      p.output.probe_points.push_back({x[3] * 1e-3, x[4] * 1e-3, x[5] * 1e-3});
+      p.output.extensometer.push_back({first, first + 1});
+    }
+    p.output.extensometer_as_displacement = prm.get("Curve displacement") == "extensometer";
+    if (p.output.extensometer_as_displacement && p.output.extensometer.empty())
+      throw InputError(name, "'Curve displacement = extensometer' needs 'Extensometer (mm)'");
   }
   prm.leave_subsection();
   std::vector<double> knots;  // contact (issue 5)

@@ -96,6 +96,13 @@ struct OutputParameters {
   // Material points (m, reference configuration) whose displacement is written every step: a
   // virtual extensometer / image-analysis marker.
   std::vector<std::array<double, 3>> probe_points;
+  // Virtual extensometer (a clip gauge, or the image analysis of a double twist): pairs of
+  // material points, stored as indices into probe_points (their points are appended there).
+  // Its elongation is the mean change of distance between the points of each pair.
+  std::vector<std::array<std::size_t, 2>> extensometer;
+  // The curve's displacement_mm column holds the extensometer elongation (the load-path
+  // displacement moves to grip_displacement_mm), as a laboratory curve measured that way.
+  bool extensometer_as_displacement = false;
 };
 
 struct Parameters {

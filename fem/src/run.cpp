@@ -100,17 +100,40 @@ void add_generalised_channels(Curve& c, const std::vector<StepRecord>& records, 
           [&](const StepRecord& r) { return r.external_work - stored(r); });
 }
 
+// Mean change of distance between the material points of each extensometer pair (m).
+double extensometer_elongation(const StepRecord& s, const OutputParameters& output) {
+  double sum = 0.0;
+  for (const auto& [i, j] : output.extensometer) {
+    const auto& X = output.probe_points;
+    const auto& U = s.probe_displacements;
+    double reference = 0.0, current = 0.0;
+    for (unsigned a = 0; a < 3; ++a) {
+      reference += std::pow(X[j][a] - X[i][a], 2);
+      current += std::pow(X[j][a] + U[j][a] - X[i][a] - U[i][a], 2);
+    }
+    sum += std::sqrt(current) - std::sqrt(reference);
+  }
+  return sum / static_cast<double>(output.extensometer.size());
+}
+
 Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& options, const Parameters& p) {
-  std::vector<double> u, f, d, e, r;
+  std::vector<double> u, f, d, e, r, gauge;
   for (const auto& s : records) {
     u.push_back(s.displacement);
     f.push_back(s.force);
     d.push_back(s.plastic_dissipation);
     e.push_back(s.elastic_energy);
     r.push_back(s.neck_radius);
+    if (!p.output.extensometer.empty()) gauge.push_back(extensometer_elongation(s, p.output));
   }
   Curve c;
-  c.add_channel_si("displacement", Dimension::Length, u, *find_unit("mm"));
+  if (p.output.extensometer_as_displacement) {
+    c.add_channel_si("displacement", Dimension::Length, gauge, *find_unit("mm"));
+    c.add_channel_si("grip_displacement", Dimension::Length, u, *find_unit("mm"));
+  } else {
+    c.add_channel_si("displacement", Dimension::Length, u, *find_unit("mm"));
+    if (!gauge.empty()) c.add_channel_si("extensometer_elongation", Dimension::Length, gauge, *find_unit("mm"));
+  }
   c.add_channel_si("force", Dimension::Force, f, *find_unit("N"));
   c.add_channel_si("plastic_dissipation", Dimension::Energy, d, *find_unit("J"));
   c.add_channel_si("elastic_energy", Dimension::Energy, e, *find_unit("J"));

@@ -345,6 +345,31 @@ TEST(LinearSolver, GmresAmgReproducesTheDirectSolverCurve) {
   EXPECT_LT(difference, 1e-6 * scale);  // 1e-6 relative to the largest force
 }
 
+// Virtual extensometer: on an elastic bar stretched uniformly (bottom axial, top pulled, free
+// lateral contraction), a gauge between two points on the axis lengthens by the gauge length
+// times the nominal strain, exactly; the curve's displacement_mm column can hold it instead of
+// the load path (then in grip_displacement_mm). A gauge whose points coincide is an input error.
+TEST(Extensometer, UniformBarGaugeElongationIsStrainTimesGaugeLength) {
+  const std::string base =
+      "subsection Geometry\n set Diameter (mm) = 2.7\n set Length (mm) = 30\n set Cross section = quarter\nend\n"
+      "subsection Material\n set Young modulus (MPa) = 200000\n set Poisson ratio = 0.3\n"
+      " set Hardening law = linear\n set Yield stress (MPa) = 1e9\nend\n"
+      "subsection Boundary conditions\n set Bottom end = axial\n set Top end = axial\n"
+      " set Load path (mm) = 0:0, 1:0.03\nend\n"
+      "subsection Load stepping\n set Initial step = 0.5\n set Maximum step = 0.5\nend\n"
+      "subsection Newton\n set Relative tolerance = 1e-10\nend\n"
+      "subsection Output\n set Fields = false\n set Extensometer (mm) = 0 0 5, 0 0 25; 0.5 0.5 10, 0.5 0.5 12\n";
+  const Curve grip = run_prm("extensometer", base + "end\n");
+  ASSERT_TRUE(grip.has("extensometer_elongation"));
+  const double u = grip.si("displacement").back(), gauge = grip.si("extensometer_elongation").back();
+  // Mean of the two gauges (20 mm and 2 mm long) on a bar 30 mm long: (20 + 2) / 2 / 30 of u.
+  EXPECT_NEAR(gauge / (u * 11.0 / 30.0), 1.0, 1e-9);
+  const Curve measured = run_prm("extensometer_curve", base + " set Curve displacement = extensometer\nend\n");
+  EXPECT_NEAR(measured.si("displacement").back(), gauge, 1e-12);
+  EXPECT_NEAR(measured.si("grip_displacement").back(), u, 1e-15);
+  EXPECT_THROW(run_prm("extensometer_bad", base + " set Extensometer (mm) = 0 0 5, 0 0 5\nend\n"), InputError);
+}
+
 TEST(Input, BadEntryNamesTheFileAndLine) {
   const auto dir = scratch_dir("bad");
   const auto prm = dir / "bad.prm";
