@@ -816,7 +816,8 @@ void WireSolver::Impl::write_fields(unsigned step, double time) {
       3, DataComponentInterpretation::component_is_part_of_vector);
   out.add_data_vector(ghosted, names, DataOut<3>::type_dof_data, kinds);
   const std::size_t n_cells = triangulation.n_active_cells();
-  Vector<float> von_mises(n_cells), plastic_strain(n_cells), triaxiality(n_cells), lode(n_cells), rank(n_cells);
+  Vector<float> von_mises(n_cells), plastic_strain(n_cells), triaxiality(n_cells), lode(n_cells), rank(n_cells),
+      damage(n_cells);
   const unsigned n_q = quadrature.size();
   for (const auto& cell : triangulation.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
@@ -826,6 +827,7 @@ void WireSolver::Impl::write_fields(unsigned step, double time) {
     for (unsigned q = 0; q < n_q; ++q) {
       mean_stress += points[c * n_q + q].cauchy / n_q;
       alpha += points[c * n_q + q].committed.equivalent_plastic_strain / n_q;
+      damage[c] = std::max(damage[c], static_cast<float>(points[c * n_q + q].committed.damage));
     }
     const StressInvariants inv = stress_invariants(mean_stress);
     von_mises[c] = inv.von_mises;
@@ -838,6 +840,7 @@ void WireSolver::Impl::write_fields(unsigned step, double time) {
   out.add_data_vector(plastic_strain, "equivalent_plastic_strain");
   out.add_data_vector(triaxiality, "triaxiality");
   out.add_data_vector(lode, "lode_parameter");
+  if (prm.material.failure.enabled()) out.add_data_vector(damage, "failure_indicator");
   out.add_data_vector(rank, "mpi_rank");
   Vector<float> contact_pressure(n_cells), contact_slip(n_cells);  // contact (issue 5)
   if (rigid_contact) {
