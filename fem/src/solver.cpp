@@ -323,8 +323,11 @@ void WireSolver::Impl::locate_probes() {
     const Point<3> x(points[k][0], points[k][1], points[k][2]);
     bool found = false;
     try {
+      // On a distributed mesh the search may return an invalid iterator (the point lies in
+      // another rank's part) instead of throwing.
       const auto hit = GridTools::find_active_cell_around_point(mapping, dof_handler, x);
-      if (hit.first->is_locally_owned() && GeometryInfo<3>::distance_to_unit_cell(hit.second) < 1e-9) {
+      if (hit.first.state() == IteratorState::valid && hit.first->is_locally_owned() &&
+          GeometryInfo<3>::distance_to_unit_cell(hit.second) < 1e-9) {
         probes.push_back(Probe{k, hit.first, GeometryInfo<3>::project_to_unit_cell(hit.second)});
         found = true;
       }
