@@ -1,7 +1,5 @@
 #include "wire_wire_contact.hpp"
 
-#include "wire_contact_point.hpp"
-
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/lac/full_matrix.h>
@@ -16,6 +14,8 @@
 #include <iterator>
 #include <limits>
 #include <stdexcept>
+
+#include "wire_contact_point.hpp"
 
 namespace dtwire::fem::contact {
 

@@ -1,7 +1,7 @@
 #pragma once
 // Frictional contact between two deformable wires with finite sliding: Gauss points of the slave
 // surface (wire A) projected onto the bilinear faces of the master surface (wire B), penalty
-// normal law with optional Uzawa augmentation and Coulomb friction by the return map of the
+// normal law with optional Uzawa augmentation and Coulomb friction by the same return map as the
 // rigid-tool kernel (Wriggers 2006, sec. 4.1 closest-point projection, 5.2 penalty, 10.5
 // friction; Laursen 2002, ch. 5). The search keeps, per slave face, the master faces whose
 // bounding boxes (inflated by the search distance) meet its own, found with an R-tree at the
