@@ -24,21 +24,34 @@ std::atomic<bool> stop_requested{false};
 extern "C" void request_stop(int) { stop_requested = true; }
 
 // Simulated curves at the parameters' reference values (else initial values), written as
-// target CSVs with optional Gaussian noise. For demonstrations and tests; the files say so.
+// target CSVs with optional Gaussian noise, under the target's column names (the experiment's
+// target_columns inverted), so that the definition reads them back. For demonstrations and
+// tests; the files say so.
 void synthesize_targets(const calibrate::FitDefinition& def, const std::filesystem::path& dir,
                         double noise, std::uint64_t seed, std::size_t points) {
   calibrate::ParameterValues values;
   for (const auto& p : def.parameters) values[p.name] = p.reference.value_or(p.initial);
-  std::filesystem::create_directories(dir);
+  for (std::size_t e = 0; e < def.experiments.size(); ++e)
+    for (std::size_t other = 0; other < e; ++other)
+      if (def.experiment_target_names[e] == def.experiment_target_names[other])
+        throw InputError(def.file.string(), "experiments '" + def.experiments[other].name + "' and '" +
+                                                def.experiments[e].name + "' have the same target name " +
+                                                def.experiment_target_names[e].string() + ": --synthesize would write it twice");
   std::mt19937_64 generator(seed);
   for (std::size_t e = 0; e < def.experiments.size(); ++e) {
     Curve out = calibrate::synthesize_target(def.experiments[e], values, noise, generator, points);
+    try {
+      out = calibrate::unmap_columns(out, def.experiment_columns[e]);
+    } catch (const std::invalid_argument& error) {
+      throw InputError(def.file.string(), "experiment '" + def.experiments[e].name + "': target_columns " + error.what());
+    }
     out.set_metadata("source", "synthetic: dtwire fit --synthesize, simulator " + def.simulator + " law " +
                                    def.law + " at the reference parameter values of " +
                                    def.file.filename().string());
     out.set_metadata("noise", format_number(noise) + " x channel range (Gaussian, seed " +
                                   std::to_string(seed) + ")");
-    const auto file = dir / def.experiment_targets.at(e).filename();
+    const auto file = dir / def.experiment_target_names.at(e);
+    std::filesystem::create_directories(file.parent_path());
     write_csv(out, file);
     std::cout << "wrote " << file.string() << "\n";
   }
@@ -50,6 +63,7 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
   struct Options {
     std::string file;
     std::string out;
+    std::string targets;
     bool resume = false;
     bool plot = false;
     int threads = -1;
@@ -63,6 +77,10 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
       "fit", "Calibrate parameters with Ceres from a fit definition (TOML, see docs/calibrate.md)");
   command->add_option("file", options->file, "Fit definition (.toml)")->required();
   command->add_option("-o,--out", options->out, "Output directory (default: fit-out/<file stem>)");
+  command->add_option("--targets", options->targets,
+                      "Directory that replaces {targets} at the start of the experiments' target paths "
+                      "(e.g. where a campaign wrote its FE curves)")
+      ->check(CLI::ExistingDirectory);
   command->add_flag("--resume", options->resume,
                     "Continue from <out>/checkpoint.json if present (same fit definition)");
   command->add_flag("--plot", options->plot,
@@ -78,11 +96,15 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
       ->check(CLI::Range(3, 100000));
   commands.add(command, [options] {
     if (!options->synthesize.empty()) {
-      const auto def = calibrate::read_fit_file(options->file, /*read_targets=*/false);
+      calibrate::FitReadOptions read;
+      read.read_targets = false;
+      const auto def = calibrate::read_fit_file(options->file, read);
       synthesize_targets(def, options->synthesize, options->noise, options->seed, options->points);
       return 0;
     }
-    auto def = calibrate::read_fit_file(options->file);
+    calibrate::FitReadOptions read;
+    read.targets_directory = options->targets;
+    auto def = calibrate::read_fit_file(options->file, read);
     const std::filesystem::path out =
         options->out.empty() ? std::filesystem::path("fit-out") / def.file.stem() : std::filesystem::path(options->out);
     std::filesystem::create_directories(out);
@@ -108,7 +130,8 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                 << out.string() << " --resume\n";
       return kExitFailure;
     }
-    const auto provenance = make_provenance("dtwire fit " + options->file, def.inputs);
+    const auto provenance = make_provenance(
+        "dtwire fit " + options->file + (options->targets.empty() ? "" : " --targets " + options->targets), def.inputs);
     calibrate::write_fit_outputs(def, result, provenance, out);
     std::cout << "fit " << def.file.filename().string() << ": cost " << result.cost << ", "
               << result.statistics.simulations << " simulation runs, " << result.wall_seconds

@@ -46,6 +46,11 @@ std::vector<double> simulated_values(const Experiment& e, const Curve& simulated
                            (simulated.has(e.abscissa) ? quantity : e.abscissa) + "'");
   if (simulated.size() < 2)
     throw ComputationError("experiment '" + e.name + "': the simulated curve has < 2 points");
+  for (const std::string& q : {e.abscissa, quantity})
+    if (simulated.channel(q).unit.dimension != e.target.channel(q).unit.dimension)
+      throw ComputationError("experiment '" + e.name + "': the simulated " + q + " is a " +
+                             std::string(dimension_name(simulated.channel(q).unit.dimension)) +
+                             ", the target's a " + std::string(dimension_name(e.target.channel(q).unit.dimension)));
   const std::vector<double> tx = e.target.si(e.abscissa);
   const std::vector<double> ty = e.target.si(quantity);
   const std::vector<double> sx = simulated.si(e.abscissa);

@@ -1,5 +1,6 @@
 #include "dtwire/calibrate/fit_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -152,6 +153,89 @@ dem::ParameterMap read_fixed_json(const std::filesystem::path& path, const std::
   return out;
 }
 
+// [experiment.target_columns]: simulated quantity = "target column" or {column, factor}. The
+// nodes are returned too, so that a missing column is reported at its own line.
+std::vector<ColumnMapping> column_mapping(const Table& x, const std::string& file,
+                                          std::vector<const toml::node*>& nodes) {
+  std::vector<ColumnMapping> out;
+  const toml::node* node = x.get("target_columns");
+  if (!node) return out;
+  if (!node->is_table())
+    x.fail(node, "target_columns",
+           "expected a table of quantity = \"column\" or quantity = {column = \"...\", factor = ...}");
+  const Table t(*node->as_table(), x.field("target_columns"), file);
+  for (const auto& [key, value] : *node->as_table()) {
+    ColumnMapping m;
+    m.quantity = std::string(key.str());
+    if (value.is_string()) {
+      m.column = value.as_string()->get();
+    } else if (value.is_table()) {
+      const Table entry(*value.as_table(), t.field(m.quantity), file);
+      entry.only({"column", "factor"});
+      m.column = entry.text("column");
+      m.factor = entry.number("factor", 1.0);
+      if (m.factor == 0.0) entry.fail(entry.get("factor"), "factor", "expected a number other than 0");
+    } else {
+      t.fail(&value, m.quantity, "expected the target column's quantity (a string) or {column = \"...\", factor = ...}");
+    }
+    out.push_back(m);
+    nodes.push_back(&value);
+  }
+  return out;
+}
+
+// `target`: relative to the fit file, or below the targets directory when it starts with
+// {targets}/. Also gives the name --synthesize writes it under.
+std::pair<std::filesystem::path, std::filesystem::path> target_path(const Table& x, const std::filesystem::path& folder,
+                                                                    const FitReadOptions& options) {
+  static const std::string placeholder = "{targets}";
+  const std::string text = x.text("target");
+  if (text.rfind(placeholder, 0) != 0) {
+    if (text.find(placeholder) != std::string::npos)
+      x.fail(x.get("target"), "target", "{targets} must begin the path, as in \"{targets}/run/curve.csv\"");
+    const std::filesystem::path p(text);
+    const std::filesystem::path path = p.is_absolute() ? p : folder / p;
+    return {path, path.filename()};
+  }
+  const std::filesystem::path rest = std::filesystem::path(text.substr(placeholder.size())).relative_path();
+  if (text.size() == placeholder.size() || text[placeholder.size()] != '/' || rest.empty())
+    x.fail(x.get("target"), "target", "expected {targets}/<path of the CSV below the targets directory>");
+  if (options.targets_directory.empty() && options.read_targets)
+    x.fail(x.get("target"), "target",
+           "uses {targets}, but no targets directory was given (dtwire fit --targets DIR)");
+  return {options.targets_directory / rest, rest};
+}
+
+// A quantity an experiment compares, and the field that names it (for error positions).
+struct Compared {
+  std::string quantity;
+  std::string key;
+  const toml::node* node;
+};
+
+// The compared quantities exist in the simulated curve and have the target's dimension, when
+// the simulator declares its channels (a mapping to the wrong column is caught here).
+void check_simulated_channels(const Experiment& e, const std::vector<Compared>& compared, const std::string& kind,
+                              const Table& x) {
+  const auto declared = e.simulator->channels();
+  if (declared.empty()) return;
+  for (const auto& [quantity, key, node] : compared) {
+    const auto it = std::find_if(declared.begin(), declared.end(),
+                                 [&, q = quantity](const auto& d) { return d.first == q; });
+    if (it == declared.end()) {
+      std::string list;
+      for (const auto& d : declared) list += (list.empty() ? "" : ", ") + d.first;
+      x.fail(node, key, "the " + kind + " simulator has no channel '" + quantity + "' (it gives " + list + ")");
+    }
+    const Channel* target = e.target.find(quantity);
+    if (target && target->unit.dimension != it->second)
+      x.fail(node, key,
+             "the target's '" + quantity + "' is a " + std::string(dimension_name(target->unit.dimension)) + " (" +
+                 target->unit.symbol + "), the simulated '" + quantity + "' a " +
+                 std::string(dimension_name(it->second)) + " (map the right column with target_columns)");
+  }
+}
+
 LossKind loss_kind(const Table& t) {
   const std::string loss = t.text("loss", "squared");
   if (loss == "squared") return LossKind::Squared;
@@ -162,7 +246,8 @@ LossKind loss_kind(const Table& t) {
 
 }  // namespace
 
-FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets) {
+FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOptions& options) {
+  const bool read_targets = options.read_targets;
   const std::string name = file.string();
   toml::table root;
   try {
@@ -283,25 +368,39 @@ FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets
   for (const toml::node& node : *experiments->as_array()) {
     const toml::table& raw = *node.as_table();
     const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
-    x.only({"name", "target", "abscissa", "arc_length", "channels", "weight", "branch_tolerance",
-            "increments_per_leg", "input_template"},
+    x.only({"name", "target", "target_columns", "abscissa", "arc_length", "channels", "weight",
+            "branch_tolerance", "increments_per_leg", "input_template"},
            "path_");
     Experiment e;
     e.name = x.text("name");
     for (const auto& other : def.experiments)
       if (other.name == e.name) x.fail(x.get("name"), "name", "experiment '" + e.name + "' defined twice");
-    const auto target = resolve(x.text("target"));
+    const auto [target, synthesized_name] = target_path(x, folder, options);
+    std::vector<const toml::node*> mapping_nodes;
+    const std::vector<ColumnMapping> mapping = column_mapping(x, name, mapping_nodes);
     if (read_targets) {
-      e.target = read_csv(target);  // InputError with the CSV's own file:line:column
+      const Curve curve = read_csv(target);  // InputError with the CSV's own file:line:column
+      for (std::size_t m = 0; m < mapping.size(); ++m)
+        if (!curve.has(mapping[m].column)) {
+          std::string columns;
+          for (const Channel& c : curve.channels()) columns += (columns.empty() ? "" : ", ") + c.column_name();
+          x.fail(mapping_nodes[m], "target_columns." + mapping[m].quantity,
+                 "the target " + target.string() + " has no column '" + mapping[m].column +
+                     "_<unit>' (columns: " + columns + ")");
+        }
+      e.target = map_columns(curve, mapping);
       def.inputs.push_back(target);
     }
     def.experiment_targets.push_back(target);
+    def.experiment_target_names.push_back(synthesized_name);
+    def.experiment_columns.push_back(mapping);
     e.abscissa = x.text("abscissa", "displacement");
     e.kind = x.boolean("arc_length", false) ? AbscissaKind::NormalizedArcLength : AbscissaKind::Channel;
     e.weight = x.number("weight", 1.0);
     if (!(e.weight > 0)) x.fail(x.get("weight"), "weight", "expected a number > 0");
     e.branch_tolerance = x.number("branch_tolerance", e.branch_tolerance);
     if (e.branch_tolerance < 0) x.fail(x.get("branch_tolerance"), "branch_tolerance", "expected >= 0");
+    std::vector<Compared> compared{{e.abscissa, "abscissa", x.get("abscissa")}};
     const toml::node* channels = x.get("channels");
     if (!channels || !channels->is_array() || channels->as_array()->empty())
       x.fail(channels, "channels", "expected a non-empty array, e.g. [\"force\"] or [{quantity = \"force\", weight = 1}]");
@@ -322,6 +421,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets
       if (read_targets && !e.target.has(w.quantity))
         x.fail(&c, "channels", "the target " + target.string() + " has no channel '" + w.quantity + "'");
       e.channels.push_back(w);
+      compared.push_back({w.quantity, "channels", &c});
     }
     if (read_targets && !e.target.has(e.abscissa))
       x.fail(x.get("abscissa"), "abscissa", "the target " + target.string() + " has no channel '" + e.abscissa + "'");
@@ -373,6 +473,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets
       if (strain.size() < 2) x.fail(x.get("path_strain_1"), "path_strain_1", "expected >= 2 waypoints");
       e.simulator = std::make_shared<VoceBarSimulator>(strain, increments);
     }
+    check_simulated_channels(e, compared, def.simulator, x);
     try {
       if (read_targets) validate(e);
     } catch (const std::invalid_argument& error) {

@@ -77,4 +77,12 @@ std::string LawReplaySimulator::identity() const {
   return text;
 }
 
+std::vector<std::pair<std::string, Dimension>> LawReplaySimulator::channels() const {
+  return {{"time", Dimension::Time},
+          {"displacement", Dimension::Length},
+          {"rotation", Dimension::Angle},
+          {"force", Dimension::Force},
+          {"moment", Dimension::Moment}};
+}
+
 }  // namespace dtwire::calibrate

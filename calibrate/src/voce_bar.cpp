@@ -67,4 +67,8 @@ std::string VoceBarSimulator::identity() const {
   return text;
 }
 
+std::vector<std::pair<std::string, Dimension>> VoceBarSimulator::channels() const {
+  return {{"strain", Dimension::Dimensionless}, {"stress", Dimension::Stress}};
+}
+
 }  // namespace dtwire::calibrate

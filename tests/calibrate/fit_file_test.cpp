@@ -28,9 +28,9 @@ class FitFileTest : public ::testing::Test {
     return path;
   }
   // The InputError of reading `text`; fails the test if there is none.
-  InputError error_of(const std::string& text) {
+  InputError error_of(const std::string& text, const FitReadOptions& options = {}) {
     try {
-      read_fit_file(write(text));
+      read_fit_file(write(text), options);
     } catch (const InputError& error) {
       return error;
     }
@@ -143,6 +143,103 @@ TEST_F(FitFileTest, BadPathUnitNamesLine) {
   const InputError e = error_of(text);
   EXPECT_EQ(e.line(), 19);
   EXPECT_NE(std::string(e.what()).find("path_displacement_furlong"), std::string::npos) << e.what();
+}
+
+// A law replay against an FE-like curve below a targets directory (a half model: its rotation
+// is half the driver's, its generalised axial force is axial_force_N). Lines count from 1.
+const std::string kReplay =
+    "[simulator]\n"                                          // 1
+    "kind = \"law_replay\"\n"                                // 2
+    "law = \"thesis\"\n"                                     // 3
+    "[[parameter]]\n"                                        // 4
+    "name = \"N0_N\"\n"                                      // 5
+    "initial = 2000\n"                                       // 6
+    "lower = 500\n"                                          // 7
+    "upper = 5000\n"                                         // 8
+    "[[experiment]]\n"                                       // 9
+    "name = \"bend\"\n"                                      // 10
+    "target = \"{targets}/bend/curve.csv\"\n"                // 11
+    "abscissa = \"rotation\"\n"                              // 12
+    "channels = [\"force\", \"moment\"]\n"                   // 13
+    "path_rotation_deg = [0, 20]\n"                          // 14
+    "[experiment.target_columns]\n"                          // 15
+    "force = \"axial_force\"\n"                              // 16
+    "rotation = {column = \"rotation\", factor = 2}\n";      // 17
+
+class TargetsTest : public FitFileTest {
+ protected:
+  void SetUp() override {
+    FitFileTest::SetUp();
+    std::filesystem::create_directories(dir_ / "fe/bend");
+    std::ofstream(dir_ / "fe/bend/curve.csv") << "displacement_mm,force_N,axial_force_N,moment_Nm,rotation_rad\n"
+                                                  "0,0,0,0,0\n-0.001,1,-2,0.1,0.05\n-0.003,3,-4,0.2,0.1\n";
+    options_.targets_directory = dir_ / "fe";
+  }
+  FitReadOptions options_;
+};
+
+TEST_F(TargetsTest, PlaceholderAndColumnMappingRead) {
+  const FitDefinition def = read_fit_file(write(kReplay), options_);
+  ASSERT_EQ(def.experiments.size(), 1u);
+  const Curve& target = def.experiments[0].target;
+  EXPECT_EQ(target.si("force"), (std::vector<double>{0.0, -2.0, -4.0}));  // axial_force_N, not force_N
+  EXPECT_EQ(target.si("rotation"), (std::vector<double>{0.0, 0.1, 0.2}));
+  EXPECT_EQ(def.experiment_targets[0], dir_ / "fe/bend/curve.csv");
+  EXPECT_EQ(def.experiment_target_names[0], std::filesystem::path("bend/curve.csv"));
+  ASSERT_EQ(def.experiment_columns[0].size(), 2u);
+  EXPECT_EQ(def.experiment_columns[0][1].factor, 2.0);
+  EXPECT_EQ(def.inputs.back(), dir_ / "fe/bend/curve.csv");
+}
+
+TEST_F(TargetsTest, PlaceholderWithoutDirectoryNamesLine) {
+  const InputError e = error_of(kReplay);
+  EXPECT_EQ(e.line(), 11);
+  EXPECT_NE(std::string(e.what()).find("--targets"), std::string::npos) << e.what();
+  FitReadOptions synthesize;  // writing synthetic targets needs no directory
+  synthesize.read_targets = false;
+  EXPECT_EQ(read_fit_file(write(kReplay), synthesize).experiment_target_names[0], std::filesystem::path("bend/curve.csv"));
+}
+
+TEST_F(TargetsTest, PlaceholderInsideThePathNamesLine) {
+  const InputError e = error_of(replace_line(kReplay, 11, "target = \"runs/{targets}/curve.csv\""), options_);
+  EXPECT_EQ(e.line(), 11);
+  EXPECT_NE(std::string(e.what()).find("must begin the path"), std::string::npos) << e.what();
+}
+
+TEST_F(TargetsTest, MissingMappedColumnNamesLineAndColumns) {
+  const InputError e = error_of(replace_line(kReplay, 16, "force = \"axial_forse\""), options_);
+  EXPECT_EQ(e.line(), 16);
+  const std::string what = e.what();
+  EXPECT_NE(what.find("target_columns.force"), std::string::npos) << what;
+  EXPECT_NE(what.find("no column 'axial_forse_<unit>'"), std::string::npos) << what;
+  EXPECT_NE(what.find("axial_force_N"), std::string::npos) << what;  // the columns present
+}
+
+TEST_F(TargetsTest, MappingOfTheWrongDimensionNamesLine) {
+  const InputError e = error_of(replace_line(kReplay, 16, "force = \"moment\""), options_);
+  EXPECT_EQ(e.line(), 13);  // where 'force' is compared
+  const std::string what = e.what();
+  EXPECT_NE(what.find("is a moment"), std::string::npos) << what;
+  EXPECT_NE(what.find("target_columns"), std::string::npos) << what;
+}
+
+TEST_F(TargetsTest, BadMappingEntriesNameLine) {
+  InputError e = error_of(replace_line(kReplay, 17, "rotation = {column = \"rotation\", factr = 2}"), options_);
+  EXPECT_EQ(e.line(), 17);
+  EXPECT_NE(std::string(e.what()).find("unknown field"), std::string::npos) << e.what();
+  e = error_of(replace_line(kReplay, 17, "rotation = {column = \"rotation\", factor = 0}"), options_);
+  EXPECT_EQ(e.line(), 17);
+  EXPECT_NE(std::string(e.what()).find("other than 0"), std::string::npos) << e.what();
+  e = error_of(replace_line(kReplay, 17, "rotation = 2"), options_);
+  EXPECT_EQ(e.line(), 17);
+  EXPECT_NE(std::string(e.what()).find("target_columns.rotation"), std::string::npos) << e.what();
+}
+
+TEST_F(TargetsTest, ChannelTheSimulatorLacksNamesLine) {
+  const InputError e = error_of(replace_line(kReplay, 13, "channels = [\"displacement\", \"axial_force\"]"), options_);
+  EXPECT_EQ(e.line(), 13);
+  EXPECT_NE(std::string(e.what()).find("has no channel 'axial_force' (it gives time, displacement"), std::string::npos)
+      << e.what();
 }
 
 }  // namespace

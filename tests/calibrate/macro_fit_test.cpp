@@ -1,8 +1,7 @@
 // Fit (3): the thesis macro-element's parameters recovered from synthetic curves made by the
-// same law at the thesis values on the 12 load paths of experiments/default/macro_fit.toml
-// (1 % Gaussian noise; the laboratory-like backbone curve, from another model, is left out),
-// read through the default fit file. The targets are generated here, so the test follows the
-// law's implementation.
+// same law at the thesis values on the 12 load paths of tests/calibrate/data/macro_fit_synthetic.toml
+// (1 % Gaussian noise), read through that fit file. The targets are generated here, so the test
+// follows the law's implementation.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,17 +18,14 @@ namespace {
 constexpr double kNoise = 0.01;  // fraction of each channel's range
 
 FitDefinition synthetic_macro_fit(std::uint64_t seed) {
-  FitDefinition def = read_fit_file(std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/default/macro_fit.toml");
+  FitReadOptions options;
+  options.read_targets = false;
+  FitDefinition def =
+      read_fit_file(std::filesystem::path(DTWIRE_SOURCE_DIR) / "tests/calibrate/data/macro_fit_synthetic.toml", options);
   ParameterValues thesis;
   for (const auto& p : def.parameters) thesis[p.name] = p.reference.value();
   std::mt19937_64 generator(seed);
-  std::vector<Experiment> kept;
-  for (auto& e : def.experiments) {
-    if (e.name == "sw_dem_backbone") continue;
-    e.target = synthesize_target(e, thesis, kNoise, generator, 81);
-    kept.push_back(e);
-  }
-  def.experiments = kept;
+  for (auto& e : def.experiments) e.target = synthesize_target(e, thesis, kNoise, generator, 81);
   def.fit.loss = LossKind::Squared;  // the covariance is exact for least squares
   def.fit.starts = 1;
   return def;

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "dtwire/calibrate/column_map.hpp"
 #include "dtwire/calibrate/evaluation.hpp"
 #include "dtwire/calibrate/fitter.hpp"
 #include "dtwire/dem/contact_law.hpp"
@@ -22,15 +23,27 @@ struct FitDefinition {
   std::vector<ParameterDefinition> parameters;
   std::vector<Experiment> experiments;
   std::vector<std::filesystem::path> experiment_targets;  // target CSV per experiment
+  // Per experiment: where `dtwire fit --synthesize DIR` writes its target, relative to DIR
+  // (the path after {targets}/, else the file name), and how its columns are mapped.
+  std::vector<std::filesystem::path> experiment_target_names;
+  std::vector<std::vector<ColumnMapping>> experiment_columns;
   EvaluationOptions evaluation;
   bool disk_cache = false;  // keep simulated curves as files (worth it for FE runs)
   FitOptions fit;                                  // checkpoint/progress set by the caller
   std::vector<std::filesystem::path> inputs;       // every file read (for provenance)
 };
 
+struct FitReadOptions {
+  // false: the target CSVs are not read (for generating synthetic targets); experiments then
+  // have empty target curves.
+  bool read_targets = true;
+  // Replaces the placeholder {targets} at the start of `target` paths (e.g. the folder where a
+  // campaign wrote its FE curves); empty: not given.
+  std::filesystem::path targets_directory;
+};
+
 // Throws InputError (file:line:column, field, what was expected) for any bad entry and for
-// unreadable target files. With read_targets = false the target CSVs are not read (for
-// generating synthetic targets): experiments then have empty target curves.
-FitDefinition read_fit_file(const std::filesystem::path& file, bool read_targets = true);
+// unreadable target files.
+FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOptions& options = {});
 
 }  // namespace dtwire::calibrate

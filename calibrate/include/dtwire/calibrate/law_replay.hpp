@@ -31,9 +31,11 @@ class LawReplaySimulator final : public Simulator {
   // Throws ComputationError if the law rejects the parameters or produces non-finite forces.
   Curve simulate(const ParameterValues& parameters) const override;
   std::string identity() const override;
+  std::vector<std::pair<std::string, Dimension>> channels() const override;
 
   const std::string& law() const { return law_; }
   const dem::ParameterMap& fixed() const { return fixed_; }
+  const LoadPath& path() const { return path_; }
 
  private:
   std::string law_;

@@ -3,6 +3,8 @@
 // replaying a load path, or an analytic model. No deal.II types here, so every module can
 // implement it.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "dtwire/calibrate/parameter.hpp"
 #include "dtwire/core/curve.hpp"
@@ -25,6 +27,10 @@ class Simulator {
   // True if simulate() may run concurrently on one object. Perturbed runs of a simulator
   // that is not thread safe run one after another.
   virtual bool thread_safe() const { return true; }
+
+  // The channels simulate() returns, with their dimensions, when known before a run (empty:
+  // unknown, e.g. an external program), so that a fit definition is checked when it is read.
+  virtual std::vector<std::pair<std::string, Dimension>> channels() const { return {}; }
 };
 
 }  // namespace dtwire::calibrate

@@ -16,6 +16,7 @@ class VoceBarSimulator final : public Simulator {
   VoceBarSimulator(std::vector<double> strain_waypoints, int increments_per_leg);
   Curve simulate(const ParameterValues& parameters) const override;
   std::string identity() const override;
+  std::vector<std::pair<std::string, Dimension>> channels() const override;
 
  private:
   std::vector<double> waypoints_;
