@@ -210,12 +210,17 @@ std::string edit_prm(const std::string& text, const std::vector<gap::AppliedEffe
     } else if (effect == "shear_failure") {  // shear branch of the failure locus (docs/fem.md)
       out = set_in_subsection(out, "Material", "Failure shear ductility ratio", number_text(p));
     } else if (effect == "coating_slip") {
-      // The top grips' bond slides at a force of p x the clamped model's peak force; at p >= 1
-      // it would carry the peak: the grips stay clamped (the neutral model).
-      if (p >= 1.0) continue;
+      // The top grips' bond slides at a force of p x the clamped model's peak force; at the
+      // neutral value (1: it would carry the peak) the grips stay as the .prm has them.
+      if (p >= a.effect->neutral) continue;
       if (!(grip.top_area > 0.0 && grip.reference_force > 0.0))
         throw ComputationError("gap --model: coating_slip needs the grips' area and the model's peak force");
-      out = set_in_subsection(out, "Boundary conditions", "Grip interface", "bonded");
+      // Penalty 10 E / h: below its strength the bond is the clamp within 0.5 % of the stiffness
+      // (docs/fem.md) at the cost of factor 1; a .prm with bonded grips keeps its own.
+      if (!values.count("Grip interface") || values.at("Grip interface") != "bonded") {
+        out = set_in_subsection(out, "Boundary conditions", "Grip interface", "bonded");
+        out = set_in_subsection(out, "Boundary conditions", "Grip bond stiffness factor", "10");
+      }
       out = set_in_subsection(out, "Boundary conditions", "Grip bond strength (MPa)",
                               number_text(p * grip.reference_force / grip.top_area * 1e-6));
     } else {

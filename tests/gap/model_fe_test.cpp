@@ -74,14 +74,16 @@ TEST(GapModelPrm, ShearFailureEditsTheFailureLocus) {
   EXPECT_NE(column.unsupported.at("shear_failure").find("failure locus"), std::string::npos);
 }
 
-// coating_slip: below a capacity of 1 the top grips' bond slides at p x the clamped model's peak
-// force (strength = p F / A); at 1 the model stays clamped. Supported when the grips are lateral
-// grip surfaces of a mesh file (the DT experiment), not on the generated column.
+// coating_slip: the top grips' bond (penalty factor 10) slides at p x the clamped model's peak
+// force (strength = p F / A); at the neutral 1 the model stays clamped. Supported when the grips
+// are lateral grip surfaces of a mesh file (the DT experiment), not on the generated column.
 TEST(GapModelPrm, CoatingSlipBondsTheGripsAtAFractionOfThePeakForce) {
   const std::string prm = "subsection Boundary conditions\n  set Bottom boundary ids = 4\n  set Top boundary ids = 5\nend\n";
   const GripBond grip{80e-6, 3200.0};  // 80 mm^2, 3.2 kN
   const std::string half = edit_prm(prm, {{&gap::find_effect("coating_slip"), {0.5}}}, ".", grip);
-  EXPECT_NE(half.find("  set Grip interface = bonded\n  set Grip bond strength (MPa) = 20\nend\n"), std::string::npos)
+  EXPECT_NE(half.find("  set Grip interface = bonded\n  set Grip bond stiffness factor = 10\n"
+                      "  set Grip bond strength (MPa) = 20\nend\n"),
+            std::string::npos)
       << half;  // 0.5 x 3200 N / 80 mm^2
   EXPECT_EQ(edit_prm(prm, {{&gap::find_effect("coating_slip"), {1.0}}}, ".", grip), edit_prm(prm, {}, ".", grip));
   EXPECT_THROW(edit_prm(prm, {{&gap::find_effect("coating_slip"), {0.5}}}, "."), ComputationError);
