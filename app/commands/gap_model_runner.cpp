@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "dtwire/calibrate/command_simulator.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "msh_area.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -133,10 +135,48 @@ std::string shifted_table(const std::string& table, double a0) {
   return out;
 }
 
+std::vector<unsigned> id_list(const std::string& text) {
+  std::vector<unsigned> ids;
+  std::stringstream s(text);
+  std::string item;
+  while (std::getline(s, item, ','))
+    if (item.find_first_not_of(" \t") != std::string::npos) ids.push_back(static_cast<unsigned>(to_number(item)));
+  return ids;
+}
+
+// coating_slip: the bonded area of the top grips (m^2) when the .prm holds the wire by the grips'
+// lateral surfaces of its mesh file (ids 10 w + 4 and 10 w + 5 of `dtwire mesh sw|dt`,
+// docs/meshes.md) with clamped ends under displacement control; otherwise 0 and why not.
+double grip_area(const std::map<std::string, std::string>& values, const std::filesystem::path& directory,
+                 std::string& reason) {
+  const auto value = [&](const char* name, const char* fallback) {
+    return values.count(name) ? values.at(name) : std::string(fallback);
+  };
+  if (value("Mesh file", "").empty()) {
+    reason = "the .prm has no mesh file with grip surfaces (`dtwire mesh sw|dt --grip-length`)";
+    return 0.0;
+  }
+  if (value("Bottom end", "clamped") != "clamped" || value("Top end", "clamped") != "clamped" ||
+      value("Control", "displacement") != "displacement") {
+    reason = "the bonded grip needs clamped ends under displacement control";
+    return 0.0;
+  }
+  const auto top = id_list(value("Top boundary ids", "2")), bottom = id_list(value("Bottom boundary ids", "1"));
+  for (const auto& ids : {top, bottom})
+    for (unsigned id : ids)
+      if (id % 10 != 4 && id % 10 != 5) {
+        reason = "the grips are not held by their lateral surfaces (Bottom / Top boundary ids 4, 5, 14, 15)";
+        return 0.0;
+      }
+  const double area = msh_surface_area(directory / value("Mesh file", ""), top);
+  if (!(area > 0.0)) reason = "no face of the mesh file carries the Top boundary ids";
+  return area;
+}
+
 }  // namespace
 
 std::string edit_prm(const std::string& text, const std::vector<gap::AppliedEffect>& effects,
-                     const std::filesystem::path& prm_directory) {
+                     const std::filesystem::path& prm_directory, const GripBond& grip) {
   std::string out = edit_entries(text, [&](const std::string& name, const std::string& value) {
     if (name == "Fields") return std::string("false");  // no VTU output in fits
     if (name == "Mesh file" && !value.empty() && std::filesystem::path(value).is_relative())
@@ -169,6 +209,20 @@ std::string edit_prm(const std::string& text, const std::vector<gap::AppliedEffe
       out = set_in_subsection(out, "Wire contact", "Gap offset (mm)", number_text(p));
     } else if (effect == "shear_failure") {  // shear branch of the failure locus (docs/fem.md)
       out = set_in_subsection(out, "Material", "Failure shear ductility ratio", number_text(p));
+    } else if (effect == "coating_slip") {
+      // The top grips' bond slides at a force of p x the clamped model's peak force; at the
+      // neutral value (1: it would carry the peak) the grips stay as the .prm has them.
+      if (p >= a.effect->neutral) continue;
+      if (!(grip.top_area > 0.0 && grip.reference_force > 0.0))
+        throw ComputationError("gap --model: coating_slip needs the grips' area and the model's peak force");
+      // Penalty 10 E / h: below its strength the bond is the clamp within 0.5 % of the stiffness
+      // (docs/fem.md) at the cost of factor 1; a .prm with bonded grips keeps its own.
+      if (!values.count("Grip interface") || values.at("Grip interface") != "bonded") {
+        out = set_in_subsection(out, "Boundary conditions", "Grip interface", "bonded");
+        out = set_in_subsection(out, "Boundary conditions", "Grip bond stiffness factor", "10");
+      }
+      out = set_in_subsection(out, "Boundary conditions", "Grip bond strength (MPa)",
+                              number_text(p * grip.reference_force / grip.top_area * 1e-6));
     } else {
       throw ComputationError("gap --model: effect " + effect + " cannot be switched on in a .prm");
     }
@@ -198,7 +252,10 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
       model.unsupported[name] = "the .prm has no enabled `subsection Wire contact` (a DT model, docs/fem_dt.md)";
   if (!has_amplitude("Failure d1") && !has_amplitude("Failure d2"))
     model.unsupported["shear_failure"] = "the .prm has no failure locus (Failure d1, d2) whose shear branch to lower";
-  model.unsupported["coating_slip"] = "the meshes bond the PVC sheath to the steel (no interface to slide)";
+  std::string no_grip;
+  GripBond grip;
+  grip.top_area = grip_area(values, std::filesystem::absolute(prm).parent_path(), no_grip);
+  if (!(grip.top_area > 0.0)) model.unsupported["coating_slip"] = no_grip;
 
   if (work.empty())
     work = std::filesystem::temp_directory_path() / ("dtwire_gap_model_" + std::to_string(::getpid()));
@@ -209,8 +266,8 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
   const std::string source = prm.string();
   model.runs = runs.get();
   model.work = work;
-  model.run = [=, keep = runs](const std::vector<gap::AppliedEffect>& effects) {
-    const std::string edited = edit_prm(text, effects, directory);
+  // One FE run of an edited .prm (cached by its text).
+  const auto run = [=, keep = runs](const std::string& edited, const std::string& label) {
     const std::string key = sha256_text(edited);
     if (const auto hit = cache->find(key); hit != cache->end()) return hit->second;
     calibrate::CommandSpecification spec;
@@ -220,8 +277,6 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
     spec.arguments = {"run", "{input}", "--out", "{output}", "--quiet"};
     spec.input_template = edited;
     spec.work_directory = work;
-    std::string label = source;
-    for (const gap::AppliedEffect& a : effects) label += " " + a.effect->name + "=" + number_text(a.params[0]);
     std::cout << "  FE run: " << label << std::flush;
     const Curve curve = calibrate::CommandSimulator(spec).simulate({});
     gap::ForceCurve c;
@@ -232,6 +287,18 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
     std::cout << " (done)\n";
     (*cache)[key] = c;
     return c;
+  };
+  model.run = [=](const std::vector<gap::AppliedEffect>& effects) {
+    std::string label = source;
+    GripBond bond = grip;
+    for (const gap::AppliedEffect& a : effects) {
+      label += " " + a.effect->name + "=" + number_text(a.params[0]);
+      if (a.effect->name == "coating_slip") {  // capacity relative to the clamped model's peak force
+        for (const double f : run(edit_prm(text, {}, directory), source).f)
+          bond.reference_force = std::max(bond.reference_force, std::abs(f));
+      }
+    }
+    return run(edit_prm(text, effects, directory, bond), label);
   };
   return model;
 }

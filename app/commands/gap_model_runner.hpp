@@ -27,9 +27,17 @@ struct FeModel {
 // directory when empty); each run's directory is removed after success.
 FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work = {});
 
+// What `coating_slip` needs to turn its bond capacity (a fraction of the clamped model's peak
+// force) into the bond strength of the .prm: the bonded area of the top grips (m^2, from the mesh
+// file) and the clamped model's largest force magnitude (N).
+struct GripBond {
+  double top_area = 0.0;
+  double reference_force = 0.0;
+};
+
 // The .prm text with the effects switched on (exposed for tests). Throws ComputationError for
 // an effect the .prm cannot express.
 std::string edit_prm(const std::string& text, const std::vector<gap::AppliedEffect>& effects,
-                     const std::filesystem::path& prm_directory);
+                     const std::filesystem::path& prm_directory, const GripBond& grip = {});
 
 }  // namespace dtwire::app

@@ -100,6 +100,14 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Rotation axis", "0 1 0", Patterns::Anything(), "unit axis of the top-end rotation");
   prm.declare_entry("Rotation centre (mm)", "", Patterns::Anything(),
                     "'x y z' of the rotation and moment centre; empty: centroid of the top end's vertices");
+  prm.declare_entry("Grip interface", "clamped", Patterns::Selection("clamped|bonded"),
+                    "clamped: the grip surfaces (Bottom/Top boundary ids) are held; bonded: a penalty bond ties "
+                    "them to the grips, and the top grips' bond slides at the Grip bond strength (a coating "
+                    "sliding on the steel)");
+  prm.declare_entry("Grip bond strength (MPa)", "0", Patterns::Double(),
+                    "Grip interface = bonded: shear strength tau_b of the top grips' bond (> 0)");
+  prm.declare_entry("Grip bond stiffness factor", "1", Patterns::Double(),
+                    "Grip interface = bonded: penalty k = factor * E / h, h the smallest grip face (> 0)");
   prm.leave_subsection();
 
   prm.enter_subsection("Load stepping");
@@ -329,6 +337,21 @@ Parameters read_parameters(const std::filesystem::path& file) {
   if ((!p.load.pull_direction.empty() || !p.load.rotation_path.empty()) &&
       (p.load.top != EndCondition::clamped || p.load.force_control))
     throw InputError(name, "'Pull direction' and 'Rotation path (deg)' need Top end = clamped and displacement control");
+  if (prm.get("Grip interface") == "bonded") {
+    auto& grip = p.load.grip;
+    grip.bonded = true;
+    grip.strength = prm.get_double("Grip bond strength (MPa)") * 1e6;
+    grip.stiffness_factor = prm.get_double("Grip bond stiffness factor");
+    if (!(grip.strength > 0.0))
+      throw InputError(name, "'Grip bond strength (MPa)': Grip interface = bonded needs a strength > 0, found '" +
+                                 prm.get("Grip bond strength (MPa)") + "'");
+    if (!(grip.stiffness_factor > 0.0))
+      throw InputError(name, "'Grip bond stiffness factor': expected a factor > 0, found '" +
+                                 prm.get("Grip bond stiffness factor") + "'");
+    if (p.load.bottom != EndCondition::clamped || p.load.top != EndCondition::clamped || p.load.force_control)
+      throw InputError(name, "'Grip interface = bonded' needs Bottom end = clamped, Top end = clamped and "
+                             "displacement control (the bond replaces the clamps)");
+  }
   prm.leave_subsection();
 
   prm.enter_subsection("Load stepping");

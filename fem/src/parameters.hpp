@@ -48,6 +48,15 @@ struct FormulationParameters {
 enum class EndCondition { clamped, axial, guided, symmetry, free };
 enum class LoadDirection { axial, lateral };  // top displacement along z, or along x
 
+// How the grips hold the wire (`Grip interface`). clamped: the grip surfaces are Dirichlet
+// boundaries. bonded: a penalty bond ties them to the grips' rigid motion; the top grips' bond
+// slides once its shear stress reaches the strength (contact/bonded_grip.hpp).
+struct GripParameters {
+  bool bonded = false;
+  double strength = 0.0;          // Pa, tau_b: shear strength of the top grips' bond
+  double stiffness_factor = 1.0;  // penalty k = factor E / h, h the smallest grip face
+};
+
 struct LoadParameters {
   EndCondition bottom = EndCondition::clamped;  // z = 0
   EndCondition top = EndCondition::clamped;     // z = length, carries the prescribed displacement
@@ -68,6 +77,7 @@ struct LoadParameters {
   std::array<double, 3> rotation_axis{{0.0, 1.0, 0.0}};
   std::array<double, 3> rotation_centre{};  // set by the solver when not given
   bool rotation_centre_given = false;
+  GripParameters grip;
 };
 
 struct SteppingParameters {
@@ -117,9 +127,9 @@ struct Parameters {
   contact::WireContactParameters wire_contact;  // contact between the two wires of a DT mesh
 
   // Generalised end forces, moment and energy split in the curve (DT meshes, pull angles,
-  // rotations).
+  // rotations, bonded grips).
   bool generalised_output() const {
-    return geometry.double_twist || !load.pull_direction.empty() || !load.rotation_path.empty();
+    return geometry.double_twist || !load.pull_direction.empty() || !load.rotation_path.empty() || load.grip.bonded;
   }
 };
 

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -64,7 +65,7 @@ const StepRecord* first_failure(const std::vector<StepRecord>& records) {
 // axial force N = F . d, shear V = F . (k x d), moment M = M_end . k (about the moving end
 // centre) and their work-conjugates u (the load path), w = translation . (k x d), theta; the
 // full force and moment vectors; the energy split and the balance error
-// W_ext - (elastic + plastic + friction + penalty springs).
+// W_ext - (elastic + plastic + friction + penalty springs + grip bond energy and slip).
 void add_generalised_channels(Curve& c, const std::vector<StepRecord>& records, const Parameters& p) {
   std::array<double, 3> d{{0.0, 0.0, 1.0}}, k = p.load.rotation_axis;
   if (!p.load.pull_direction.empty()) d = {{p.load.pull_direction[0], p.load.pull_direction[1], p.load.pull_direction[2]}};
@@ -93,7 +94,8 @@ void add_generalised_channels(Curve& c, const std::vector<StepRecord>& records, 
   }
   const auto stored = [](const StepRecord& r) {
     return r.elastic_energy + r.plastic_dissipation + r.contact.friction_dissipation + r.contact.contact_energy +
-           r.wire_contact.friction_dissipation + r.wire_contact.contact_energy;
+           r.wire_contact.friction_dissipation + r.wire_contact.contact_energy + r.grip.bond_energy +
+           r.grip.slip_dissipation;
   };
   channel("external_work", Dimension::Energy, "J", [](const StepRecord& r) { return r.external_work; });
   channel("energy_balance_error", Dimension::Energy, "J",
@@ -159,6 +161,17 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
     std::vector<contact::WireContactRecord> wires;
     for (const auto& s : records) wires.push_back(s.wire_contact);
     contact::add_wire_contact_channels(c, wires);
+  }
+  if (!records.empty() && records.front().grip.enabled) {  // bonded grips
+    std::vector<contact::GripRecord> grips;
+    for (const auto& s : records) grips.push_back(s.grip);
+    contact::add_grip_channels(c, grips);
+    const double area = records.front().grip.top_area;
+    std::ostringstream mm2, newton;
+    mm2 << std::setprecision(10) << area * 1e6;
+    newton << std::setprecision(10) << p.load.grip.strength * area;
+    c.set_metadata("grip_top_area_mm2", mm2.str());
+    c.set_metadata("grip_capacity_N", newton.str());
   }
   if (p.generalised_output()) add_generalised_channels(c, records, p);
   const char* axes[] = {"x", "y", "z"};

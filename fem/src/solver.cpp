@@ -36,6 +36,7 @@
 
 #include "dtwire/core/error.hpp"
 #include "direct_solver.hpp"
+#include "contact/bonded_grip.hpp"
 #include "contact/rigid_tool_contact.hpp"  // contact (issue 5)
 #include "contact/wire_wire_contact.hpp"
 #include "fbar_element.hpp"
@@ -160,6 +161,7 @@ struct WireSolver::Impl {
   double elastic_energy = 0.0, dissipation = 0.0;
   std::unique_ptr<contact::RigidToolContact> rigid_contact;  // contact (issue 5): null without tools
   std::unique_ptr<contact::WireWireContact> wire_contact;    // null unless enabled
+  std::unique_ptr<contact::BondedGrip> bonded_grip;          // Grip interface = bonded; null when clamped
   std::set<types::boundary_id> bottom_ids, top_ids;
   Tensor<1, 3> load_direction;  // unit: the load path's displacement acts along it
   Point<3> rotation_centre;
@@ -311,6 +313,14 @@ void WireSolver::Impl::setup() {
   if (prm.contact.enabled())  // contact (issue 5)
     rigid_contact = std::make_unique<contact::RigidToolContact>(prm.contact, prm.material.young, dof_handler,
                                                                 bottom_ids, top_ids, comm);
+  if (prm.load.grip.bonded) {  // grip interface: the bond holds the grip surfaces
+    bonded_grip = std::make_unique<contact::BondedGrip>(prm.load.grip, prm.material.young, dof_handler, bottom_ids,
+                                                        top_ids, comm);
+    log << "bonded grips: top " << bonded_grip->top_area() * 1e6 << " mm^2 (strength " << prm.load.grip.strength * 1e-6
+        << " MPa, capacity " << prm.load.grip.strength * bonded_grip->top_area() * force_multiplier()
+        << " N for the whole specimen), bottom " << bonded_grip->bottom_area() * 1e6 << " mm^2 (elastic), penalty "
+        << bonded_grip->stiffness() * 1e-9 << " N/mm^3\n";
+  }
   log << "mesh: " << stats.cells << " cells, " << stats.dofs << " dofs, " << stats.ranks << " MPI rank(s), "
       << MultithreadInfo::n_threads() << " thread(s) per rank, element "
       << (prm.formulation.fbar ? "F-bar" : "plain displacement") << " Q" << prm.formulation.degree << "\n";
@@ -385,8 +395,10 @@ void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double t_o
   const auto zero = Functions::ZeroFunction<3>(3);
   const TopEndIncrement top(prm.load, load_direction, rotation_centre, t_old, t_new);
   std::map<types::boundary_id, const Function<3>*> top_map, bottom_map;
-  for (const auto id : top_ids) top_map[id] = &top;
-  for (const auto id : bottom_ids) bottom_map[id] = &zero;
+  if (!prm.load.grip.bonded) {  // bonded grips are held by the bond (contact/bonded_grip.hpp) instead
+    for (const auto id : top_ids) top_map[id] = &top;
+    for (const auto id : bottom_ids) bottom_map[id] = &zero;
+  }
   if (prm.load.force_control) {
     // The top face translates as one along z (all u_z equal to force_dof's); clamped also
     // holds u_x, u_y.
@@ -495,6 +507,7 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
   if (wire_contact &&
       !wire_contact->assemble(relevant_values, with_matrix, constraints, matrix, rhs, internal_force))
     failed = true;
+  if (bonded_grip) bonded_grip->assemble(relevant, relevant_values, with_matrix, constraints, matrix, rhs);
   if (force_dof != numbers::invalid_dof_index && owned.is_element(force_dof)) rhs(force_dof) += applied_force;
   if (with_matrix) matrix.compress(VectorOperation::add);
   rhs.compress(VectorOperation::add);
@@ -523,6 +536,7 @@ void WireSolver::Impl::commit() {
   for (auto& p : points) p.committed = p.trial;
   if (rigid_contact) rigid_contact->commit();  // contact (issue 5)
   if (wire_contact) wire_contact->commit();
+  if (bonded_grip) bonded_grip->commit();
 }
 
 // Force and moment of the specimen on the top end (about the moved centre), the centre's
@@ -533,18 +547,23 @@ void WireSolver::Impl::record_end(StepRecord& record) {
   const Tensor<1, 3> translation = path_displacement(prm.load, record.time) * load_direction;
   const Point<3> centre = rotation_centre + translation;
   double work = 0.0;
-  for (std::size_t k = 0; k < top_end_dofs.size(); ++k) {
-    const auto& d = top_end_dofs[k];
-    const double f = internal_force[d.index], u = solution[d.index];
-    Tensor<1, 3> x = d.reference;
-    for (unsigned c = 0; c < 3; ++c) x[c] += ghosted[d.vertex_dofs[c]];
-    Tensor<1, 3> f_vector;
-    f_vector[d.component] = f;
-    force += f_vector;
-    moment += cross_product_3d(x - centre, f_vector);
-    work += 0.5 * (f + previous_end_force[k]) * (u - previous_end_displacement[k]);
-    previous_end_force[k] = f;
-    previous_end_displacement[k] = u;
+  if (bonded_grip) {  // the bond tractions, not reactions: the grip surfaces are free dofs
+    bonded_grip->top_resultants(centre, force, moment);
+    work = bonded_grip->external_work();  // accumulated over the steps by the bond
+  } else {
+    for (std::size_t k = 0; k < top_end_dofs.size(); ++k) {
+      const auto& d = top_end_dofs[k];
+      const double f = internal_force[d.index], u = solution[d.index];
+      Tensor<1, 3> x = d.reference;
+      for (unsigned c = 0; c < 3; ++c) x[c] += ghosted[d.vertex_dofs[c]];
+      Tensor<1, 3> f_vector;
+      f_vector[d.component] = f;
+      force += f_vector;
+      moment += cross_product_3d(x - centre, f_vector);
+      work += 0.5 * (f + previous_end_force[k]) * (u - previous_end_displacement[k]);
+      previous_end_force[k] = f;
+      previous_end_displacement[k] = u;
+    }
   }
   const double scale = force_multiplier(), energy_scale = force_multiplier() * length_multiplier();
   for (unsigned c = 0; c < 3; ++c) {
@@ -552,7 +571,7 @@ void WireSolver::Impl::record_end(StepRecord& record) {
     record.end_moment[c] = Utilities::MPI::sum(moment[c], comm) * scale;
     record.end_translation[c] = translation[c] * length_multiplier();
   }
-  end_work += Utilities::MPI::sum(work, comm) * energy_scale;
+  end_work = (bonded_grip ? 0.0 : end_work) + Utilities::MPI::sum(work, comm) * energy_scale;
   if (rigid_contact) {  // the tools push the wire: their work is -(force on the tool) . displacement
     const auto& forces = record.contact.tool_forces;
     const auto& moves = record.contact.tool_displacements;
@@ -570,6 +589,11 @@ void WireSolver::Impl::record_end(StepRecord& record) {
 }
 
 double WireSolver::Impl::reaction() const {
+  if (bonded_grip) {  // the pull of the top grips through the bond
+    Tensor<1, 3> force, moment;
+    bonded_grip->top_resultants(Point<3>(), force, moment);
+    return Utilities::MPI::sum(force * load_direction, comm) * force_multiplier();
+  }
   double local = 0.0;
   for (const auto& d : top_end_dofs) local += internal_force[d.index] * load_direction[d.component];
   return Utilities::MPI::sum(local, comm) * force_multiplier();
@@ -781,6 +805,8 @@ bool WireSolver::Impl::solve_contact_step(double t_old, double t_new, const PETS
                                           const PETScWrappers::MPI::Vector& start, unsigned& iterations,
                                           std::string& reason) {
   if (rigid_contact) rigid_contact->begin_step(t_old, t_new);
+  if (bonded_grip)
+    bonded_grip->begin_step(contact::top_end_motion(prm.load, load_direction, rotation_centre, t_new), !extrapolation);
   if (wire_contact) {
     refresh_relevant_values();  // the committed state (after a cut-back too)
     if (wire_contact->begin_step(relevant_values)) {
@@ -969,8 +995,8 @@ void WireSolver::set_checkpoints(const std::filesystem::path& directory, unsigne
   impl_->checkpoint_directory = directory;
   impl_->checkpoint_interval = interval;
   impl_->restart_step = restart_step;
-  if ((impl_->rigid_contact || impl_->wire_contact) && (interval > 0 || restart_step >= 0))
-    throw InputError("checkpoints", "checkpoint/restart is not available with contact tools");
+  if ((impl_->rigid_contact || impl_->wire_contact || impl_->bonded_grip) && (interval > 0 || restart_step >= 0))
+    throw InputError("checkpoints", "checkpoint/restart is not available with contact tools or bonded grips");
 }
 
 WireSolver::WireSolver(const Parameters& parameters, std::ostream& log, std::filesystem::path field_directory)
@@ -1023,6 +1049,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
     if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
                                                                   s.force_multiplier() * s.length_multiplier());
     if (s.wire_contact) record.wire_contact = s.wire_contact->record(s.force_multiplier() * s.length_multiplier());
+    if (s.bonded_grip) record.grip = s.bonded_grip->record(s.force_multiplier(), s.force_multiplier() * s.length_multiplier());
     s.record_end(record);
     s.record_probes(record);
     on_step(record);
@@ -1077,6 +1104,11 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
               << record.wire_contact.slipping_points << " slipping, " << record.wire_contact.frozen_points
               << " frozen) of " << record.wire_contact.candidate_pairs << " candidate face pairs, normal force "
               << record.wire_contact.normal_force << " N\n";
+      }
+      if (s.bonded_grip) {
+        record.grip = s.bonded_grip->record(s.force_multiplier(), s.force_multiplier() * s.length_multiplier());
+        s.log << "  bonded grips: " << record.grip.slipping_fraction * 100 << " % of the top grips' area slipping, "
+              << "largest slip " << record.grip.max_slip * 1e3 << " mm\n";
       }
       s.record_end(record);
       s.record_probes(record);

@@ -31,6 +31,7 @@ struct StepRecord {
   double damage = 0.0, damage_triaxiality = 0.0, damage_lode = 0.0, damage_z = 0.0, damage_r = 0.0;
   contact::ContactRecord contact;  // contact (issue 5): enabled only with tools in the .prm
   contact::WireContactRecord wire_contact;  // enabled with `subsection Wire contact`
+  contact::GripRecord grip;                 // enabled with Grip interface = bonded
   // Generalised results at the top end (whole model): force and moment of the specimen on the
   // top end's constraint, the moment about the end centre; translation of that centre and the
   // prescribed rotation (rad); external work of the end and the tools (J, trapezoidal rule).

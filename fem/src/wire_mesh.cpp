@@ -54,17 +54,25 @@ void read_wire_mesh(GeometryParameters& g, dealii::Triangulation<3>& target) {
   };
   bool symmetry_x = false, symmetry_y = false;
   for (const auto& cell : wire.active_cell_iterators())
-    for (const auto f : cell->face_indices()) {
-      const auto face = cell->face(f);
-      if (!face->at_boundary() || face->boundary_id() == kBottom || face->boundary_id() == kTop) continue;
-      types::boundary_id id = kHull;
-      if (on_plane(face, 0)) id = kSymmetryX, symmetry_x = true;
-      else if (on_plane(face, 1)) id = kSymmetryY, symmetry_y = true;
-      face->set_boundary_id(id);
-    }
+    for (const auto f : cell->face_indices())
+      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() != kBottom &&
+          cell->face(f)->boundary_id() != kTop) {
+        symmetry_x = symmetry_x || on_plane(cell->face(f), 0);
+        symmetry_y = symmetry_y || on_plane(cell->face(f), 1);
+      }
   if (symmetry_x != symmetry_y)
     throw InputError(g.mesh_file.string(), "a quarter-section mesh needs boundary faces on both planes x = 0 and y = 0");
   g.quarter = symmetry_x;
+  for (const auto& cell : wire.active_cell_iterators())
+    for (const auto f : cell->face_indices()) {
+      const auto face = cell->face(f);
+      const auto id = face->boundary_id();
+      if (!face->at_boundary() || id == kBottom || id == kTop) continue;
+      // A full wire keeps its grips' lateral surfaces (`dtwire mesh sw --grip-length`), which
+      // Bottom / Top boundary ids can then hold.
+      if (!g.quarter && (id == kStartGrip || id == kEndGrip)) continue;
+      face->set_boundary_id(on_plane(face, 0) ? kSymmetryX : on_plane(face, 1) ? kSymmetryY : kHull);
+    }
   target.copy_triangulation(wire);
 }
 

@@ -16,11 +16,13 @@
 namespace dtwire::fem {
 
 enum BoundaryId : unsigned { kHull = 0, kBottom = 1, kTop = 2, kSymmetryX = 3, kSymmetryY = 4 };
+// Lateral surfaces of the grips in a full SW mesh file (docs/meshes.md; not in quarter meshes).
+enum GripBoundaryId : unsigned { kStartGrip = 4, kEndGrip = 5 };
 
 // `target` must be empty; it may be a parallel::distributed::Triangulation (coarse copy).
 // With geometry.mesh_file set, the SW mesh of the meshes/ module is read instead (gmsh .msh,
-// metres; its boundary ids 1 (z = 0) and 2 (z = L) are kept, the lateral ids 3, 4, 5 become 0,
-// coating and grip volumes are steel like the rest), and geometry.length and .diameter are set
+// metres; its boundary ids 1 (z = 0), 2 (z = L) and the grips' lateral surfaces 4 (start) and 5
+// (end) are kept, the lateral id 3 becomes 0, coating and grip volumes are steel like the rest), and geometry.length and .diameter are set
 // from it. A double-twist mesh (material ids >= 11 present) keeps all its ids, sets
 // geometry.double_twist and the z extent as length; the diameter stays as given. A mesh of the
 // quarter x >= 0, y >= 0 (boundary faces on both planes x = 0 and y = 0, e.g. the graded mesh of

@@ -1,6 +1,6 @@
 // Serial vs 2 MPI ranks: `dtwire run` on a small necking bar (plastic, past the load maximum)
-// gives the same curve, extensometer included, to 1e-8 relative. Runs the dtwire executable
-// through mpirun.
+// gives the same curve, extensometer included, to 1e-8 relative; so does a wire in bonded grips.
+// Runs the dtwire executable through mpirun.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,6 +52,47 @@ TEST(Mpi, TwoRanksReproduceTheSerialCurve) {
     std::cout << q << ": max |serial - 2 ranks| / max |serial| = " << diff / scale << "\n";
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "parallel" / "fields" / "fields.pvd"));
+}
+
+// Bonded grips on 2 ranks: a SW mesh (`dtwire mesh sw`, grips 4 and 5) whose top grip's bond
+// slides forwards and back; the grip faces lie in both ranks' cells.
+TEST(Mpi, BondedGripsOnTwoRanksReproduceTheSerialCurve) {
+  const auto dir = std::filesystem::temp_directory_path() / "dtwire_fem_mpi_test_grip";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string exe = DTWIRE_EXE;
+  const std::string mesh = exe + " mesh sw --length 60 --grip-length 10 --level 0 -o " + (dir / "sw.msh").string() +
+                           " > /dev/null 2>&1";
+  if (std::system(mesh.c_str()) != 0) GTEST_SKIP() << "dtwire mesh sw not available";
+  std::ofstream(dir / "grip.prm")
+      << "subsection Geometry\n set Mesh file = sw.msh\n set Cross section = full\nend\n"
+         "subsection Material\n set Young modulus (MPa) = 200000\n set Poisson ratio = 0.3\n"
+         " set Hardening law = linear\n set Yield stress (MPa) = 1e6\nend\n"
+         "subsection Boundary conditions\n set Bottom boundary ids = 4\n set Top boundary ids = 5\n"
+         " set Grip interface = bonded\n set Grip bond strength (MPa) = 5\n set Load path (mm) = 0:0, 1:0.05, 2:-0.02\nend\n"
+         "subsection Load stepping\n set Initial step = 0.1\n set Maximum step = 0.1\nend\n"
+         "subsection Output\n set Fields = false\nend\n";
+  const auto prm = (dir / "grip.prm").string();
+  const std::string serial = exe + " run " + prm + " -q --out " + (dir / "serial").string();
+  const std::string parallel =
+      "mpirun --allow-run-as-root --oversubscribe -np 2 " + exe + " run " + prm + " -q --out " + (dir / "parallel").string();
+  ASSERT_EQ(std::system(serial.c_str()), 0) << serial;
+  ASSERT_EQ(std::system(parallel.c_str()), 0) << parallel;
+  const dtwire::Curve a = dtwire::read_csv(dir / "serial" / "curve.csv");
+  const dtwire::Curve b = dtwire::read_csv(dir / "parallel" / "curve.csv");
+  ASSERT_EQ(a.size(), b.size());
+  for (const char* q : {"force", "external_work", "grip_slip_dissipation", "grip_bond_energy", "grip_max_slip",
+                        "grip_slipping_fraction", "energy_balance_error"}) {
+    const auto x = a.si(q), y = b.si(q);
+    double scale = 0, diff = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      scale = std::max(scale, std::abs(x[i]));
+      diff = std::max(diff, std::abs(x[i] - y[i]));
+    }
+    EXPECT_LE(diff, 1e-8 * scale) << q;  // 1e-8 relative to the channel's largest value
+    std::cout << q << ": max |serial - 2 ranks| / max |serial| = " << diff / scale << "\n";
+  }
+  EXPECT_EQ(a.metadata("grip_capacity_N"), b.metadata("grip_capacity_N"));
 }
 
 }  // namespace

@@ -51,4 +51,18 @@ void add_wire_contact_channels(Curve& curve, const std::vector<WireContactRecord
   channel("wire_contact_max_penetration", Dimension::Length, "mm", [](const R& r) { return r.max_penetration; });
 }
 
+void add_grip_channels(Curve& curve, const std::vector<GripRecord>& records) {
+  const auto channel = [&](const std::string& name, Dimension dimension, const char* unit,
+                           const std::function<double(const GripRecord&)>& value) {
+    std::vector<double> v;
+    for (const auto& r : records) v.push_back(value(r));
+    curve.add_channel_si(name, dimension, v, *find_unit(unit));
+  };
+  channel("grip_bond_energy", Dimension::Energy, "J", [](const GripRecord& r) { return r.bond_energy; });
+  channel("grip_slip_dissipation", Dimension::Energy, "J", [](const GripRecord& r) { return r.slip_dissipation; });
+  channel("grip_max_slip", Dimension::Length, "mm", [](const GripRecord& r) { return r.max_slip; });
+  channel("grip_slipping_fraction", Dimension::Dimensionless, "1",
+          [](const GripRecord& r) { return r.slipping_fraction; });
+}
+
 }  // namespace dtwire::fem::contact

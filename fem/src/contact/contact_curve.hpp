@@ -19,4 +19,8 @@ void add_contact_channels(Curve& curve, const std::vector<ContactRecord>& record
 // wire_contact_max_penetration_mm.
 void add_wire_contact_channels(Curve& curve, const std::vector<WireContactRecord>& records);
 
+// Bonded grips: grip_bond_energy_J, grip_slip_dissipation_J, grip_max_slip_mm,
+// grip_slipping_fraction_1 (share of the top grips' area slipping in the step).
+void add_grip_channels(Curve& curve, const std::vector<GripRecord>& records);
+
 }  // namespace dtwire::fem::contact

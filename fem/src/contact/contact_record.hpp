@@ -58,4 +58,15 @@ struct WireContactRecord {
   std::vector<ContactSample> samples;  // filled when keep_samples is set (tool = 0)
 };
 
+// Bonded grips (contact/bonded_grip.hpp) at a converged step: totals over ranks, symmetry
+// multipliers applied.
+struct GripRecord {
+  bool enabled = false;
+  double bond_energy = 0.0;        // J, elastic energy in the bond springs (both grips)
+  double slip_dissipation = 0.0;   // J, accumulated tau_b x slip x area (top grips)
+  double max_slip = 0.0;           // m, accumulated, largest over the top grips' points
+  double slipping_fraction = 0.0;  // share of the top grips' bonded area that slipped in this step
+  double top_area = 0.0;           // m^2, bonded area of the top grips (whole specimen)
+};
+
 }  // namespace dtwire::fem::contact
