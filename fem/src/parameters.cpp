@@ -409,8 +409,8 @@ Parameters read_parameters(const std::filesystem::path& file) {
       if (x[0] == x[3] && x[1] == x[4] && x[2] == x[5])
         throw InputError(name, entry + ": the two points of '" + item + "' coincide (no gauge length)");
       const std::size_t first = p.output.probe_points.size();
-      p.output.probe_points.push_back({x[0] * 1e-3, x[1] * 1e-3, x[2] * 1e-3});
-      p.output.probe_points.push_back({x[3] * 1e-3, x[4] * 1e-3, x[5] * 1e-3});
+      p.output.probe_points.push_back({{x[0] * 1e-3, x[1] * 1e-3, x[2] * 1e-3}});
+      p.output.probe_points.push_back({{x[3] * 1e-3, x[4] * 1e-3, x[5] * 1e-3}});
       p.output.extensometer.push_back({{first, first + 1}});
     }
     p.output.extensometer_as_displacement = prm.get("Curve displacement") == "extensometer";
