@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <initializer_list>
+#include <utility>
 #include <sstream>
 
 #include "dtwire/core/csv.hpp"
@@ -24,33 +26,43 @@ const char* kPrm =
     "subsection Load stepping\n set Initial step = 0.05\n set Maximum step = 0.1\nend\n"
     "subsection Output\n set Fields = true\n set Extensometer (mm) = 1 1 2, 1 1 20\nend\n";
 
-TEST(Mpi, TwoRanksReproduceTheSerialCurve) {
-  const auto dir = std::filesystem::temp_directory_path() / "dtwire_fem_mpi_test";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  const auto prm = dir / "bar.prm";
-  std::ofstream(prm) << kPrm;
+// Runs the .prm serially and on 2 ranks (outputs in dir/serial, dir/parallel) and reads both curves.
+std::pair<dtwire::Curve, dtwire::Curve> run_serial_and_parallel(const std::filesystem::path& dir,
+                                                                const std::string& prm) {
   const std::string exe = DTWIRE_EXE;
-  const std::string serial = exe + " run " + prm.string() + " -q --out " + (dir / "serial").string();
-  const std::string parallel = "mpirun --allow-run-as-root --oversubscribe -np 2 " + exe + " run " + prm.string() +
-                               " -q --out " + (dir / "parallel").string();
-  ASSERT_EQ(std::system(serial.c_str()), 0) << serial;
-  ASSERT_EQ(std::system(parallel.c_str()), 0) << parallel;
-  const dtwire::Curve a = dtwire::read_csv(dir / "serial" / "curve.csv");
-  const dtwire::Curve b = dtwire::read_csv(dir / "parallel" / "curve.csv");
+  const std::string serial = exe + " run " + prm + " -q --out " + (dir / "serial").string();
+  const std::string parallel =
+      "mpirun --allow-run-as-root --oversubscribe -np 2 " + exe + " run " + prm + " -q --out " + (dir / "parallel").string();
+  EXPECT_EQ(std::system(serial.c_str()), 0) << serial;
+  EXPECT_EQ(std::system(parallel.c_str()), 0) << parallel;
+  return {dtwire::read_csv(dir / "serial" / "curve.csv"), dtwire::read_csv(dir / "parallel" / "curve.csv")};
+}
+
+// Each channel agrees to 1e-8 relative to its largest serial value.
+void expect_same_channels(const dtwire::Curve& a, const dtwire::Curve& b, std::initializer_list<const char*> quantities) {
   ASSERT_EQ(a.size(), b.size());
-  // The extensometer's points lie in different ranks' cells (each rank locates what it owns).
-  for (const char* q :
-       {"displacement", "force", "plastic_dissipation", "elastic_energy", "neck_radius", "extensometer_elongation"}) {
+  for (const char* q : quantities) {
     const auto x = a.si(q), y = b.si(q);
     double scale = 0, diff = 0;
     for (std::size_t i = 0; i < x.size(); ++i) {
       scale = std::max(scale, std::abs(x[i]));
       diff = std::max(diff, std::abs(x[i] - y[i]));
     }
-    EXPECT_LE(diff, 1e-8 * scale) << q;  // 1e-8 relative to the channel's largest value
+    EXPECT_LE(diff, 1e-8 * scale) << q;
     std::cout << q << ": max |serial - 2 ranks| / max |serial| = " << diff / scale << "\n";
   }
+}
+
+TEST(Mpi, TwoRanksReproduceTheSerialCurve) {
+  const auto dir = std::filesystem::temp_directory_path() / "dtwire_fem_mpi_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto prm = dir / "bar.prm";
+  std::ofstream(prm) << kPrm;
+  const auto [a, b] = run_serial_and_parallel(dir, prm.string());
+  // The extensometer's points lie in different ranks' cells (each rank locates what it owns).
+  expect_same_channels(
+      a, b, {"displacement", "force", "plastic_dissipation", "elastic_energy", "neck_radius", "extensometer_elongation"});
   EXPECT_TRUE(std::filesystem::exists(dir / "parallel" / "fields" / "fields.pvd"));
 }
 
@@ -72,26 +84,9 @@ TEST(Mpi, BondedGripsOnTwoRanksReproduceTheSerialCurve) {
          " set Grip interface = bonded\n set Grip bond strength (MPa) = 5\n set Load path (mm) = 0:0, 1:0.05, 2:-0.02\nend\n"
          "subsection Load stepping\n set Initial step = 0.1\n set Maximum step = 0.1\nend\n"
          "subsection Output\n set Fields = false\nend\n";
-  const auto prm = (dir / "grip.prm").string();
-  const std::string serial = exe + " run " + prm + " -q --out " + (dir / "serial").string();
-  const std::string parallel =
-      "mpirun --allow-run-as-root --oversubscribe -np 2 " + exe + " run " + prm + " -q --out " + (dir / "parallel").string();
-  ASSERT_EQ(std::system(serial.c_str()), 0) << serial;
-  ASSERT_EQ(std::system(parallel.c_str()), 0) << parallel;
-  const dtwire::Curve a = dtwire::read_csv(dir / "serial" / "curve.csv");
-  const dtwire::Curve b = dtwire::read_csv(dir / "parallel" / "curve.csv");
-  ASSERT_EQ(a.size(), b.size());
-  for (const char* q : {"force", "external_work", "grip_slip_dissipation", "grip_bond_energy", "grip_max_slip",
-                        "grip_slipping_fraction", "energy_balance_error"}) {
-    const auto x = a.si(q), y = b.si(q);
-    double scale = 0, diff = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-      scale = std::max(scale, std::abs(x[i]));
-      diff = std::max(diff, std::abs(x[i] - y[i]));
-    }
-    EXPECT_LE(diff, 1e-8 * scale) << q;  // 1e-8 relative to the channel's largest value
-    std::cout << q << ": max |serial - 2 ranks| / max |serial| = " << diff / scale << "\n";
-  }
+  const auto [a, b] = run_serial_and_parallel(dir, (dir / "grip.prm").string());
+  expect_same_channels(a, b, {"force", "external_work", "grip_slip_dissipation", "grip_bond_energy", "grip_max_slip",
+                              "grip_slipping_fraction", "energy_balance_error"});
   EXPECT_EQ(a.metadata("grip_capacity_N"), b.metadata("grip_capacity_N"));
 }
 

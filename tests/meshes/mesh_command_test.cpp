@@ -1,31 +1,18 @@
 // `dtwire mesh` end to end: files, --check figures, and exit code 2 naming the bad option.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
+
+#include "../app/run_dtwire.hpp"
 
 namespace {
 
-struct Result {
-  int exit_code;
-  std::string output;
-};
-
-Result run(const std::string& arguments) {
-  const std::string command = std::string(DTWIRE_EXECUTABLE) + " " + arguments + " 2>&1";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::string output;
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe.get())) output += buffer.data();
-  const int status = pclose(pipe.release());
-  return {WEXITSTATUS(status), output};
-}
+using Result = dtwire::test::CommandResult;
+using dtwire::test::run;
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
