@@ -76,6 +76,15 @@ bool command_available(const std::string& name) {
   return commands.available(name);
 }
 
+std::vector<std::string> command_names() {
+  CLI::App root;
+  CommandSet commands;
+  build(root, commands);
+  std::vector<std::string> names;
+  for (const CLI::App* sub : root.get_subcommands({})) names.push_back(sub->get_name());
+  return names;
+}
+
 int run_command_line(const std::vector<std::string>& args) {
   CLI::App root{"dtwire: calibrated DEM contact parameters for double-twisted wire mesh from FE "
                 "experiments and laboratory curves",

@@ -35,8 +35,11 @@ class CommandSet {
 // codes: 0 success, 1 computation failure, 2 bad usage or bad input (one-line reason on stderr).
 int run_command_line(const std::vector<std::string>& args);
 
-// Which top-level commands this build can run (for `campaign` to report missing steps).
+// Which top-level commands this build can run (for `campaign` to report compiled-out steps).
 bool command_available(const std::string& name);
+
+// Every top-level command name, available or compiled out (for `campaign` to refuse typos).
+std::vector<std::string> command_names();
 
 std::string version_string();
 

@@ -3,7 +3,7 @@
 #include <cstdlib>
 
 #include "dtwire/core/error.hpp"
-#include "dtwire/version.hpp"
+#include "data_path.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -28,7 +28,7 @@ void run_plot_script(const std::string& script, const std::vector<std::string>& 
   if (python.empty())
     throw ComputationError("plotting needs python3 with matplotlib (Debian: python3-matplotlib); "
                            "none found");
-  std::string command = python + " " + quoted(std::string(kSourceDir) + "/scripts/" + script);
+  std::string command = python + " " + quoted(data_path("scripts/" + script).string());
   for (const auto& argument : arguments) command += " " + quoted(argument);
   if (std::system(command.c_str()) != 0) throw ComputationError("plotting failed: " + command);
 }

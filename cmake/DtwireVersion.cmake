@@ -16,6 +16,5 @@ if(GIT_FOUND)
     endif()
   endif()
 endif()
-set(DTWIRE_SOURCE_DIR ${CMAKE_CURRENT_SOURCE_DIR})
 configure_file(${CMAKE_CURRENT_SOURCE_DIR}/cmake/version.hpp.in
   ${CMAKE_BINARY_DIR}/generated/dtwire/version.hpp @ONLY)

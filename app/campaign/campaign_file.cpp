@@ -2,12 +2,23 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <set>
 
 #include "dtwire/core/error.hpp"
 
 namespace dtwire::app {
+
+// Throws InputError at the line of the step's `field` (or of the step).
+[[noreturn]] void fail_at_step_field(const Campaign& campaign, const CampaignStep& step,
+                                     const std::string& field, const std::string& message);
+
 namespace {
+
+const std::vector<std::string> kTopFields = {"name", "title", "step"};
+const std::vector<std::string> kStepFields = {"name",    "description", "command", "inputs",
+                                              "outputs", "report",      "summary"};
+const std::vector<std::string> kPlaceholders = {"out", "campaign"};
 
 [[noreturn]] void fail(const std::string& file, const toml::node* node, const std::string& message) {
   if (node) {
@@ -15,6 +26,23 @@ namespace {
     throw InputError(file, static_cast<int>(where.line), static_cast<int>(where.column), message);
   }
   throw InputError(file, message);
+}
+
+std::string suggestion(const std::string& word, const std::vector<std::string>& candidates) {
+  const std::string close = closest_name(word, candidates);
+  return close.empty() ? std::string() : " (did you mean '" + close + "'?)";
+}
+
+void refuse_unknown_fields(const std::string& file, const toml::table& table,
+                           const std::vector<std::string>& known, const std::string& where) {
+  for (const auto& [key, value] : table) {
+    const std::string name(key.str());
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::string expected;
+    for (const auto& k : known) expected += (expected.empty() ? "" : ", ") + k;
+    fail(file, &value, "unknown " + where + "field '" + name + "'" + suggestion(name, known) +
+                           ", expected one of: " + expected);
+  }
 }
 
 std::vector<std::string> string_list(const std::string& file, const toml::table& step,
@@ -30,12 +58,78 @@ std::vector<std::string> string_list(const std::string& file, const toml::table&
   for (const toml::node& element : *array) {
     const auto* text = element.as_string();
     if (!text) fail(file, &element, "'" + key + "' must contain only strings");
-    out.push_back(text->get());
+    const std::string& value = text->get();
+    // A {word} that is not a known placeholder is a typo, not a folder name.
+    for (auto open = value.find('{'); open != std::string::npos; open = value.find('{', open + 1)) {
+      const auto close = value.find('}', open);
+      if (close == std::string::npos) break;
+      const std::string word = value.substr(open + 1, close - open - 1);
+      const bool identifier = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+      });
+      if (identifier && std::find(kPlaceholders.begin(), kPlaceholders.end(), word) == kPlaceholders.end())
+        fail(file, &element, "'" + key + "': unknown placeholder '{" + word + "}'" +
+                                 suggestion(word, kPlaceholders) + ", expected {out} or {campaign}");
+    }
+    out.push_back(value);
   }
   return out;
 }
 
+bool writes(const CampaignStep& step, const std::string& path) {
+  return std::any_of(step.outputs.begin(), step.outputs.end(), [&](const std::string& output) {
+    return path == output || path.rfind(output + "/", 0) == 0;
+  });
+}
+
+// Every {out} input must be an output (or lie in an output folder) of an earlier step.
+void check_graph(const Campaign& campaign) {
+  for (auto step = campaign.steps.begin(); step != campaign.steps.end(); ++step)
+    for (const std::string& input : step->inputs) {
+      if (input.rfind("{out}", 0) != 0) continue;
+      if (std::any_of(campaign.steps.begin(), step, [&](const CampaignStep& s) { return writes(s, input); }))
+        continue;
+      const auto later = std::find_if(step + 1, campaign.steps.end(),
+                                      [&](const CampaignStep& s) { return writes(s, input); });
+      fail_at_step_field(campaign, *step, "inputs",
+                         "step '" + step->name + "': input '" + input + "' is written by no earlier step" +
+                             (later != campaign.steps.end() ? " (step '" + later->name + "' writes it, after this one)"
+                                                            : std::string()));
+    }
+}
+
 }  // namespace
+
+[[noreturn]] void fail_at_step_field(const Campaign& campaign, const CampaignStep& step,
+                                     const std::string& field, const std::string& message) {
+  const auto line = step.field_lines.find(field);
+  throw InputError(campaign.file.string(), line != step.field_lines.end() ? line->second : step.line, 0,
+                   message);
+}
+
+std::string closest_name(const std::string& word, const std::vector<std::string>& candidates) {
+  // Levenshtein distance; a name within a third of its length (at least 2 edits) is close.
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const std::string& candidate : candidates) {
+    std::vector<std::size_t> row(candidate.size() + 1);
+    for (std::size_t j = 0; j < row.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= word.size(); ++i) {
+      std::size_t diagonal = row[0];
+      row[0] = i;
+      for (std::size_t j = 1; j <= candidate.size(); ++j) {
+        const std::size_t above = row[j];
+        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (word[i - 1] == candidate[j - 1] ? 0 : 1)});
+        diagonal = above;
+      }
+    }
+    if (row.back() < best_distance) {
+      best_distance = row.back();
+      best = candidate;
+    }
+  }
+  return best;
+}
 
 Campaign read_campaign(const std::filesystem::path& file) {
   const std::string source = file.string();
@@ -49,6 +143,7 @@ Campaign read_campaign(const std::filesystem::path& file) {
     throw InputError(source, static_cast<int>(e.source().begin.line),
                      static_cast<int>(e.source().begin.column), std::string(e.description()));
   }
+  refuse_unknown_fields(source, root, kTopFields, "");
   Campaign campaign;
   campaign.file = file;
   campaign.name = root["name"].value_or(file.stem().string());
@@ -59,6 +154,7 @@ Campaign read_campaign(const std::filesystem::path& file) {
   std::set<std::string> names;
   for (const toml::node& node : *steps->as_array()) {
     const toml::table& table = *node.as_table();
+    refuse_unknown_fields(source, table, kStepFields, "step ");
     CampaignStep step;
     const auto name = table["name"].value<std::string>();
     if (!name || name->empty()) fail(source, &table, "step lacks 'name', expected a string");
@@ -68,15 +164,32 @@ Campaign read_campaign(const std::filesystem::path& file) {
     if (!names.insert(*name).second)
       fail(source, table.get("name"), "duplicate step name '" + *name + "'");
     step.name = *name;
+    step.line = static_cast<int>(table.source().begin.line);
+    for (const auto& [key, value] : table)
+      step.field_lines[std::string(key.str())] = static_cast<int>(value.source().begin.line);
     step.description = table["description"].value_or(std::string());
     step.command = string_list(source, table, "command", true);
     if (step.command.empty()) fail(source, table.get("command"), "'command' must not be empty");
     step.inputs = string_list(source, table, "inputs", false);
     step.outputs = string_list(source, table, "outputs", false);
     step.report = string_list(source, table, "report", false);
+    step.summary = string_list(source, table, "summary", false);
     campaign.steps.push_back(std::move(step));
   }
+  check_graph(campaign);
   return campaign;
+}
+
+void check_commands(const Campaign& campaign, const std::vector<std::string>& known_commands) {
+  for (const CampaignStep& step : campaign.steps) {
+    const std::string& command = step.command.front();
+    if (std::find(known_commands.begin(), known_commands.end(), command) != known_commands.end()) continue;
+    std::string expected;
+    for (const auto& k : known_commands) expected += (expected.empty() ? "" : ", ") + k;
+    fail_at_step_field(campaign, step, "command",
+                       "step '" + step.name + "': unknown dtwire command '" + command + "'" +
+                           suggestion(command, known_commands) + ", expected one of: " + expected);
+  }
 }
 
 std::string expand(const std::string& text, const std::filesystem::path& out,

@@ -9,9 +9,13 @@
 //   inputs = ["{campaign}/sw.prm"]        # hashed: a change re-runs the step on resume
 //   outputs = ["{out}/meshes/sw.msh"]     # must exist after the step for it to count as done
 //   report = ["{out}/meshes/sw_check.md", "{out}/figures/sw.png"]  # embedded in the report
+//   summary = ["{out}/fit/parameters.json"]  # read by the report's summary (optional)
 //
-// {out} is the output directory, {campaign} the folder of the campaign file.
+// {out} is the output directory, {campaign} the folder of the campaign file. The file is checked
+// completely before anything runs: unknown fields, unknown placeholders, unknown commands and
+// {out} inputs that no earlier step writes are errors naming file:line.
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -24,6 +28,9 @@ struct CampaignStep {
   std::vector<std::string> inputs;
   std::vector<std::string> outputs;
   std::vector<std::string> report;
+  std::vector<std::string> summary;
+  int line = 0;                       // of the step's [[step]] table
+  std::map<std::string, int> field_lines;  // field name -> line of its value
 };
 
 struct Campaign {
@@ -33,11 +40,19 @@ struct Campaign {
   std::vector<CampaignStep> steps;
 };
 
-// Throws InputError naming file:line:column and the field at fault.
+// Reads and checks the file (fields, placeholders, graph); throws InputError naming
+// file:line:column and the field at fault. Command names are checked by check_commands.
 Campaign read_campaign(const std::filesystem::path& file);
+
+// Refuses a step whose command is not one of `known_commands` (a typo), naming file:line and
+// the closest known command.
+void check_commands(const Campaign& campaign, const std::vector<std::string>& known_commands);
 
 // Replaces {out} and {campaign} in `text`.
 std::string expand(const std::string& text, const std::filesystem::path& out,
                    const std::filesystem::path& campaign_dir);
+
+// The closest of `candidates` to `word` (edit distance), or "" if none is close.
+std::string closest_name(const std::string& word, const std::vector<std::string>& candidates);
 
 }  // namespace dtwire::app

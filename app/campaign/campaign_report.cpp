@@ -4,9 +4,12 @@
 
 #include <fstream>
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 #include "../cli.hpp"
+#include "report_html.hpp"
+#include "report_summary.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/version.hpp"
@@ -38,14 +41,20 @@ std::filesystem::path write_campaign_report(const Campaign& campaign,
                                             const std::filesystem::path& out) {
   const auto campaign_dir = std::filesystem::absolute(campaign.file).parent_path();
   const std::string now = utc_now_iso8601();
+  std::map<StepStatus, int> counts;
+  for (const StepOutcome& o : outcomes) ++counts[o.status];
   std::ostringstream md;
   md << "# " << campaign.title << "\n\n"
      << "Campaign `" << campaign.name << "` (" << campaign.file.string() << "), run with "
-     << version_string() << " on " << now << ".\n\n"
-     << "## Steps\n\n| step | status | wall time (s) | note |\n|---|---|---|---|\n";
+     << version_string() << " on " << now << ": " << outcomes.size() << " steps";
+  for (const auto& [status, count] : counts) md << ", " << count << " " << status_name(status);
+  md << ". The summary comes first; every step's details, files and console log follow "
+        "([steps](#steps)).\n\n";
+  md << summary_markdown(campaign, outcomes, out);
+  md << "## Steps\n\n| step | status | wall time (s) | note |\n|---|---|---|---|\n";
   for (const StepOutcome& o : outcomes)
-    md << "| " << o.name << " | " << status_name(o.status) << " | " << std::fixed
-       << std::setprecision(2) << o.seconds << " | " << o.message << " |\n";
+    md << "| [" << o.name << "](#" << heading_anchor(o.name) << ") | " << status_name(o.status) << " | "
+       << std::fixed << std::setprecision(2) << o.seconds << std::defaultfloat << " | " << o.message << " |\n";
   md << "\n";
   for (const CampaignStep& step : campaign.steps) {
     const auto outcome = std::find_if(outcomes.begin(), outcomes.end(),
@@ -57,11 +66,18 @@ std::filesystem::path write_campaign_report(const Campaign& campaign,
       md << "Not run: " << outcome->message << ".\n\n";
       continue;
     }
+    const auto log = step_folder(out, step.name) / "output.log";
+    if (std::filesystem::exists(log)) {
+      const auto relative = std::filesystem::relative(log, out).string();
+      md << "Console log: [`" << relative << "`](" << relative << ").\n\n";
+    }
     for (const auto& item : step.report) md << embed(expand(item, out, campaign_dir), out);
     md << "\n";
   }
   const auto report = out / "report.md";
   write_file_atomically(report, [&](std::ostream& stream) { stream << md.str(); });
+  write_file_atomically(out / "report.html",
+                        [&](std::ostream& stream) { stream << markdown_to_html(md.str(), campaign.title, out); });
 
   nlohmann::json provenance = {{"tool_version", kVersion},
                                {"git_hash", kGitHash},

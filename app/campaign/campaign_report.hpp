@@ -1,6 +1,7 @@
 #pragma once
-// The human-readable campaign report (Markdown) and its provenance (JSON), written to the
-// output directory.
+// The human-readable campaign report, Markdown (report.md) and the same as one self-contained
+// page (report.html), and its provenance (JSON), written to the output directory. The report
+// opens with the summary (report_summary.hpp); the per-step details follow.
 #include <filesystem>
 #include <vector>
 

@@ -1,17 +1,23 @@
 #include "campaign_runner.hpp"
 
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
+#include <set>
+#include <sstream>
 
 #include "../cli.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/version.hpp"
+#include "step_process.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -57,20 +63,62 @@ bool outputs_exist(const std::vector<std::string>& outputs) {
                      [](const std::string& o) { return std::filesystem::exists(o); });
 }
 
+// The step's console log, then the *.log files a command writes beside its outputs (run.log).
+std::vector<std::filesystem::path> progress_logs(const std::filesystem::path& console,
+                                                 const std::vector<std::string>& outputs) {
+  std::vector<std::filesystem::path> logs{console};
+  std::set<std::filesystem::path> folders;
+  for (const auto& output : outputs) folders.insert(std::filesystem::path(output).parent_path());
+  for (const auto& folder : folders)
+    if (std::filesystem::exists(folder / "run.log")) logs.push_back(folder / "run.log");
+  return logs;
+}
+
+// One line per step: rewritten in place on a terminal, printed once when the step ends otherwise.
+class ProgressLine {
+ public:
+  explicit ProgressLine(std::string prefix) : prefix_(std::move(prefix)), live_(::isatty(2) == 1) {}
+  void update(double seconds, const std::string& progress) {
+    if (!live_) return;
+    std::cerr << "\r\033[K" << text(seconds, progress) << std::flush;
+  }
+  void finish(const std::string& message) {
+    std::cerr << (live_ ? "\r\033[K" : "") << prefix_ << ": " << message << "\n";
+  }
+  static std::string seconds_text(double seconds) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(seconds < 10 ? 1 : 0) << seconds << " s";
+    return s.str();
+  }
+
+ private:
+  std::string text(double seconds, const std::string& progress) const {
+    std::string line = prefix_ + ": running " + seconds_text(seconds) + (progress.empty() ? "" : ", " + progress);
+    return line.size() > 118 ? line.substr(0, 115) + "..." : line;
+  }
+  std::string prefix_;
+  bool live_;
+};
+
 }  // namespace
+
+std::filesystem::path step_folder(const std::filesystem::path& out, const std::string& step) {
+  return out / "steps" / step;
+}
 
 std::string status_name(StepStatus status) {
   switch (status) {
     case StepStatus::Done: return "done";
     case StepStatus::Skipped: return "up to date";
     case StepStatus::Failed: return "failed";
-    case StepStatus::Unavailable: return "not available yet";
+    case StepStatus::Unavailable: return "not in this build";
     case StepStatus::Blocked: return "blocked";
   }
   return "unknown";
 }
 
 std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOptions& options) {
+  check_commands(campaign, command_names());
   std::filesystem::create_directories(options.out);
   const auto campaign_dir = std::filesystem::absolute(campaign.file).parent_path();
   json state = load_state(options.out);
@@ -81,13 +129,12 @@ std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOp
     if (!options.only.empty() &&
         std::find(options.only.begin(), options.only.end(), step.name) == options.only.end())
       continue;
-    const std::string progress = "[" + std::to_string(index) + "/" +
-                                 std::to_string(campaign.steps.size()) + "] " + step.name;
+    ProgressLine line("[" + std::to_string(index) + "/" + std::to_string(campaign.steps.size()) + "] " + step.name);
     StepOutcome outcome{step.name, StepStatus::Done, 0.0, 0, {}};
     if (!command_available(step.command.front())) {
       outcome.status = StepStatus::Unavailable;
-      outcome.message = "'dtwire " + step.command.front() + "' is not in this build yet";
-      std::cerr << progress << ": " << outcome.message << "\n";
+      outcome.message = "'dtwire " + step.command.front() + "' is compiled out of this build";
+      line.finish(outcome.message);
       outcomes.push_back(outcome);
       continue;
     }
@@ -100,11 +147,12 @@ std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOp
     });
     if (missing != inputs.end()) {
       if (!is_within(*missing, options.out))
-        throw InputError(campaign.file.string(), "step '" + step.name + "': input " + *missing +
-                                                     " does not exist");
+        throw InputError(campaign.file.string(), step.field_lines.count("inputs") ? step.field_lines.at("inputs") : step.line,
+                         0, "step '" + step.name + "': input " + *missing + " does not exist");
       outcome.status = StepStatus::Blocked;
-      outcome.message = "input " + *missing + " was not produced by an earlier step";
-      std::cerr << progress << ": blocked, " << outcome.message << "\n";
+      outcome.message = "input " + std::filesystem::relative(*missing, options.out).string() +
+                        " was not produced (an earlier step failed)";
+      line.finish("blocked, " + outcome.message);
       outcomes.push_back(outcome);
       continue;
     }
@@ -116,29 +164,38 @@ std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOp
         previous.value("fingerprint", "") == hash && outputs_exist(outputs)) {
       outcome.status = StepStatus::Skipped;
       outcome.seconds = previous.value("seconds", 0.0);
-      std::cerr << progress << ": up to date, skipped\n";
+      line.finish("up to date, skipped");
       outcomes.push_back(outcome);
       continue;
     }
-    std::cerr << progress << ": running dtwire";
-    for (const auto& a : command) std::cerr << " " << a;
-    std::cerr << "\n";
+    const auto folder = step_folder(options.out, step.name);
+    std::filesystem::create_directories(folder);
+    const auto log = folder / "output.log";
+    {
+      std::ofstream header(folder / "command.txt");
+      header << "dtwire";
+      for (const auto& a : command) header << " " << a;
+      header << "\n";
+    }
     const auto start = std::chrono::steady_clock::now();
-    outcome.exit_code = run_command_line(command);
-    outcome.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    outcome.exit_code = run_step_process(options.executable, command, log, [&](double seconds) {
+      line.update(seconds, step_progress(progress_logs(log, outputs)));
+    });
+    outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (outcome.exit_code != 0) {
       outcome.status = StepStatus::Failed;
-      outcome.message = "exit code " + std::to_string(outcome.exit_code);
+      outcome.message = "exit code " + std::to_string(outcome.exit_code) + ": " + last_line(log);
     } else if (!outputs_exist(outputs)) {
       outcome.status = StepStatus::Failed;
       outcome.message = "finished but did not write all of its outputs";
     }
-    std::cerr << progress << ": " << status_name(outcome.status) << " in " << outcome.seconds
-              << " s" << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
+    const std::string log_name = std::filesystem::relative(log, options.out).string();
+    line.finish(status_name(outcome.status) + " in " + ProgressLine::seconds_text(outcome.seconds) +
+                (outcome.message.empty() ? "" : " (" + outcome.message + "; log " + log_name + ")"));
     state[step.name] = {{"status", outcome.status == StepStatus::Done ? "done" : "failed"},
                         {"fingerprint", hash},
                         {"seconds", outcome.seconds},
+                        {"log", log_name},
                         {"finished_utc", utc_now_iso8601()}};
     save_state(options.out, state);
     outcomes.push_back(outcome);

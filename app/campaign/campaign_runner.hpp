@@ -1,8 +1,9 @@
 #pragma once
-// Runs a campaign's steps in order, in-process, with progress on stderr. State is saved after
-// every step (out/campaign_state.json), so an interrupted campaign resumes where it stopped:
-// a step is skipped when it finished before with the same command, inputs and tool version
-// and its outputs still exist.
+// Runs a campaign's steps in order, each as a child dtwire process whose console output goes to
+// {out}/steps/<step>/output.log; stderr gets one progress line per step (updated in place on a
+// terminal). State is saved after every step (out/campaign_state.json), so an interrupted
+// campaign resumes where it stopped: a step is skipped when it finished before with the same
+// command, inputs and tool version and its outputs still exist.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,7 +12,8 @@
 
 namespace dtwire::app {
 
-// Blocked: an input that an earlier step should have written is missing.
+// Unavailable: the command is compiled out of this build. Blocked: an input that an earlier step
+// should have written is missing (that step failed).
 enum class StepStatus { Done, Skipped, Failed, Unavailable, Blocked };
 
 struct StepOutcome {
@@ -26,7 +28,11 @@ struct CampaignOptions {
   std::filesystem::path out;
   bool force = false;  // re-run every step
   std::vector<std::string> only;  // run just these steps (empty: all)
+  std::filesystem::path executable;  // the dtwire binary that runs the steps
 };
+
+// {out}/steps/<step>: the step's console log (output.log).
+std::filesystem::path step_folder(const std::filesystem::path& out, const std::string& step);
 
 std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOptions& options);
 

@@ -3,10 +3,12 @@
 #include <iostream>
 
 #include "../campaign/campaign_file.hpp"
+#include "../campaign/campaign_lock.hpp"
 #include "../campaign/campaign_report.hpp"
 #include "../campaign/campaign_runner.hpp"
 #include "../cli.hpp"
 #include "../commands.hpp"
+#include "../data_path.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/version.hpp"
 
@@ -20,7 +22,7 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     std::vector<std::string> only;
   };
   auto options = std::make_shared<Options>();
-  options->file = std::string(kSourceDir) + "/experiments/default/campaign.toml";
+  options->file = data_path("experiments/default/campaign.toml").string();
   CLI::App* command = root.add_subcommand(
       "campaign", "Run a whole study (mesh, FE, fits, export, gap) and write a report");
   command->add_option("file", options->file, "Campaign file (.toml)")->capture_default_str();
@@ -40,6 +42,12 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
                                      [&](const CampaignStep& s) { return s.name == name; });
       if (!known) throw InputError(options->file, "--only names unknown step '" + name + "'");
     }
+    check_commands(campaign, command_names());
+    run_options.executable = executable_path();
+    const CampaignLock lock(run_options.out);
+    if (!lock.stale_note().empty())
+      std::cerr << "campaign: a stale lock in " << run_options.out.string() << " (" << lock.stale_note()
+                << ") shows an earlier campaign that did not finish; taking over\n";
     const auto outcomes = run_campaign(campaign, run_options);
     const auto report = write_campaign_report(campaign, outcomes, run_options.out);
     std::size_t failed = 0, unavailable = 0, blocked = 0;
@@ -50,7 +58,7 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     }
     std::cout << "campaign " << campaign.name << ": " << outcomes.size() << " step(s), " << failed
               << " failed, " << blocked << " blocked, " << unavailable
-              << " not available yet; report: " << report.string() << "\n";
+              << " not in this build; report: " << report.string() << "\n";
     return failed || blocked ? kExitFailure : 0;
   });
 }

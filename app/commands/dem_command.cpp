@@ -6,6 +6,7 @@
 
 #include "../cli.hpp"
 #include "../commands.hpp"
+#include "../data_path.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/driver.hpp"
@@ -17,7 +18,7 @@ namespace {
 
 struct DriverOptions {
   std::string law;
-  std::string params = std::string(kSourceDir) + "/experiments/data/macroelement_thesis_params.json";
+  std::string params = data_path("experiments/data/macroelement_thesis_params.json").string();
   std::string wire_type;
   std::string backbone;
   std::string path = "all";

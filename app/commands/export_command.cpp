@@ -5,6 +5,7 @@
 
 #include "../cli.hpp"
 #include "../commands.hpp"
+#include "../data_path.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/driver.hpp"
@@ -55,7 +56,7 @@ int run_export_command(const ExportOptions& o) {
     }
     written.push_back(script);
   }
-  for (const auto& file : dem::export_c_abi(out / "c_abi")) written.push_back(file);
+  for (const auto& file : dem::export_c_abi(out / "c_abi", data_path("c_abi/include"), data_path("c_abi/examples"))) written.push_back(file);
   for (const auto& file : written) std::cout << "wrote " << file.string() << "\n";
   return 0;
 }

@@ -11,6 +11,7 @@
 #include "../cli.hpp"
 #include "../plotting.hpp"
 #include "../commands.hpp"
+#include "../data_path.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
@@ -304,7 +305,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     bool require_goals = false;
   };
   auto self = std::make_shared<SelfcheckOptions>();
-  self->run.backbone_csv = std::string(kSourceDir) + "/experiments/data/sw_2.7mm_dem_backbone.csv";
+  self->run.backbone_csv = data_path("experiments/data/sw_2.7mm_dem_backbone.csv").string();
   CLI::App* selfcheck = command->add_subcommand(
       "selfcheck", "Inject effects into model curves, withhold them, and check the diagnosis");
   selfcheck->add_option("--trials", self->run.trials, "Trials per single effect")->capture_default_str();

@@ -1,7 +1,11 @@
 // The C ABI bundle: the contact-law shared library and its header (built by dtwire_contact),
 // and the example program, copied next to a README with compile and link instructions.
+#include <dlfcn.h>
+
 #include <ostream>
 #include <system_error>
+
+#include "dtwire_contact.h"
 
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/dem/export.hpp"
@@ -17,11 +21,20 @@ std::filesystem::path find_header(const std::filesystem::path& include_dir) {
   return {};
 }
 
+// The contact-law library this process has loaded (wherever it was built or installed).
+std::filesystem::path loaded_library() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&dtwire_bond_create), &info) == 0 || !info.dli_fname) return {};
+  return std::filesystem::canonical(info.dli_fname);
+}
+
 }  // namespace
 
-std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out) {
-  const std::filesystem::path library(DTWIRE_CONTACT_LIBRARY_FILE);
-  const std::filesystem::path header = find_header(DTWIRE_CONTACT_INCLUDE_DIR);
+std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out,
+                                                const std::filesystem::path& include_dir,
+                                                const std::filesystem::path& example_dir) {
+  const std::filesystem::path library = loaded_library();
+  const std::filesystem::path header = find_header(include_dir);
   std::filesystem::create_directories(out);
   std::vector<std::filesystem::path> written;
   const auto copy = [&](const std::filesystem::path& from) {
@@ -34,7 +47,7 @@ std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out
   const bool have_header = copy(header);
   std::vector<std::string> examples;
   std::error_code error;
-  for (const auto& entry : std::filesystem::directory_iterator(DTWIRE_CONTACT_EXAMPLE_DIR, error))
+  for (const auto& entry : std::filesystem::directory_iterator(example_dir, error))
     if (entry.path().extension() == ".c" && copy(entry.path())) examples.push_back(entry.path().filename().string());
   const std::string library_name = library.filename().string();
   write_file_atomically(out / "README.md", [&](std::ostream& os) {

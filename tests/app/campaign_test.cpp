@@ -3,7 +3,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include "campaign/campaign_file.hpp"
+#include "campaign/campaign_lock.hpp"
 #include "campaign/campaign_report.hpp"
 #include "campaign/campaign_runner.hpp"
 #include "cli.hpp"
@@ -53,33 +56,149 @@ TEST(Campaign, DuplicateStepNamesAreRejected) {
   EXPECT_THROW(read_campaign(file), InputError);
 }
 
-TEST(Campaign, RunsStepsResumesAndReportsUnavailableOnes) {
+CampaignOptions options_for(const std::filesystem::path& out) {
+  CampaignOptions options;
+  options.out = out;
+  options.executable = DTWIRE_EXECUTABLE;
+  return options;
+}
+
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The error's line and a fragment of its message.
+void expect_refused(const std::filesystem::path& file, int line, const std::string& fragment) {
+  try {
+    read_campaign(file);
+    FAIL() << "no error for " << file;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(Campaign, RunsStepsAsChildProcessesWithLogsAndResumes) {
   const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_run";
   std::filesystem::remove_all(out);
-  // A step that runs a (nested) campaign producing a report, and one with an unknown command.
+  // A step that runs a (nested) campaign producing a report.
   const auto inner = write_temp("dtwire_inner.toml",
-                                "name = \"inner\"\n[[step]]\nname = \"nothing\"\n"
-                                "command = [\"no_such_command\"]\n");
+                                "name = \"inner\"\n[[step]]\nname = \"help\"\n"
+                                "command = [\"campaign\", \"--help\"]\n");
   const auto outer = write_temp(
       "dtwire_outer.toml",
       "name = \"outer\"\n[[step]]\nname = \"inner_campaign\"\n"
       "command = [\"campaign\", \"" + inner.string() + "\", \"-o\", \"{out}/inner\"]\n"
       "inputs = [\"" + inner.string() + "\"]\n"
-      "outputs = [\"{out}/inner/report.md\"]\nreport = [\"{out}/inner/report.md\"]\n"
-      "[[step]]\nname = \"missing\"\ncommand = [\"no_such_command\"]\n");
+      "outputs = [\"{out}/inner/report.md\"]\nreport = [\"{out}/inner/report.md\"]\n");
   const Campaign campaign = read_campaign(outer);
-  const auto first = run_campaign(campaign, {out, false, {}});
-  ASSERT_EQ(first.size(), 2u);
-  EXPECT_EQ(first[0].status, StepStatus::Done);
-  EXPECT_EQ(first[1].status, StepStatus::Unavailable);
-  const auto second = run_campaign(campaign, {out, false, {}});
+  const auto first = run_campaign(campaign, options_for(out));
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_EQ(first[0].status, StepStatus::Done) << first[0].message;
+  // The child's console output is in the step's log, not on the campaign's console.
+  const std::string log = read_text(step_folder(out, "inner_campaign") / "output.log");
+  EXPECT_NE(log.find("campaign inner: 1 step(s)"), std::string::npos) << log;
+  const auto second = run_campaign(campaign, options_for(out));
   EXPECT_EQ(second[0].status, StepStatus::Skipped);  // resumed: same inputs, outputs present
   const auto report = write_campaign_report(campaign, second, out);
-  std::ifstream in(report);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  EXPECT_NE(text.find("not available yet"), std::string::npos);
+  const std::string text = read_text(report);
+  EXPECT_LT(text.find("## Summary"), text.find("## Steps")) << "the summary comes first";
   EXPECT_NE(text.find("# inner"), std::string::npos);  // the inner report is embedded
   EXPECT_TRUE(std::filesystem::exists(out / "provenance.json"));
+  EXPECT_NE(read_text(out / "report.html").find("id=\"summary\""), std::string::npos);
+  std::filesystem::remove_all(out);
+}
+
+TEST(Campaign, UnknownCommandIsRefusedBeforeAnythingRuns) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_typo";
+  std::filesystem::remove_all(out);
+  const auto file = write_temp("dtwire_typo.toml",
+                               "name = \"t\"\n[[step]]\nname = \"first\"\ncommand = [\"campaign\", \"--help\"]\n"
+                               "[[step]]\nname = \"second\"\ncommand = [\"exprot\", \"--help\"]\n");
+  try {
+    run_campaign(read_campaign(file), options_for(out));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 7) << e.what();
+    EXPECT_NE(std::string(e.what()).find("did you mean 'export'"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(out / "campaign_state.json")) << "a step ran";
+  // Through the command line: exit 2, and the file:line on stderr.
+  EXPECT_EQ(run_command_line({"campaign", file.string(), "-o", out.string()}), kExitBadInput);
+  std::filesystem::remove_all(out);
+}
+
+TEST(Campaign, UnknownFieldsAreRefusedWithTheClosestName) {
+  expect_refused(write_temp("dtwire_field.toml", "name = \"f\"\n[[step]]\nname = \"a\"\n"
+                                                 "command = [\"campaign\", \"--help\"]\ninptus = [\"x\"]\n"),
+                 5, "did you mean 'inputs'");
+  expect_refused(write_temp("dtwire_top.toml", "name = \"f\"\ntitel = \"x\"\n[[step]]\nname = \"a\"\n"
+                                               "command = [\"campaign\", \"--help\"]\n"),
+                 2, "did you mean 'title'");
+}
+
+TEST(Campaign, PlaceholderTypoIsRefusedNotMadeAFolder) {
+  expect_refused(write_temp("dtwire_placeholder.toml",
+                            "name = \"p\"\n[[step]]\nname = \"a\"\n"
+                            "command = [\"campaign\", \"--help\"]\noutputs = [\"{ot}/x.csv\"]\n"),
+                 5, "unknown placeholder '{ot}' (did you mean 'out'?)");
+}
+
+TEST(Campaign, OutInputThatNoEarlierStepWritesIsRefused) {
+  expect_refused(write_temp("dtwire_graph.toml",
+                            "name = \"g\"\n[[step]]\nname = \"a\"\ncommand = [\"campaign\", \"--help\"]\n"
+                            "inputs = [\"{out}/never_written.csv\"]\n"),
+                 5, "written by no earlier step");
+  // Written, but only by a later step: named.
+  expect_refused(write_temp("dtwire_order.toml",
+                            "name = \"g\"\n[[step]]\nname = \"a\"\ncommand = [\"campaign\", \"--help\"]\n"
+                            "inputs = [\"{out}/later/x.csv\"]\n"
+                            "[[step]]\nname = \"b\"\ncommand = [\"campaign\", \"--help\"]\n"
+                            "outputs = [\"{out}/later\"]\n"),
+                 5, "step 'b' writes it, after this one");
+}
+
+TEST(Campaign, DefaultCampaignGraphIsClosed) {
+  // read_campaign checks that every {out} input is written by an earlier step.
+  const Campaign c = read_campaign(std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/default/campaign.toml");
+  EXPECT_NO_THROW(check_commands(c, command_names()));
+  // The FE runs of the double twist read the mesh the campaign made, and the DEM driver the
+  // exported fitted set (issue #16), once the campaign is wired that way.
+  std::size_t out_inputs = 0;
+  for (const CampaignStep& step : c.steps)
+    for (const auto& input : step.inputs) out_inputs += input.rfind("{out}", 0) == 0;
+  EXPECT_GE(out_inputs, 13u);
+}
+
+TEST(Campaign, SecondCampaignIntoTheSameFolderIsRefusedByTheLock) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_lock";
+  std::filesystem::remove_all(out);
+  const CampaignLock held(out);
+  try {
+    const CampaignLock second(out);
+    FAIL() << "two locks";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pid " + std::to_string(::getpid())), std::string::npos) << e.what();
+  }
+  const auto file = write_temp("dtwire_locked.toml", "name = \"l\"\n[[step]]\nname = \"a\"\n"
+                                                     "command = [\"campaign\", \"--help\"]\n");
+  EXPECT_EQ(run_command_line({"campaign", file.string(), "-o", out.string()}), kExitBadInput);
+  std::filesystem::remove_all(out);
+}
+
+TEST(Campaign, StaleLockIsReportedAndTakenOver) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_stale";
+  std::filesystem::remove_all(out);
+  std::filesystem::create_directories(out);
+  // What a killed campaign leaves: its pid and start time, and no lock held.
+  std::ofstream(out / "campaign.lock") << "pid 2147483000, started 2026-01-01T00:00:00Z\n";
+  {
+    const CampaignLock lock(out);
+    EXPECT_NE(lock.stale_note().find("pid 2147483000"), std::string::npos) << lock.stale_note();
+  }
+  const CampaignLock clean(out);  // released cleanly: nothing stale
+  EXPECT_EQ(clean.stale_note(), "");
   std::filesystem::remove_all(out);
 }
 
@@ -92,14 +211,18 @@ namespace {
 TEST(Campaign, StepWhoseProducedInputIsMissingIsBlockedNotAnError) {
   const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_blocked";
   std::filesystem::remove_all(out);
+  // `a` promises a file it does not write (it fails), so `b` cannot run.
   const auto file = write_temp("dtwire_blocked.toml",
-                               "name = \"b\"\n[[step]]\nname = \"needs_earlier\"\n"
+                               "name = \"b\"\n[[step]]\nname = \"a\"\ncommand = [\"campaign\", \"--help\"]\n"
+                               "outputs = [\"{out}/never_written.csv\"]\n"
+                               "[[step]]\nname = \"needs_earlier\"\n"
                                "command = [\"campaign\", \"--help\"]\n"
                                "inputs = [\"{out}/never_written.csv\"]\n");
-  const auto outcomes = run_campaign(read_campaign(file), {out, false, {}});
-  ASSERT_EQ(outcomes.size(), 1u);
-  EXPECT_EQ(outcomes[0].status, StepStatus::Blocked);
-  EXPECT_NE(outcomes[0].message.find("never_written.csv"), std::string::npos);
+  const auto outcomes = run_campaign(read_campaign(file), options_for(out));
+  ASSERT_EQ(outcomes.size(), 2u);
+  EXPECT_EQ(outcomes[0].status, StepStatus::Failed);
+  EXPECT_EQ(outcomes[1].status, StepStatus::Blocked);
+  EXPECT_NE(outcomes[1].message.find("never_written.csv"), std::string::npos);
   std::filesystem::remove_all(out);
 }
 
@@ -109,7 +232,7 @@ TEST(Campaign, MissingInputOutsideTheOutputFolderIsAnInputError) {
                                "name = \"m\"\n[[step]]\nname = \"a\"\n"
                                "command = [\"campaign\", \"--help\"]\n"
                                "inputs = [\"{campaign}/no_such_input.prm\"]\n");
-  EXPECT_THROW(run_campaign(read_campaign(file), {out, false, {}}), InputError);
+  EXPECT_THROW(run_campaign(read_campaign(file), options_for(out)), InputError);
   std::filesystem::remove_all(out);
 }
 

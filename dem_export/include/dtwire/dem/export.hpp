@@ -30,8 +30,11 @@ std::string yade_wirepm_script(const ParameterMap& wirepm_parameters, const Path
 void write_yade_script(const ParameterMap& wirepm_parameters, const PathOptions& options,
                        const std::filesystem::path& script);
 
-// Copies the contact-law library, header and example program (if present) to `out` and writes README.md with
+// Copies the contact-law library this process has loaded, the header (found under `include_dir`)
+// and the example programs (*.c in `example_dir`), if present, to `out` and writes README.md with
 // compile and link instructions. Returns the files written.
-std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out);
+std::vector<std::filesystem::path> export_c_abi(const std::filesystem::path& out,
+                                                const std::filesystem::path& include_dir,
+                                                const std::filesystem::path& example_dir);
 
 }  // namespace dtwire::dem

@@ -1,0 +1,258 @@
+#include "report_summary.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "step_process.hpp"
+
+namespace dtwire::app {
+namespace {
+
+using nlohmann::json;
+
+// Above this NRMSE a fitted curve is listed under "what to distrust" as a model-form gap: the
+// law cannot follow the curve whatever its parameters (docs/calibrate.md).
+constexpr double kModelFormNrmse = 0.10;
+
+enum class Kind { Fit, Gap, Validation, Other };
+
+Kind kind_of(const CampaignStep& step) {
+  const auto& c = step.command;
+  if (c.front() == "fit") return Kind::Fit;
+  if (c.front() == "gap") return c.size() > 1 && c[1] == "selfcheck" ? Kind::Other : Kind::Gap;
+  if (c.front() == "dem" && c.size() > 1 && c[1] == "run") return Kind::Validation;
+  return Kind::Other;
+}
+
+std::string number(double value, int digits = 4) {
+  if (!std::isfinite(value)) return "n/a";
+  std::ostringstream s;
+  s << std::setprecision(digits) << value;
+  return s.str();
+}
+
+std::string number_of(const json& value, int digits = 4) {
+  return value.is_number() ? number(value.get<double>(), digits) : std::string("n/a");
+}
+
+std::string text_of(const json& object, const std::string& key) {
+  return object.is_object() && object.contains(key) && object[key].is_string() ? object[key].get<std::string>()
+                                                                                 : std::string();
+}
+
+json read_json(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  try {
+    return json::parse(in);
+  } catch (const json::exception&) {
+    return json();
+  }
+}
+
+std::string link(const std::string& text, const std::string& step) { return "[" + text + "](#" + heading_anchor(step) + ")"; }
+
+struct StepFiles {
+  const CampaignStep* step;
+  const StepOutcome* outcome;
+  std::vector<std::filesystem::path> files;  // existing, expanded
+};
+
+// The summary files of a step: declared, or those of its outputs and report the summary reads.
+std::vector<std::filesystem::path> summary_files(const CampaignStep& step, const std::filesystem::path& out,
+                                                 const std::filesystem::path& campaign_dir) {
+  std::vector<std::string> candidates = step.summary;
+  if (candidates.empty()) {
+    candidates = step.outputs;
+    candidates.insert(candidates.end(), step.report.begin(), step.report.end());
+  }
+  std::vector<std::filesystem::path> files;
+  for (const auto& c : candidates) {
+    const std::filesystem::path file = expand(c, out, campaign_dir);
+    const std::string ext = file.extension().string();
+    const Kind kind = kind_of(step);
+    const bool wanted = !step.summary.empty() ||
+                        (kind == Kind::Fit && file.filename() == "parameters.json") ||
+                        (kind == Kind::Gap && ext == ".json") ||
+                        (kind == Kind::Validation && (ext == ".png" || ext == ".svg" || ext == ".csv" || ext == ".json"));
+    if (wanted && std::filesystem::is_regular_file(file) &&
+        std::find(files.begin(), files.end(), file) == files.end())
+      files.push_back(file);
+  }
+  return files;
+}
+
+std::string wire_type_name(const std::string& wire_type) {
+  if (wire_type == "single_wire") return "Single wire (SW)";
+  if (wire_type == "double_twist") return "Double twist (DT)";
+  return wire_type.empty() ? "Parameter set" : wire_type;
+}
+
+void fit_section(std::ostream& md, const StepFiles& s, const std::filesystem::path& file,
+                 const std::filesystem::path& out, std::vector<std::string>& distrust) {
+  const json fit = read_json(file);
+  if (!fit.is_object() || !fit.contains("parameters")) return;
+  const std::string wire_type = text_of(fit, "wire_type");
+  md << "**" << wire_type_name(wire_type) << "**, law `" << text_of(fit, "law") << "`, from step "
+     << link(s.step->name, s.step->name) << " (`" << std::filesystem::relative(file, out).string()
+     << "`):\n\n| parameter | value | sigma | unit |\n|---|---|---|---|\n";
+  for (const json& p : fit["parameters"])
+    if (p.value("fitted", false))
+      md << "| " << text_of(p, "name") << " | " << number_of(p["value"], 5) << " | " << number_of(p["sigma"], 2)
+         << " | " << text_of(p, "unit") << " |\n";
+  md << "\nFit quality per loading mode (NRMSE: RMSE over the target's range):\n\n"
+        "| loading mode (curve) | channel | NRMSE | R² |\n|---|---|---|---|\n";
+  for (const json& q : fit.value("fit_quality", json::array())) {
+    const double nrmse = q.value("nrmse", std::nan(""));
+    md << "| " << text_of(q, "experiment") << " | " << text_of(q, "quantity") << " | " << number(nrmse, 3)
+       << (nrmse > kModelFormNrmse ? " ⚠" : "") << " | " << number_of(q["r_squared"], 3) << " |\n";
+    if (nrmse > kModelFormNrmse)
+      distrust.push_back("Model-form gap: the " + wire_type_name(wire_type) + " law misses `" +
+                         text_of(q, "experiment") + "` (" + text_of(q, "quantity") + ", NRMSE " + number(nrmse, 3) +
+                         " > " + number(kModelFormNrmse) + "), whatever its parameters; see " +
+                         link(s.step->name, s.step->name) + ".");
+  }
+  md << "\n";
+  for (const json& w : fit.value("warnings", json::array()))
+    if (w.is_string()) distrust.push_back("Fit " + link(s.step->name, s.step->name) + ": " + w.get<std::string>());
+}
+
+// The region with the largest share of the gap, "post_peak (12-30 mm, 64 %)".
+std::string main_region(const json& where) {
+  const json* best = nullptr;
+  for (const json& w : where)
+    if (w.is_object() && (!best || w.value("share", 0.0) > best->value("share", 0.0))) best = &w;
+  if (!best) return "n/a";
+  std::ostringstream s;
+  s << text_of(*best, "region");
+  if (best->contains("feature")) s << " (" << text_of(*best, "feature") << ")";
+  else if (best->contains("from_mm")) s << " (" << number_of((*best)["from_mm"], 3) << "-" << number_of((*best)["to_mm"], 3) << " mm";
+  if (best->contains("share")) s << (best->contains("feature") ? " " : ", ") << number(100 * best->value("share", 0.0), 2) << " % of the gap";
+  if (!best->contains("feature") && best->contains("from_mm")) s << ")";
+  return s.str();
+}
+
+void gap_row(std::ostream& md, const StepFiles& s, const json& gap, const std::string& label,
+             std::vector<std::string>& distrust) {
+  const std::string cause = text_of(gap, "cause");
+  std::string shrink = "n/a";
+  for (const json& r : gap.value("ranking", json::array()))
+    if (text_of(r, "effect") == cause) {
+      shrink = number(100 * r.value("shrink", std::nan("")), 3) + " %";
+      break;
+    }
+  md << "| " << link(label, s.step->name) << " | " << (cause.empty() ? "n/a" : "**" + cause + "**") << " | "
+     << shrink << " | " << main_region(gap.value("where", json::array())) << " | " << number_of(gap["gap_before"], 3)
+     << " |\n";
+  const std::string reason = text_of(gap, "cause_reason");
+  if (cause == "none" || cause == "unexplained" || cause.find("model") != std::string::npos)
+    distrust.push_back("Gap " + link(label, s.step->name) + ": cause `" + cause + "`" +
+                       (reason.empty() ? "" : " (" + reason + ")") + ".");
+}
+
+void figure(std::ostream& md, const std::filesystem::path& file, const std::filesystem::path& out) {
+  const std::string relative = std::filesystem::relative(file, out).string();
+  const std::string ext = file.extension().string();
+  if (ext == ".png" || ext == ".svg") md << "![" << file.stem().string() << "](" << relative << ")\n\n";
+  else md << "- [`" << relative << "`](" << relative << ")\n";
+}
+
+}  // namespace
+
+std::string heading_anchor(const std::string& heading) {
+  std::string anchor;
+  for (unsigned char c : heading) {
+    if (std::isalnum(c) || c == '_' || c == '-') anchor += static_cast<char>(std::tolower(c));
+    else if (c == ' ') anchor += '-';
+    else if (c >= 0x80) anchor += static_cast<char>(c);  // keep UTF-8 letters
+  }
+  return anchor;
+}
+
+std::string summary_markdown(const Campaign& campaign, const std::vector<StepOutcome>& outcomes,
+                             const std::filesystem::path& out) {
+  const auto campaign_dir = std::filesystem::absolute(campaign.file).parent_path();
+  std::map<Kind, std::vector<StepFiles>> by_kind;
+  std::vector<std::string> distrust;
+  for (const StepOutcome& o : outcomes) {
+    const auto step = std::find_if(campaign.steps.begin(), campaign.steps.end(),
+                                   [&](const CampaignStep& s) { return s.name == o.name; });
+    if (step == campaign.steps.end()) continue;
+    if (o.status == StepStatus::Failed || o.status == StepStatus::Blocked || o.status == StepStatus::Unavailable)
+      distrust.push_back("Step " + link(o.name, o.name) + " " + status_name(o.status) +
+                         (o.message.empty() ? "" : ": " + o.message) + "; its results are missing below.");
+    by_kind[kind_of(*step)].push_back({&*step, &o, summary_files(*step, out, campaign_dir)});
+    // Warnings the step printed (its console log).
+    std::ifstream log(step_folder(out, o.name) / "output.log");
+    std::set<std::string> seen;
+    for (std::string line; std::getline(log, line);)
+      if ((line.rfind("warning", 0) == 0 || line.rfind("Warning", 0) == 0) && seen.insert(line).second && seen.size() <= 5)
+        distrust.push_back("Step " + link(o.name, o.name) + ": " + line);
+  }
+
+  std::ostringstream md;
+  md << "## Summary\n\n";
+
+  md << "### Calibrated parameter sets\n\n";
+  std::set<std::string> fitted_types;
+  for (const StepFiles& s : by_kind[Kind::Fit])
+    for (const auto& file : s.files) {
+      const json fit = read_json(file);
+      if (fit.is_object()) fitted_types.insert(text_of(fit, "wire_type"));
+      fit_section(md, s, file, out, distrust);
+    }
+  for (const std::string type : {"single_wire", "double_twist"})
+    if (!fitted_types.count(type))
+      md << "- " << wire_type_name(type) << ": no fit step in this campaign calibrates this set.\n";
+  md << "\n";
+
+  md << "### Mesh-scale validation\n\n";
+  if (by_kind[Kind::Validation].empty())
+    md << "No mesh-scale DEM step (`dtwire dem run`, e.g. the punch test against the thesis figures) in this "
+          "campaign yet.\n\n";
+  for (const StepFiles& s : by_kind[Kind::Validation]) {
+    md << "From step " << link(s.step->name, s.step->name) << ": " << s.step->description << "\n\n";
+    if (s.files.empty()) md << "(no results: " << status_name(s.outcome->status) << ")\n\n";
+    for (const auto& file : s.files) figure(md, file, out);
+    md << "\n";
+  }
+
+  md << "### Gap verdicts\n\n";
+  if (by_kind[Kind::Gap].empty()) md << "No gap step in this campaign.\n\n";
+  else {
+    md << "| case | cause | gap shrink with the cause | main region | gap before |\n|---|---|---|---|---|\n";
+    for (const StepFiles& s : by_kind[Kind::Gap]) {
+      if (s.files.empty()) md << "| " << link(s.step->name, s.step->name) << " | (no result: " << status_name(s.outcome->status) << ") | | | |\n";
+      for (const auto& file : s.files) {
+        const json gap = read_json(file);
+        if (!gap.is_object()) continue;
+        if (gap.contains("cause")) gap_row(md, s, gap, s.step->name, distrust);
+        if (gap.contains("modes") && gap["modes"].is_object())
+          for (const auto& [mode, diagnosis] : gap["modes"].items())
+            if (diagnosis.is_object() && diagnosis.contains("cause")) gap_row(md, s, diagnosis, s.step->name + " (" + mode + ")", distrust);
+      }
+    }
+    md << "\n";
+  }
+
+  for (const StepFiles& s : by_kind[Kind::Other])
+    if (!s.step->summary.empty()) {
+      md << "### " << s.step->name << "\n\n";
+      for (const auto& file : s.files) figure(md, file, out);
+      md << "\n";
+    }
+
+  md << "### What to distrust\n\n";
+  if (distrust.empty()) md << "Nothing flagged: no failed step, no fit warning, no model-form gap, no step warning.\n";
+  for (const auto& d : distrust) md << "- " << d << "\n";
+  md << "\n";
+  return md.str();
+}
+
+}  // namespace dtwire::app

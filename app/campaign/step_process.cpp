@@ -1,0 +1,110 @@
+#include "step_process.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <thread>
+
+#include "dtwire/core/error.hpp"
+
+extern char** environ;
+
+namespace dtwire::app {
+namespace {
+
+std::string tail(const std::filesystem::path& file, std::size_t bytes = 8192) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return {};
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::size_t>(in.tellg());
+  in.seekg(static_cast<std::streamoff>(size > bytes ? size - bytes : 0));
+  std::string text(std::min(size, bytes), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  return text;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  for (std::size_t end; (end = text.find('\n', start)) != std::string::npos; start = end + 1)
+    lines.push_back(text.substr(start, end - start));
+  if (start < text.size()) lines.push_back(text.substr(start));
+  return lines;
+}
+
+// The progress a line shows in the patterns of fem's run.log and calibrate's fitter, or "".
+std::string progress_of(const std::string& line) {
+  static const std::regex fe(R"(^step (\d+): t = \S+ -> (\S+))");
+  static const std::regex fit(R"(^fit start (\d+/\d+) iteration (\d+))");
+  static const std::regex fit_state(R"(^fit start (\d+/\d+) (\w+))");
+  std::smatch m;
+  if (std::regex_search(line, m, fe)) return "FE step " + m[1].str() + ", t = " + m[2].str();
+  if (std::regex_search(line, m, fit)) return "fit start " + m[1].str() + ", iteration " + m[2].str();
+  if (std::regex_search(line, m, fit_state)) return "fit start " + m[1].str() + " " + m[2].str();
+  return {};
+}
+
+}  // namespace
+
+std::string last_line(const std::filesystem::path& file) {
+  const auto lines = lines_of(tail(file, 2048));
+  for (auto line = lines.rbegin(); line != lines.rend(); ++line)
+    if (line->find_first_not_of(" \t\r") != std::string::npos) return *line;
+  return {};
+}
+
+std::string step_progress(const std::vector<std::filesystem::path>& logs) {
+  for (const auto& log : logs) {
+    const auto lines = lines_of(tail(log));
+    for (auto line = lines.rbegin(); line != lines.rend(); ++line)
+      if (auto progress = progress_of(*line); !progress.empty()) return progress;
+  }
+  std::string fallback = logs.empty() ? std::string() : last_line(logs.front());
+  if (fallback.size() > 60) fallback = fallback.substr(0, 57) + "...";
+  return fallback;
+}
+
+int run_step_process(const std::filesystem::path& executable, const std::vector<std::string>& args,
+                     const std::filesystem::path& log, const std::function<void(double)>& tick) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<std::string> argv_text{executable.string()};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int error = posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0)
+    throw ComputationError("cannot start " + executable.string() + ": " + std::strerror(error));
+
+  const auto start = std::chrono::steady_clock::now();
+  auto next_tick = start + std::chrono::seconds(1);
+  int status = 0;
+  for (;;) {
+    const pid_t done = ::waitpid(pid, &status, WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) throw ComputationError(std::string("waitpid: ") + std::strerror(errno));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (const auto now = std::chrono::steady_clock::now(); now >= next_tick) {
+      tick(std::chrono::duration<double>(now - start).count());
+      next_tick = now + std::chrono::seconds(1);
+    }
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return 1;
+}
+
+}  // namespace dtwire::app
