@@ -191,12 +191,14 @@ std::string markdown_to_html(const std::string& markdown, const std::string& tit
         html << "</section>\n";
         in_summary = false;
       }
-      if (level == 2 && text == "Summary") {
-        html << "<section id=\"summary\">\n";
+      const bool summary = level == 2 && text == "Summary";
+      if (summary) {
+        html << "<section id=\"summary\">\n";  // carries the heading's anchor
         in_summary = true;
       }
-      html << "<h" << level << " id=\"" << escape(heading_anchor(text)) << "\">" << inline_html(text, base)
-           << "</h" << level << ">\n";
+      html << "<h" << level;
+      if (!summary) html << " id=\"" << escape(heading_anchor(text)) << "\"";
+      html << ">" << inline_html(text, base) << "</h" << level << ">\n";
       ++i;
       continue;
     }

@@ -180,6 +180,7 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   const auto campaign_dir = std::filesystem::absolute(campaign.file).parent_path();
   std::map<Kind, std::vector<StepFiles>> by_kind;
   std::vector<std::string> distrust;
+  std::vector<std::pair<std::string, std::string>> log_warnings;  // step, line
   for (const StepOutcome& o : outcomes) {
     const auto step = std::find_if(campaign.steps.begin(), campaign.steps.end(),
                                    [&](const CampaignStep& s) { return s.name == o.name; });
@@ -188,12 +189,12 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
       distrust.push_back("Step " + link(o.name, o.name) + " " + status_name(o.status) +
                          (o.message.empty() ? "" : ": " + o.message) + "; its results are missing below.");
     by_kind[kind_of(*step)].push_back({&*step, &o, summary_files(*step, out, campaign_dir)});
-    // Warnings the step printed (its console log).
+    // Warnings the step printed (its console log), at most 5 per step.
     std::ifstream log(step_folder(out, o.name) / "output.log");
     std::set<std::string> seen;
     for (std::string line; std::getline(log, line);)
       if ((line.rfind("warning", 0) == 0 || line.rfind("Warning", 0) == 0) && seen.insert(line).second && seen.size() <= 5)
-        distrust.push_back("Step " + link(o.name, o.name) + ": " + line);
+        log_warnings.emplace_back(o.name, line);
   }
 
   std::ostringstream md;
@@ -248,6 +249,13 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
       md << "\n";
     }
 
+  for (const auto& [step, line] : log_warnings) {
+    const auto colon = line.find(": ");
+    const std::string text = colon == std::string::npos ? line : line.substr(colon + 2);
+    const bool known = std::any_of(distrust.begin(), distrust.end(),
+                                   [&](const std::string& d) { return d.find(text) != std::string::npos; });
+    if (!known) distrust.push_back("Step " + link(step, step) + ": " + line);
+  }
   md << "### What to distrust\n\n";
   if (distrust.empty()) md << "Nothing flagged: no failed step, no fit warning, no model-form gap, no step warning.\n";
   for (const auto& d : distrust) md << "- " << d << "\n";
