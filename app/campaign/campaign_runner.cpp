@@ -121,6 +121,14 @@ std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOp
   check_commands(campaign, command_names());
   std::filesystem::create_directories(options.out);
   const auto campaign_dir = std::filesystem::absolute(campaign.file).parent_path();
+  // Inputs from outside the output folder must all exist before anything runs.
+  for (const CampaignStep& step : campaign.steps)
+    for (const auto& raw : step.inputs) {
+      const std::string input = expand(raw, options.out, campaign_dir);
+      if (!is_within(input, options.out) && !std::filesystem::exists(input))
+        throw InputError(campaign.file.string(), step.field_lines.count("inputs") ? step.field_lines.at("inputs") : step.line,
+                         0, "step '" + step.name + "': input " + input + " does not exist");
+    }
   json state = load_state(options.out);
   std::vector<StepOutcome> outcomes;
   std::size_t index = 0;
@@ -146,9 +154,6 @@ std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOp
       return !std::filesystem::exists(input);
     });
     if (missing != inputs.end()) {
-      if (!is_within(*missing, options.out))
-        throw InputError(campaign.file.string(), step.field_lines.count("inputs") ? step.field_lines.at("inputs") : step.line,
-                         0, "step '" + step.name + "': input " + *missing + " does not exist");
       outcome.status = StepStatus::Blocked;
       outcome.message = "input " + std::filesystem::relative(*missing, options.out).string() +
                         " was not produced (an earlier step failed)";

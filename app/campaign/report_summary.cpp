@@ -61,7 +61,8 @@ std::string link(const std::string& text, const std::string& step) { return "[" 
 struct StepFiles {
   const CampaignStep* step;
   const StepOutcome* outcome;
-  std::vector<std::filesystem::path> files;  // existing, expanded
+  std::vector<std::filesystem::path> files;    // existing, expanded
+  std::vector<std::filesystem::path> figures;  // the images among its report items
 };
 
 // The summary files of a step: declared, or those of its outputs and report the summary reads.
@@ -94,6 +95,20 @@ std::string wire_type_name(const std::string& wire_type) {
   return wire_type.empty() ? "Parameter set" : wire_type;
 }
 
+void figure(std::ostream& md, const std::filesystem::path& file, const std::filesystem::path& out) {
+  const std::string relative = std::filesystem::relative(file, out).string();
+  const std::string ext = file.extension().string();
+  if (ext == ".png" || ext == ".svg") md << "![" << file.stem().string() << "](" << relative << ")\n\n";
+  else md << "- [`" << relative << "`](" << relative << ")\n";
+}
+
+// The figures a step shows in its report (fit overlays, gap shading), side by side in the summary.
+void step_figures(std::ostream& md, const StepFiles& s, const std::filesystem::path& out) {
+  for (const auto& file : s.figures)
+    md << "![" << s.step->name << ": " << file.stem().string() << "](" << std::filesystem::relative(file, out).string() << ") ";
+  if (!s.figures.empty()) md << "\n\n";
+}
+
 void fit_section(std::ostream& md, const StepFiles& s, const std::filesystem::path& file,
                  const std::filesystem::path& out, std::vector<std::string>& distrust) {
   const json fit = read_json(file);
@@ -119,6 +134,7 @@ void fit_section(std::ostream& md, const StepFiles& s, const std::filesystem::pa
                          link(s.step->name, s.step->name) + ".");
   }
   md << "\n";
+  step_figures(md, s, out);
   for (const json& w : fit.value("warnings", json::array()))
     if (w.is_string()) distrust.push_back("Fit " + link(s.step->name, s.step->name) + ": " + w.get<std::string>());
 }
@@ -156,13 +172,6 @@ void gap_row(std::ostream& md, const StepFiles& s, const json& gap, const std::s
                        (reason.empty() ? "" : " (" + reason + ")") + ".");
 }
 
-void figure(std::ostream& md, const std::filesystem::path& file, const std::filesystem::path& out) {
-  const std::string relative = std::filesystem::relative(file, out).string();
-  const std::string ext = file.extension().string();
-  if (ext == ".png" || ext == ".svg") md << "![" << file.stem().string() << "](" << relative << ")\n\n";
-  else md << "- [`" << relative << "`](" << relative << ")\n";
-}
-
 }  // namespace
 
 std::string heading_anchor(const std::string& heading) {
@@ -188,7 +197,13 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
     if (o.status == StepStatus::Failed || o.status == StepStatus::Blocked || o.status == StepStatus::Unavailable)
       distrust.push_back("Step " + link(o.name, o.name) + " " + status_name(o.status) +
                          (o.message.empty() ? "" : ": " + o.message) + "; its results are missing below.");
-    by_kind[kind_of(*step)].push_back({&*step, &o, summary_files(*step, out, campaign_dir)});
+    std::vector<std::filesystem::path> figures;
+    for (const auto& item : step->report) {
+      const std::filesystem::path file = expand(item, out, campaign_dir);
+      const std::string ext = file.extension().string();
+      if ((ext == ".png" || ext == ".svg") && std::filesystem::is_regular_file(file)) figures.push_back(file);
+    }
+    by_kind[kind_of(*step)].push_back({&*step, &o, summary_files(*step, out, campaign_dir), figures});
     // Warnings the step printed (its console log), at most 5 per step.
     std::ifstream log(step_folder(out, o.name) / "output.log");
     std::set<std::string> seen;
@@ -240,6 +255,7 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
       }
     }
     md << "\n";
+    for (const StepFiles& s : by_kind[Kind::Gap]) step_figures(md, s, out);
   }
 
   for (const StepFiles& s : by_kind[Kind::Other])
