@@ -136,7 +136,7 @@ th{background:#e9eef4;cursor:pointer}tr:nth-child(even) td{background:#f6f8fa}
 img{max-width:100%;border:1px solid #dde;margin:.4em 0}img.broken{outline:3px solid red}
 code{background:#f0f2f5;padding:0 .2em;border-radius:3px}pre{background:#f0f2f5;padding:.6em;overflow-x:auto}
 #summary{background:#f4f8fc;border:1px solid #b8cde0;border-radius:6px;padding:0 1em 1em}
-#summary img{max-width:49%;vertical-align:top}
+#summary img{max-width:49%;vertical-align:top}#summary h2{margin-top:.5em}
 )";
 
 // Sort a table by a click on a header; mark images that did not load; count both for checks.

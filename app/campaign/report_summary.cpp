@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -109,34 +110,68 @@ void step_figures(std::ostream& md, const StepFiles& s, const std::filesystem::p
   if (!s.figures.empty()) md << "\n\n";
 }
 
-void fit_section(std::ostream& md, const StepFiles& s, const std::filesystem::path& file,
-                 const std::filesystem::path& out, std::vector<std::string>& distrust) {
+// The fitted set and its NRMSE per loading mode (rows) and channel (columns); returns the line
+// for the summary's "at a glance".
+std::string fit_section(std::ostream& md, const StepFiles& s, const std::filesystem::path& file,
+                        const std::filesystem::path& out, std::vector<std::string>& distrust) {
   const json fit = read_json(file);
-  if (!fit.is_object() || !fit.contains("parameters")) return;
+  if (!fit.is_object() || !fit.contains("parameters")) return {};
   const std::string wire_type = text_of(fit, "wire_type");
-  md << "**" << wire_type_name(wire_type) << "**, law `" << text_of(fit, "law") << "`, from step "
-     << link(s.step->name, s.step->name) << " (`" << std::filesystem::relative(file, out).string()
-     << "`):\n\n| parameter | value | sigma | unit |\n|---|---|---|---|\n";
+  const std::string law = text_of(fit, "law");
+  md << "**" << wire_type_name(wire_type) << "**, law `" << law << "`, from step " << link(s.step->name, s.step->name)
+     << " (`" << std::filesystem::relative(file, out).string() << "`):\n\n| parameter | value | sigma | unit |\n|---|---|---|---|\n";
+  std::size_t fitted = 0;
   for (const json& p : fit["parameters"])
-    if (p.value("fitted", false))
+    if (p.value("fitted", false)) {
+      ++fitted;
       md << "| " << text_of(p, "name") << " | " << number_of(p["value"], 5) << " | " << number_of(p["sigma"], 2)
          << " | " << text_of(p, "unit") << " |\n";
-  md << "\nFit quality per loading mode (NRMSE: RMSE over the target's range):\n\n"
-        "| loading mode (curve) | channel | NRMSE | R² |\n|---|---|---|---|\n";
+    }
+  std::vector<std::string> modes, channels;
+  std::map<std::pair<std::string, std::string>, double> nrmse;
   for (const json& q : fit.value("fit_quality", json::array())) {
-    const double nrmse = q.value("nrmse", std::nan(""));
-    md << "| " << text_of(q, "experiment") << " | " << text_of(q, "quantity") << " | " << number(nrmse, 3)
-       << (nrmse > kModelFormNrmse ? " ⚠" : "") << " | " << number_of(q["r_squared"], 3) << " |\n";
-    if (nrmse > kModelFormNrmse)
-      distrust.push_back("Model-form gap: the " + wire_type_name(wire_type) + " law misses `" +
-                         text_of(q, "experiment") + "` (" + text_of(q, "quantity") + ", NRMSE " + number(nrmse, 3) +
-                         " > " + number(kModelFormNrmse) + "), whatever its parameters; see " +
-                         link(s.step->name, s.step->name) + ".");
+    const std::string mode = text_of(q, "experiment"), channel = text_of(q, "quantity");
+    if (std::find(modes.begin(), modes.end(), mode) == modes.end()) modes.push_back(mode);
+    if (std::find(channels.begin(), channels.end(), channel) == channels.end()) channels.push_back(channel);
+    nrmse[{mode, channel}] = q.value("nrmse", std::nan(""));
   }
+  md << "\nFit quality, NRMSE (RMSE over the target's range; ⚠ above " << number(kModelFormNrmse)
+     << "):\n\n| loading mode |";
+  for (const auto& c : channels) md << " " << c << " |";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < channels.size(); ++i) md << "---|";
+  md << "\n";
+  std::string missed;  // curves beyond kModelFormNrmse
+  double low = std::numeric_limits<double>::infinity(), high = 0.0;
+  for (const auto& mode : modes) {
+    md << "| " << mode << " |";
+    for (const auto& channel : channels) {
+      const auto value = nrmse.find({mode, channel});
+      if (value == nrmse.end()) {
+        md << " |";
+        continue;
+      }
+      const double v = value->second;
+      low = std::min(low, v);
+      high = std::max(high, v);
+      md << " " << number(v, 2) << (v > kModelFormNrmse ? " ⚠" : "") << " |";
+      if (v > kModelFormNrmse)
+        missed += std::string(missed.empty() ? "" : ", ") + "`" + mode + "` (" + channel + " " + number(v, 2) + ")";
+    }
+    md << "\n";
+  }
+  if (!missed.empty())
+    distrust.push_back("Model-form gap: the " + wire_type_name(wire_type) + " law `" + law + "` cannot follow " + missed +
+                       " (NRMSE > " + number(kModelFormNrmse) + ") whatever its parameters; see " +
+                       link(s.step->name, s.step->name) + ".");
   md << "\n";
   step_figures(md, s, out);
   for (const json& w : fit.value("warnings", json::array()))
     if (w.is_string()) distrust.push_back("Fit " + link(s.step->name, s.step->name) + ": " + w.get<std::string>());
+  return "**" + wire_type_name(wire_type) + " set** (law `" + law + "`, " + std::to_string(fitted) +
+         " fitted parameters with sigma): NRMSE " + number(low, 2) + "-" + number(high, 2) + " over " +
+         std::to_string(modes.size()) + " loading modes" +
+         (missed.empty() ? std::string() : ", some beyond the law's reach") + " ([set](#calibrated-parameter-sets)).";
 }
 
 // The region with the largest share of the gap, "post_peak (12-30 mm, 64 %)".
@@ -145,31 +180,41 @@ std::string main_region(const json& where) {
   for (const json& w : where)
     if (w.is_object() && (!best || w.value("share", 0.0) > best->value("share", 0.0))) best = &w;
   if (!best) return "n/a";
-  std::ostringstream s;
-  s << text_of(*best, "region");
-  if (best->contains("feature")) s << " (" << text_of(*best, "feature") << ")";
-  else if (best->contains("from_mm")) s << " (" << number_of((*best)["from_mm"], 3) << "-" << number_of((*best)["to_mm"], 3) << " mm";
-  if (best->contains("share")) s << (best->contains("feature") ? " " : ", ") << number(100 * best->value("share", 0.0), 2) << " % of the gap";
-  if (!best->contains("feature") && best->contains("from_mm")) s << ")";
-  return s.str();
+  std::vector<std::string> details;
+  if (best->contains("feature")) details.push_back(text_of(*best, "feature"));
+  else if (best->contains("from_mm"))
+    details.push_back(number_of((*best)["from_mm"], 3) + "-" + number_of((*best)["to_mm"], 3) + " mm");
+  if (best->contains("share")) details.push_back(number(100 * best->value("share", 0.0), 2) + " % of the gap");
+  std::string text = text_of(*best, "region");
+  for (std::size_t i = 0; i < details.size(); ++i) text += (i == 0 ? " (" : ", ") + details[i];
+  return details.empty() ? text : text + ")";
 }
 
-void gap_row(std::ostream& md, const StepFiles& s, const json& gap, const std::string& label,
-             std::vector<std::string>& distrust) {
+// One verdict row; returns "case: cause (shrink)" for the summary's "at a glance".
+std::string gap_row(std::ostream& md, const StepFiles& s, const json& gap, const std::string& label,
+                    std::vector<std::string>& distrust) {
   const std::string cause = text_of(gap, "cause");
-  std::string shrink = "n/a";
+  const double before = gap.value("gap_before", std::nan(""));
+  const double floor = gap.value("noise_floor", std::nan(""));
+  double shrink = 0.0;
   for (const json& r : gap.value("ranking", json::array()))
     if (text_of(r, "effect") == cause) {
-      shrink = number(100 * r.value("shrink", std::nan("")), 3) + " %";
+      shrink = r.value("shrink", 0.0);
       break;
     }
+  const bool explained = cause != "none" && !cause.empty();
   md << "| " << link(label, s.step->name) << " | " << (cause.empty() ? "n/a" : "**" + cause + "**") << " | "
-     << shrink << " | " << main_region(gap.value("where", json::array())) << " | " << number_of(gap["gap_before"], 3)
-     << " |\n";
-  const std::string reason = text_of(gap, "cause_reason");
-  if (cause == "none" || cause == "unexplained" || cause.find("model") != std::string::npos)
-    distrust.push_back("Gap " + link(label, s.step->name) + ": cause `" + cause + "`" +
-                       (reason.empty() ? "" : " (" + reason + ")") + ".");
+     << (explained ? number(100 * shrink, 3) + " %" : "n/a") << " | " << main_region(gap.value("where", json::array()))
+     << " | " << number(before, 3) << " (" << number(floor, 3) << ") | " << text_of(gap, "cause_reason") << " |\n";
+  // What is left of the gap after the cause (all of it if there is none) against the noise floor.
+  const double left = before * (1.0 - shrink);
+  if (std::isfinite(left) && std::isfinite(floor) && left > floor)
+    distrust.push_back("Gap " + link(label, s.step->name) + ": " +
+                       (explained ? "after `" + cause + "` a gap of " + number(left, 3)
+                                  : "an unexplained gap of " + number(left, 3)) +
+                       " is left, above the noise floor " + number(floor, 3) + ".");
+  return label + ": " + (explained ? "`" + cause + "` (gap " + number(100 * shrink, 2) + " % smaller)"
+                                   : before <= floor ? "within the noise" : "unexplained");
 }
 
 }  // namespace
@@ -213,22 +258,27 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   }
 
   std::ostringstream md;
-  md << "## Summary\n\n";
-
+  std::vector<std::string> glance, gap_glance;
   md << "### Calibrated parameter sets\n\n";
   std::set<std::string> fitted_types;
   for (const StepFiles& s : by_kind[Kind::Fit])
     for (const auto& file : s.files) {
       const json fit = read_json(file);
       if (fit.is_object()) fitted_types.insert(text_of(fit, "wire_type"));
-      fit_section(md, s, file, out, distrust);
+      if (auto line = fit_section(md, s, file, out, distrust); !line.empty()) glance.push_back(line);
     }
   for (const std::string type : {"single_wire", "double_twist"})
-    if (!fitted_types.count(type))
+    if (!fitted_types.count(type)) {
       md << "- " << wire_type_name(type) << ": no fit step in this campaign calibrates this set.\n";
+      glance.push_back("**" + wire_type_name(type) + " set**: not calibrated in this campaign.");
+    }
   md << "\n";
 
   md << "### Mesh-scale validation\n\n";
+  glance.push_back(by_kind[Kind::Validation].empty()
+                       ? std::string("**Mesh-scale validation**: no DEM mesh step yet ([validation](#mesh-scale-validation)).")
+                       : "**Mesh-scale validation**: " + std::to_string(by_kind[Kind::Validation].size()) +
+                             " step(s), figures in [validation](#mesh-scale-validation).");
   if (by_kind[Kind::Validation].empty())
     md << "No mesh-scale DEM step (`dtwire dem run`, e.g. the punch test against the thesis figures) in this "
           "campaign yet.\n\n";
@@ -242,16 +292,18 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   md << "### Gap verdicts\n\n";
   if (by_kind[Kind::Gap].empty()) md << "No gap step in this campaign.\n\n";
   else {
-    md << "| case | cause | gap shrink with the cause | main region | gap before |\n|---|---|---|---|---|\n";
+    md << "| case | cause | gap shrink with the cause | main region | gap before (noise floor) | why |\n"
+          "|---|---|---|---|---|---|\n";
     for (const StepFiles& s : by_kind[Kind::Gap]) {
-      if (s.files.empty()) md << "| " << link(s.step->name, s.step->name) << " | (no result: " << status_name(s.outcome->status) << ") | | | |\n";
+      if (s.files.empty()) md << "| " << link(s.step->name, s.step->name) << " | (no result: " << status_name(s.outcome->status) << ") | | | | |\n";
       for (const auto& file : s.files) {
         const json gap = read_json(file);
         if (!gap.is_object()) continue;
-        if (gap.contains("cause")) gap_row(md, s, gap, s.step->name, distrust);
+        if (gap.contains("cause")) gap_glance.push_back(gap_row(md, s, gap, s.step->name, distrust));
         if (gap.contains("modes") && gap["modes"].is_object())
           for (const auto& [mode, diagnosis] : gap["modes"].items())
-            if (diagnosis.is_object() && diagnosis.contains("cause")) gap_row(md, s, diagnosis, s.step->name + " (" + mode + ")", distrust);
+            if (diagnosis.is_object() && diagnosis.contains("cause"))
+              gap_glance.push_back(gap_row(md, s, diagnosis, s.step->name + " (" + mode + ")", distrust));
       }
     }
     md << "\n";
@@ -272,11 +324,21 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
                                    [&](const std::string& d) { return d.find(text) != std::string::npos; });
     if (!known) distrust.push_back("Step " + link(step, step) + ": " + line);
   }
+  if (!gap_glance.empty()) {
+    std::string line = "**Gap verdicts**: ";
+    for (std::size_t i = 0; i < gap_glance.size(); ++i) line += (i ? "; " : "") + gap_glance[i];
+    glance.push_back(line + " ([verdicts](#gap-verdicts)).");
+  }
+  glance.push_back("**What to distrust**: " + std::to_string(distrust.size()) + " item(s) ([list](#what-to-distrust)).");
   md << "### What to distrust\n\n";
   if (distrust.empty()) md << "Nothing flagged: no failed step, no fit warning, no model-form gap, no step warning.\n";
   for (const auto& d : distrust) md << "- " << d << "\n";
   md << "\n";
-  return md.str();
+  std::ostringstream summary;
+  summary << "## Summary\n\n";
+  for (const auto& line : glance) summary << "- " << line << "\n";
+  summary << "\n" << md.str();
+  return summary.str();
 }
 
 }  // namespace dtwire::app
