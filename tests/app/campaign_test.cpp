@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -163,6 +164,21 @@ TEST(Campaign, DefaultCampaignGraphIsClosed) {
   // read_campaign refuses an {out} input that no earlier step writes; the commands are known.
   const Campaign c = read_campaign(std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/default/campaign.toml");
   EXPECT_NO_THROW(check_commands(c, command_names()));
+  const auto inputs_of = [&](const std::string& name) {
+    for (const CampaignStep& step : c.steps)
+      if (step.name == name) return step.inputs;
+    ADD_FAILURE() << "no step " << name;
+    return std::vector<std::string>{};
+  };
+  const auto reads = [&](const std::string& step, const std::string& file) {
+    const auto inputs = inputs_of(step);
+    return std::find(inputs.begin(), inputs.end(), file) != inputs.end();
+  };
+  // The DT FE runs read the campaign's own mesh; the DEM driver the exported fitted set (#16).
+  for (const char* run : {"dt_tension", "dt_pull_angle", "dt_bending"})
+    EXPECT_TRUE(reads(run, "{out}/meshes/dt.msh")) << run;
+  EXPECT_TRUE(reads("dem_driver", "{out}/export/single_wire_parameters.json"));
+  EXPECT_TRUE(reads("export", "{out}/fit/parameters.json"));
 }
 
 TEST(Campaign, SecondCampaignIntoTheSameFolderIsRefusedByTheLock) {
