@@ -135,8 +135,16 @@ std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOp
   for (const CampaignStep& step : campaign.steps) {
     ++index;
     if (!options.only.empty() &&
-        std::find(options.only.begin(), options.only.end(), step.name) == options.only.end())
+        std::find(options.only.begin(), options.only.end(), step.name) == options.only.end()) {
+      // Not selected: its earlier results, if any, still belong in the report.
+      std::vector<std::string> outputs;
+      for (const auto& a : step.outputs) outputs.push_back(expand(a, options.out, campaign_dir));
+      const json& previous = state.value(step.name, json::object());
+      if (previous.value("status", "") == "done" && outputs_exist(outputs))
+        outcomes.push_back({step.name, StepStatus::Skipped, previous.value("seconds", 0.0), 0,
+                            "not selected by --only; results of an earlier run"});
       continue;
+    }
     ProgressLine line("[" + std::to_string(index) + "/" + std::to_string(campaign.steps.size()) + "] " + step.name);
     StepOutcome outcome{step.name, StepStatus::Done, 0.0, 0, {}};
     if (!command_available(step.command.front())) {

@@ -20,6 +20,7 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
 #else
   struct Options {
     std::string file;
+    std::vector<std::string> settings;
     std::string out;
     bool quiet = false;
     int restart_step = -1;
@@ -30,6 +31,9 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
   auto options = std::make_shared<Options>();
   CLI::App* command = root.add_subcommand("run", "Run a virtual FE experiment from a .prm file (MPI-capable)");
   command->add_option("file", options->file, "Experiment parameter file (.prm)")->required();
+  command->add_option("--set", options->settings,
+                      "Override an entry of the file: 'Section/Entry=value' (repeatable; a relative "
+                      "'Geometry/Mesh file' is taken from the working directory)");
   command->add_option("-o,--out", options->out, "Output directory (default: fem-out/<file stem>)");
   command->add_flag("-q,--quiet", options->quiet, "Write progress only to run.log");
   command->add_option("--restart", options->restart_step,
@@ -45,7 +49,10 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
     run.output_directory = options->out.empty()
                                ? std::filesystem::path("fem-out") / std::filesystem::path(options->file).stem()
                                : std::filesystem::path(options->out);
-    run.command_line = "dtwire run " + options->file + " --out " + run.output_directory.string();
+    run.settings = options->settings;
+    run.command_line = "dtwire run " + options->file;
+    for (const auto& setting : options->settings) run.command_line += " --set '" + setting + "'";
+    run.command_line += " --out " + run.output_directory.string();
     run.echo = !options->quiet;
     run.restart_step = options->restart_step;
     const fem::RunSummary s = fem::run_experiment_with_mpi(run);

@@ -190,9 +190,32 @@ std::string short_message(const std::string& what) {
   return std::regex_replace(text, std::regex("^ +| +$"), "");
 }
 
+// `Section/Sub/Entry=value` from the command line, set on top of the file; a relative
+// 'Mesh file' given this way is taken from the working directory, where the user typed it.
+void apply_setting(ParameterHandler& prm, const std::string& setting) {
+  const auto equals = setting.find('=');
+  if (equals == std::string::npos || equals == 0)
+    throw InputError("--set", "'" + setting + "': expected Section/Entry=value");
+  std::string path = setting.substr(0, equals), value = setting.substr(equals + 1);
+  std::vector<std::string> sections;
+  for (auto slash = path.find('/'); slash != std::string::npos; slash = path.find('/')) {
+    sections.push_back(path.substr(0, slash));
+    path.erase(0, slash + 1);
+  }
+  if (path == "Mesh file" && !value.empty()) value = std::filesystem::absolute(value).string();
+  for (const auto& s : sections) prm.enter_subsection(s);
+  try {
+    prm.set(path, value);
+  } catch (const std::exception& e) {
+    for (std::size_t i = 0; i < sections.size(); ++i) prm.leave_subsection();
+    throw InputError("--set", "'" + setting + "': " + short_message(e.what()));
+  }
+  for (std::size_t i = 0; i < sections.size(); ++i) prm.leave_subsection();
+}
+
 }  // namespace
 
-Parameters read_parameters(const std::filesystem::path& file) {
+Parameters read_parameters(const std::filesystem::path& file, const std::vector<std::string>& settings) {
   const std::string name = file.string();
   if (!std::filesystem::is_regular_file(file)) throw InputError(name, "cannot open the parameter file");
   ParameterHandler prm;
@@ -206,6 +229,7 @@ Parameters read_parameters(const std::filesystem::path& file) {
       throw InputError(name, std::stoi(m[1]), 0, message);
     throw InputError(name, message);
   }
+  for (const auto& setting : settings) apply_setting(prm, setting);
 
   Parameters p;
   prm.enter_subsection("Geometry");

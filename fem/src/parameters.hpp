@@ -134,7 +134,8 @@ struct Parameters {
 };
 
 // Throws InputError naming the file (and line, when deal.II reports it) and what was expected.
-Parameters read_parameters(const std::filesystem::path& file);
+// `settings` ("Section/Entry=value", as `dtwire run --set`) override the file's entries.
+Parameters read_parameters(const std::filesystem::path& file, const std::vector<std::string>& settings = {});
 
 // Top displacement (m) at pseudo-time t, piecewise linear in the load path.
 double path_displacement(const LoadParameters& load, double t);

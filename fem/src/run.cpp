@@ -196,7 +196,7 @@ RunSummary run_experiment(const RunOptions& options) {
   MPI_Initialized(&initialised);
   if (!initialised) throw std::logic_error("run_experiment: MPI is not initialised");
   const auto start = std::chrono::steady_clock::now();
-  Parameters parameters = read_parameters(options.parameter_file);
+  Parameters parameters = read_parameters(options.parameter_file, options.settings);
   const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const auto& out = options.output_directory;
   if (root) std::filesystem::create_directories(out);
@@ -267,7 +267,9 @@ RunSummary run_experiment(const RunOptions& options) {
   const auto files = solver.field_files();
   for (std::size_t i = 0; i < files.size(); ++i)
     results.fields.emplace_back(i == 0 ? "pvd" : "step_" + std::to_string(i - 1), "fields/" + files[i]);
-  results.provenance = make_provenance(options.command_line, {options.parameter_file});
+  std::vector<std::filesystem::path> inputs{options.parameter_file};
+  if (!parameters.geometry.mesh_file.empty()) inputs.push_back(parameters.geometry.mesh_file);
+  results.provenance = make_provenance(options.command_line, inputs);
   write_results(results, summary.results_h5);
   return summary;
 }

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <string>
 
 #include "run_dtwire.hpp"
@@ -72,5 +73,24 @@ TEST(Cli, BadCampaignFileExitsTwoNamingTheFile) {
   EXPECT_NE(r.output.find("/nonexistent/campaign.toml: no such file"), std::string::npos)
       << r.output;
 }
+
+#ifdef DTWIRE_HAVE_FEM
+// `run --set Section/Entry=value`: unknown entries and bad values are refused before any work,
+// and a relative 'Mesh file' is read from the working directory (the refusal names that path).
+TEST(Cli, RunSetRefusesUnknownEntriesAndResolvesMeshFileFromWorkingDirectory) {
+  const std::string prm = std::string(DTWIRE_SOURCE_DIR) + "/experiments/default/sw_tension.prm";
+  const std::string out = ::testing::TempDir() + "dtwire_cli_set";
+  CommandResult r = run("run " + prm + " --set 'Geometry/Diamter (mm)=3' -o " + out + " -q");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--set: 'Geometry/Diamter (mm)=3'"), std::string::npos) << r.output;
+  r = run("run " + prm + " --set 'Geometry/Length (mm)=-3' -o " + out + " -q");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("does not match"), std::string::npos) << r.output;
+  r = run("run " + prm + " --set 'Geometry/Mesh file=no_such_dir/dt.msh' -o " + out + " -q");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const std::string expected = (std::filesystem::current_path() / "no_such_dir/dt.msh").string();
+  EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
+}
+#endif
 
 }  // namespace

@@ -4,11 +4,13 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace dtwire::fem {
 
 struct RunOptions {
   std::filesystem::path parameter_file;
+  std::vector<std::string> settings;       // "Section/Entry=value" overrides of the file (--set)
   std::filesystem::path output_directory;  // curve.csv, results.h5, run.log, fields/
   std::string command_line;                // recorded in the provenance
   bool echo = true;                        // progress on stdout (rank 0)
