@@ -223,7 +223,7 @@ void Engine::step() {
   const int threads = options_.threads;
 
   // 1. Links: each writes only its own state.
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(static) if (links >= options_.parallel_threshold)
   for (std::size_t l = 0; l < links; ++l) {
     LinkState& state = s.link_state[l];
     ContactLaw& law = *s.links[l].law;
@@ -261,7 +261,7 @@ void Engine::step() {
   for (ToolState& t : s.tools) {
     const Tool& tool = *t.tool;
     const double kn = tool.contact.normal_stiffness, ks = tool.contact.shear_stiffness, mu = tool.contact.friction;
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= options_.parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) {
       const double r = s.nodes[i].radius;
       SurfacePoint surface;
@@ -324,7 +324,7 @@ void Engine::step() {
   // 3. Nodes: gather in a fixed order, damp, integrate.
   const Vector3 gravity = options_.gravity;
   const double alpha = options_.local_damping;
-#pragma omp parallel for num_threads(threads) schedule(static)
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= options_.parallel_threshold)
   for (std::size_t i = 0; i < n; ++i) {
     Vector3 f = s.nodes[i].mass * gravity, m = Vector3::Zero();
     for (const auto& [l, is_a] : s.node_links[i]) {

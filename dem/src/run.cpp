@@ -100,6 +100,7 @@ RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
   BuiltNet built = build_net(in);
   EngineOptions engine_options = in.engine;
   if (options.threads > 0) engine_options.threads = options.threads;
+  if (options.parallel_threshold >= 0) engine_options.parallel_threshold = static_cast<std::size_t>(options.parallel_threshold);
   const std::size_t node_count = built.mesh.net.nodes.size();
   const HexMesh mesh_copy = [&] { HexMesh m = built.mesh; return m; }();
   std::unique_ptr<Engine> engine;

@@ -1,6 +1,7 @@
 // The files of a `dtwire dem run` (see run_outputs.hpp).
 #include "run_outputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -206,7 +207,8 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   results.fields.emplace_back("title", input_.title);
   std::vector<std::filesystem::path> inputs{input_.file};
   for (const auto& [tag, set] : input_.link_sets)
-    for (const auto& file : set.files) inputs.push_back(file);
+    for (const auto& file : set.files)
+      if (std::find(inputs.begin(), inputs.end(), file) == inputs.end()) inputs.push_back(file);  // one entry per file
   results.provenance = make_provenance(options_.command_line, inputs);
   write_results(results, options_.out / "results.h5");
 }

@@ -193,6 +193,7 @@ TEST(DemEngine, OneAndTwoThreadsGiveIdenticalStates) {
     EngineOptions options;
     options.local_damping = 0.2;
     options.threads = threads;
+    options.parallel_threshold = 0;
     Engine engine(nodes, std::move(links), options);
     for (int k = 0; k < 3000; ++k) engine.step();
     std::vector<double> state;

@@ -28,6 +28,9 @@ struct EngineOptions {
   double safety = 0.5;      // fraction of the critical step
   bool allow_above_critical = false;  // tests only: step beyond the stability bound
   int threads = 1;
+  // Loops shorter than this run on one thread: a parallel region costs more than a few thousand
+  // link updates, and much more when the cores are shared. Tests set 0 to force threading.
+  std::size_t parallel_threshold = 2000;
 };
 
 // Work and energies since the start [J]. balance_error = external - (kinetic + stored +

@@ -60,6 +60,7 @@ struct RunOptions {
   std::filesystem::path out;
   std::string command_line;
   int threads = 0;  // 0: the input's
+  long parallel_threshold = -1;  // -1: the engine's default (EngineOptions)
   bool quiet = false;
   bool write_frames = true;
 };
