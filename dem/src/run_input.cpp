@@ -233,4 +233,22 @@ RunInput read_run_input(const std::filesystem::path& file) {
   return in;
 }
 
+void override_link_set(RunInput& input, const std::string& tag, const std::filesystem::path& params,
+                       const std::string& option) {
+  const std::map<std::string, LinkTag> tags = {{"sw", LinkTag::SingleWire}, {"dt", LinkTag::DoubleTwist}, {"selvedge", LinkTag::Selvedge}};
+  if (!tags.count(tag)) throw InputError(option, "expected sw, dt or selvedge before '=', found '" + tag + "'");
+  LinkSetInput& set = input.link_sets[tags.at(tag)];
+  const std::vector<ParameterSet> sets = read_parameter_file(params);
+  const ParameterSet chosen = select_wire_type(sets, sets.size() == 1 ? "" : (tag == "dt" ? "double_twist" : "single_wire"), params);
+  if (!chosen.law.empty()) set.law = chosen.law;
+  if (set.law.empty()) throw InputError(option, params.string() + " names no law and the input has none for " + tag);
+  set.parameters = chosen.map();
+  set.files = {params};
+  try {
+    make_contact_law(set.law, set.parameters);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(option, e.what());
+  }
+}
+
 }  // namespace dtwire::dem

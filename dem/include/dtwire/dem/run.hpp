@@ -46,6 +46,12 @@ struct RunInput {
 // Throws InputError naming file:line and the field for anything malformed or missing.
 RunInput read_run_input(const std::filesystem::path& file);
 
+// Replaces the parameter set of one link type ("sw", "dt", "selvedge") by the only set (or the
+// set `wire_type`) of `params`; the law is the file's, else the input's. Throws InputError
+// naming `option`.
+void override_link_set(RunInput& input, const std::string& tag, const std::filesystem::path& params,
+                       const std::string& option);
+
 // The mesh, node fixities and one law per link (reference length of WirePM links set to the
 // link's own length, as YADE does). Throws InputError naming the field.
 struct BuiltNet {
