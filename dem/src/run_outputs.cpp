@@ -20,7 +20,7 @@ constexpr double kPi = 3.14159265358979323846;
 const std::vector<std::pair<std::string, std::string>>& history_columns() {
   static const std::vector<std::pair<std::string, std::string>> columns = {
       {"time", "s"}, {"tool_displacement", "mm"}, {"tool_velocity", "mps"}, {"tool_force", "N"},
-      {"tool_force_z", "N"}, {"tool_contacts", "1"}, {"kinetic_energy", "J"}, {"link_elastic_energy", "J"},
+      {"tool_force_z", "N"}, {"tool_force_instant", "N"}, {"tool_contacts", "1"}, {"kinetic_energy", "J"}, {"link_elastic_energy", "J"},
       {"contact_elastic_energy", "J"}, {"plastic_work", "J"}, {"damage_work", "J"}, {"friction_work", "J"},
       {"damping_work", "J"}, {"gravity_work", "J"}, {"tool_work", "J"}, {"boundary_work", "J"},
       {"balance_error", "J"}, {"broken_links", "1"}, {"largest_link_force", "N"}};
@@ -85,21 +85,21 @@ RunRecorder::Snapshot RunRecorder::snapshot(const Engine& engine) const {
   return s;
 }
 
-void RunRecorder::record(const Engine& engine, double time, double displacement, double velocity, bool) {
+void RunRecorder::record(const Engine& engine, double time, double displacement, double velocity, const Vector3& mean_force) {
   const EnergySplit& e = engine.energy();
-  const Vector3 force = engine.tool_count() ? engine.tool_force(0) : Vector3::Zero();
+  const Vector3 instant = engine.tool_count() ? Vector3(-engine.tool_force(0)) : Vector3::Zero();
   double largest = 0.0;
   for (std::size_t l = 0; l < engine.link_count(); ++l)
     if (!engine.link(l).law->broken()) largest = std::max(largest, std::abs(engine.link(l).law->forces()[0]));
   const double contacts = engine.tool_count() ? static_cast<double>(engine.tool_contacts(0)) : 0.0;
-  // The force the tool exerts on the net: minus the net's force on the tool.
-  const std::vector<double> row = {time, 1000.0 * displacement, velocity, force.norm(), -force.z(), contacts,
+  // The force the tool exerts on the net (minus the net's force on the tool), interval mean.
+  const std::vector<double> row = {time, 1000.0 * displacement, velocity, mean_force.norm(), mean_force.z(), instant.norm(), contacts,
                                    e.kinetic, e.link_elastic, e.contact_elastic, e.link_plastic, e.link_damage,
                                    e.friction, e.damping, e.gravity_work, e.tool_work, e.boundary_work,
                                    e.balance_error(), static_cast<double>(engine.broken_links()), largest};
   for (std::size_t c = 0; c < row.size(); ++c) columns_[c].push_back(row[c]);
-  if (force.norm() > peak_force_) {
-    peak_force_ = force.norm();
+  if (mean_force.norm() > peak_force_) {
+    peak_force_ = mean_force.norm();
     at_peak_ = snapshot(engine);
   }
 }
@@ -158,10 +158,10 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
     if (force[r] > force[peak]) peak = r;
   summary.peak_force = force.empty() ? 0.0 : force[peak];
   summary.displacement_at_peak = force.empty() ? 0.0 : displacement[peak] / 1000.0;
-  const auto& gravity = columns_[13];
-  const auto& tool = columns_[14];
-  const auto& boundary = columns_[15];
-  const auto& error = columns_[16];
+  const auto& gravity = columns_[14];
+  const auto& tool = columns_[15];
+  const auto& boundary = columns_[16];
+  const auto& error = columns_[17];
   auto work = [&](std::size_t r) { return std::abs(gravity[r]) + std::abs(tool[r]) + std::abs(boundary[r]); };
   const double final_work = force.empty() ? 0.0 : work(force.size() - 1);
   for (std::size_t r = 0; r < force.size(); ++r)

@@ -11,7 +11,8 @@ namespace dtwire::dem {
 class RunRecorder {
  public:
   RunRecorder(const RunInput& input, const HexMesh& mesh, const RunOptions& options);
-  void record(const Engine& engine, double time, double displacement, double velocity, bool last);
+  // `mean_force`: the tool's force on the net averaged over the output interval.
+  void record(const Engine& engine, double time, double displacement, double velocity, const Vector3& mean_force);
   void frame(const Engine& engine, double time);
   // Writes every file; fills summary's curve figures.
   void finish(const Engine& engine, RunSummary& summary);

@@ -89,6 +89,6 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options);
 // Python source for `yade -n -x SCRIPT OUT.csv`: the same mesh, WirePM links, boundary,
 // pre-tension, gravity, damping, mass scale, time step and platter (facets) as the run.
 // Throws InputError if the run cannot be expressed in YADE (non-WirePM laws, selvedge, ...).
-std::string yade_run_script(const RunInput& input, int platter_segments = 96, int platter_rings = 24);
+std::string yade_run_script(const RunInput& input, int platter_segments = 64, int platter_rings = 16);
 
 }  // namespace dtwire::dem
