@@ -7,6 +7,7 @@
 #include "../cli.hpp"
 #include "../commands.hpp"
 #include "../data_path.hpp"
+#include "dem_run_command.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/driver.hpp"
@@ -83,9 +84,10 @@ int run_driver_command(const DriverOptions& o, const std::string& command_line) 
 }  // namespace
 
 void add_dem_command(CLI::App& root, CommandSet& commands) {
-  CLI::App* dem = root.add_subcommand("dem", "DEM contact laws: the two-node driver");
+  CLI::App* dem = root.add_subcommand("dem", "DEM contact laws: the two-node driver; mesh-scale runs of the wire net");
   dem->require_subcommand(1);
   commands.add(dem, [] { return kExitBadInput; });  // never runs: a subcommand is required
+  add_dem_run_command(*dem, commands);
 
   auto options = std::make_shared<DriverOptions>();
   CLI::App* driver = dem->add_subcommand(

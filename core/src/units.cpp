@@ -19,6 +19,7 @@ const std::vector<Unit>& unit_table() {
       {"J", Dimension::Energy, 1.0},         {"mJ", Dimension::Energy, 1e-3},
       {"Nm", Dimension::Moment, 1.0},        {"Nmm", Dimension::Moment, 1e-3},
       {"1", Dimension::Dimensionless, 1.0},  {"pct", Dimension::Dimensionless, 1e-2},
+      {"mps", Dimension::Velocity, 1.0},     {"mmps", Dimension::Velocity, 1e-3},  // m/s, mm/s
   };
   return units;
 }
@@ -34,6 +35,7 @@ std::string_view dimension_name(Dimension dimension) {
     case Dimension::Energy: return "energy";
     case Dimension::Moment: return "moment";
     case Dimension::Dimensionless: return "dimensionless";
+    case Dimension::Velocity: return "velocity";
   }
   return "unknown";
 }

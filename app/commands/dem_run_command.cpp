@@ -1,0 +1,87 @@
+#include "dem_run_command.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "../cli.hpp"
+#include "../plotting.hpp"
+#include "dtwire/core/atomic_file.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/dem/run.hpp"
+
+namespace dtwire::app {
+namespace {
+
+struct RunCommandOptions {
+  std::string file;
+  std::string out;
+  std::string yade_script;
+  bool export_only = false;
+  bool quiet = false;
+  bool no_frames = false;
+  int threads = 0;
+  std::vector<std::string> set_params;
+  std::string plot;
+  std::vector<std::string> compare;
+};
+
+int run_dem_run(const RunCommandOptions& o) {
+  dem::RunInput input = dem::read_run_input(o.file);
+  for (const std::string& entry : o.set_params) {
+    const auto equals = entry.find('=');
+    if (equals == std::string::npos) throw InputError("--set-params", "expected TAG=FILE, found '" + entry + "'");
+    dem::override_link_set(input, entry.substr(0, equals), entry.substr(equals + 1), "--set-params");
+  }
+  const std::filesystem::path out = o.out.empty() ? std::filesystem::path("dem-out") / input.file.stem() : std::filesystem::path(o.out);
+  if (!o.yade_script.empty()) {
+    const std::string script = dem::yade_run_script(input);
+    write_file_atomically(o.yade_script, [&](std::ostream& os) { os << script; });
+    std::cout << "YADE script: " << o.yade_script << " (run: yade -n -x " << o.yade_script << " OUT.csv)\n";
+    if (o.export_only) return 0;
+  } else if (o.export_only) {
+    throw InputError("--export-only", "needs --yade-script FILE");
+  }
+  dem::RunOptions options;
+  options.out = out;
+  options.command_line = "dtwire dem run " + o.file;
+  options.threads = o.threads;
+  options.quiet = o.quiet;
+  options.write_frames = !o.no_frames;
+  const dem::RunSummary s = dem::run_simulation(input, options);
+  std::cout << input.title << ": " << s.nodes << " nodes, " << s.links << " links, " << s.steps << " steps of "
+            << s.time_step << " s (critical " << s.critical_time_step << " s), " << s.wall_seconds << " s wall\n"
+            << "sag after settling " << 1000.0 * s.sag << " mm; peak force " << s.peak_force / 1000.0 << " kN at "
+            << 1000.0 * s.displacement_at_peak << " mm; broken links " << s.broken_links
+            << "; largest energy balance error " << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"
+            << "-> " << (out / "curve.csv").string() << ", " << (out / "results.h5").string() << "\n";
+  if (!o.plot.empty()) {
+    std::vector<std::string> arguments{o.plot, "tool_displacement", "tool_force", input.title, (out / "curve.csv").string()};
+    arguments.insert(arguments.end(), o.compare.begin(), o.compare.end());
+    run_plot_script("plot_curves.py", arguments);
+    std::cout << "plot: " << o.plot << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_dem_run_command(CLI::App& dem, CommandSet& commands) {
+  auto o = std::make_shared<RunCommandOptions>();
+  CLI::App* run = dem.add_subcommand("run", "Mesh-scale DEM run of a wire net (punch, cyclic punch, impact) from a TOML input");
+  run->add_option("file", o->file, "Run input (.toml, docs/dem_engine.md)")->required()->check(CLI::ExistingFile);
+  run->add_option("-o,--out", o->out, "Output directory (default dem-out/<input name>)");
+  run->add_option("--threads", o->threads, "Threads for the link and node updates (default: the input's)")
+      ->check(CLI::Range(1, 256));
+  run->add_option("--yade-script", o->yade_script, "Also write the run as a YADE script (WirePM punch only)");
+  run->add_flag("--export-only", o->export_only, "Write the YADE script and stop");
+  run->add_flag("--no-frames", o->no_frames, "No VTU frames");
+  run->add_option("--set-params", o->set_params,
+                  "TAG=FILE: take the sw, dt or selvedge law set from FILE (e.g. sw={out}/export/single_wire_parameters.json)");
+  run->add_option("--plot", o->plot, "Plot tool force against displacement (PNG)");
+  run->add_option("--compare", o->compare, "Other curve CSVs on the same plot")->check(CLI::ExistingFile);
+  run->add_flag("-q,--quiet", o->quiet, "No progress line");
+  commands.add(run, [o] { return run_dem_run(*o); });
+}
+
+}  // namespace dtwire::app

@@ -1,0 +1,94 @@
+#pragma once
+// `dtwire dem run FILE`: a validation run of the wire net (punch, cyclic punch, impact) from a
+// TOML input (format in docs/dem_engine.md), its outputs, and the same run as a YADE script.
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "dtwire/core/curve.hpp"
+#include "dtwire/dem/engine.hpp"
+#include "dtwire/dem/hex_mesh.hpp"
+
+namespace dtwire::dem {
+
+struct LinkSetInput {
+  std::string law;
+  ParameterMap parameters;  // from the parameter file (+ backbone)
+  std::vector<std::filesystem::path> files;
+};
+
+struct RunInput {
+  std::filesystem::path file;
+  std::string title;
+  std::string pattern = "8x10_2.7mm";
+  HexMeshSpec mesh;
+  std::map<LinkTag, LinkSetInput> link_sets;
+  unsigned pinned_sides = kLeft | kRight | kBottom | kTop;
+  double pretension_strain = 0.0;  // in-plane stretch of the whole net, imposed at t = 0
+  EngineOptions engine;
+  double settle_time = 0.0;  // [s] gravity only, before the tool moves
+  // Tool: "platter", "boulder" or "none".
+  std::string tool = "platter";
+  ToolContactLaw contact;
+  double platter_base_radius = 0.5, platter_height = 0.181;  // Pol et al. 2017 (STL of the PFC7 example)
+  double start_gap = 0.005;  // tool surface below the lowest node surface at the start [m]
+  double speed = 0.01;       // [m/s]
+  double travel = 0.7;       // platter travel [m]
+  std::vector<double> force_levels;  // cyclic punch: reverse at each force [N]
+  double unload_force = 100.0;       // cyclic punch: reload below this force [N]
+  double boulder_side = 0.30, boulder_corner_plane = 0.1875, boulder_mass = 44.5;
+  double duration = 0.0;  // [s] after settling (impact); 0: until the platter travel is done
+  double output_interval = 0.05;  // [s]
+  int frames = 20;
+};
+
+// Throws InputError naming file:line and the field for anything malformed or missing.
+RunInput read_run_input(const std::filesystem::path& file);
+
+// Replaces the parameter set of one link type ("sw", "dt", "selvedge") by the only set (or the
+// set `wire_type`) of `params`; the law is the file's, else the input's. Throws InputError
+// naming `option`.
+void override_link_set(RunInput& input, const std::string& tag, const std::filesystem::path& params,
+                       const std::string& option);
+
+// The mesh, node fixities and one law per link (reference length of WirePM links set to the
+// link's own length, as YADE does). Throws InputError naming the field.
+struct BuiltNet {
+  HexMesh mesh;
+  std::vector<EngineLink> links;
+};
+BuiltNet build_net(const RunInput& input);
+// The initial imposed positions (pre-tension stretch about the panel centre).
+std::vector<Vector3> pretensioned_positions(const RunInput& input, const HexMesh& mesh);
+
+struct RunOptions {
+  std::filesystem::path out;
+  std::string command_line;
+  int threads = 0;  // 0: the input's
+  long parallel_threshold = -1;  // -1: the engine's default (EngineOptions)
+  bool quiet = false;
+  bool write_frames = true;
+};
+
+struct RunSummary {
+  Curve history;
+  double peak_force = 0.0, displacement_at_peak = 0.0;  // [N], [m]
+  double largest_balance_error = 0.0;  // |error| / work on the mesh, largest over the run
+  double sag = 0.0;  // largest downward displacement after settling [m]
+  double time_step = 0.0, critical_time_step = 0.0;
+  std::size_t nodes = 0, links = 0, broken_links = 0;
+  long steps = 0;
+  double wall_seconds = 0.0;
+};
+
+// Runs and writes <out>/curve.csv, results.h5, histograms, frames; throws InputError for input
+// errors found while setting up (e.g. a tool inside the mesh), ComputationError otherwise.
+RunSummary run_simulation(const RunInput& input, const RunOptions& options);
+
+// Python source for `yade -n -x SCRIPT OUT.csv`: the same mesh, WirePM links, boundary,
+// pre-tension, gravity, damping, mass scale, time step and platter (facets) as the run.
+// Throws InputError if the run cannot be expressed in YADE (non-WirePM laws, selvedge, ...).
+std::string yade_run_script(const RunInput& input, int platter_segments = 64, int platter_rings = 16);
+
+}  // namespace dtwire::dem

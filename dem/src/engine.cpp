@@ -1,0 +1,474 @@
+// The explicit wire-net engine (see engine.hpp for the step and docs/dem_engine.md for the
+// energy bookkeeping and the stability bound).
+#include "dtwire/dem/engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "dtwire/dem/wirepm.hpp"
+
+namespace dtwire::dem {
+namespace {
+
+double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+// YADE's second-order local damping on one vector quantity (force or moment): each component
+// is reduced or amplified by alpha depending on whether it accelerates the predicted motion.
+Vector3 damping_force(const Vector3& force, const Vector3& velocity, double inverse_inertia, double dt,
+                      double alpha) {
+  Vector3 damped;
+  for (int i = 0; i < 3; ++i)
+    damped[i] = -alpha * force[i] * sign(force[i] * (velocity[i] + 0.5 * dt * force[i] * inverse_inertia));
+  return damped;
+}
+
+Vector3 initial_transverse(const Vector3& n) {
+  Vector3 t = n.cross(Vector3::UnitZ());
+  if (t.norm() < 1e-6) t = n.cross(Vector3::UnitX());
+  return t.normalized();
+}
+
+// Elastic stiffness of a law along each generalised component, probed on a copy.
+Vector6 probe_stiffness(const ContactLaw& law) {
+  Vector6 k = Vector6::Zero();
+  if (const auto* wire = dynamic_cast<const WirePmLaw*>(&law)) {
+    k[0] = wire->backbone().unloading_stiffness;
+    return k;
+  }
+  const double delta = 1e-9;
+  for (int c = 0; c < 6; ++c) {
+    std::unique_ptr<ContactLaw> copy = law.clone();
+    const Vector6 before = copy->forces();
+    Vector6 increment = Vector6::Zero();
+    increment[c] = delta;
+    copy->update(increment);
+    k[c] = std::abs(copy->forces()[c] - before[c]) / delta;
+  }
+  return k;
+}
+
+struct LinkState {
+  Vector3 transverse = Vector3::UnitX();  // local y axis t1
+  double length = 0.0;
+  Vector3 force_on_a = Vector3::Zero(), moment_on_a = Vector3::Zero(), moment_on_b = Vector3::Zero();
+  double elastic = 0.0, plastic = 0.0, damage = 0.0;
+  bool broken = false;
+};
+
+struct ToolState {
+  std::unique_ptr<Tool> tool;
+  std::vector<Vector3> shear, force_on_node, moment_on_node, contact_point;
+  std::vector<double> contact_energy, friction_increment;
+  std::vector<char> touching;
+  Vector3 previous_position = Vector3::Zero();
+  Vector3 force_on_tool = Vector3::Zero(), moment_on_tool = Vector3::Zero();
+  Vector3 previous_force_on_nodes = Vector3::Zero();
+  std::size_t contacts = 0;
+};
+
+}  // namespace
+
+struct Engine::State {
+  std::vector<NetNode> nodes;
+  std::vector<Vector3> x, x_previous, v, w;
+  std::vector<double> inverse_mass, inverse_inertia;  // inertial (scaled); 0 for held nodes
+  std::vector<Vector3> force, moment, damping_previous, damping_moment_previous, reaction_previous;
+  std::vector<double> node_damping_work, node_kinetic;
+  std::vector<EngineLink> links;
+  std::vector<LinkState> link_state;
+  std::vector<std::vector<std::pair<int, bool>>> node_links;  // (link, node is end a)
+  std::vector<ToolState> tools;
+  bool imposed_pending = false;
+  bool held_tools = false;
+};
+
+Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, EngineOptions options)
+    : s_(std::make_unique<State>()), options_(options) {
+  if (options_.local_damping < 0.0 || options_.local_damping >= 1.0)
+    throw std::invalid_argument("local damping must be in [0, 1)");
+  if (!(options_.mass_scale > 0.0)) throw std::invalid_argument("mass scale must be positive");
+  if (options_.threads < 1) throw std::invalid_argument("threads must be at least 1");
+  State& s = *s_;
+  s.nodes = std::move(nodes);
+  const std::size_t n = s.nodes.size();
+  s.x.resize(n);
+  s.v.assign(n, Vector3::Zero());
+  s.w.assign(n, Vector3::Zero());
+  s.inverse_mass.resize(n);
+  s.inverse_inertia.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const NetNode& node = s.nodes[i];
+    if (!(node.mass > 0.0) || !(node.rotational_inertia > 0.0) || !(node.radius >= 0.0))
+      throw std::invalid_argument("node " + std::to_string(i) + ": mass and rotational inertia must be positive");
+    s.x[i] = node.position;
+    const bool free = node.fixity == NodeFixity::Free;
+    s.inverse_mass[i] = free ? 1.0 / (node.mass * options_.mass_scale) : 0.0;
+    s.inverse_inertia[i] = free ? 1.0 / (node.rotational_inertia * options_.mass_scale) : 0.0;
+    if (node.fixity == NodeFixity::Guided) s.v[i] = node.guided_velocity;
+  }
+  s.x_previous = s.x;
+  s.force.assign(n, Vector3::Zero());
+  s.moment.assign(n, Vector3::Zero());
+  s.damping_previous.assign(n, Vector3::Zero());
+  s.damping_moment_previous.assign(n, Vector3::Zero());
+  s.reaction_previous.assign(n, Vector3::Zero());
+  s.node_damping_work.assign(n, 0.0);
+  s.node_kinetic.assign(n, 0.0);
+  s.links = std::move(links);
+  s.link_state.resize(s.links.size());
+  s.node_links.resize(n);
+  for (std::size_t l = 0; l < s.links.size(); ++l) {
+    const NetLink& link = s.links[l].link;
+    if (link.a < 0 || link.b < 0 || static_cast<std::size_t>(link.a) >= n || static_cast<std::size_t>(link.b) >= n ||
+        link.a == link.b)
+      throw std::invalid_argument("link " + std::to_string(l) + ": node index out of range");
+    if (!s.links[l].law) throw std::invalid_argument("link " + std::to_string(l) + ": no contact law");
+    const Vector3 d = s.x[link.b] - s.x[link.a];
+    if (!(d.norm() > 0.0)) throw std::invalid_argument("link " + std::to_string(l) + ": zero length");
+    s.link_state[l].length = d.norm();
+    s.link_state[l].transverse = initial_transverse(d / d.norm());
+    s.node_links[link.a].emplace_back(static_cast<int>(l), true);
+    s.node_links[link.b].emplace_back(static_cast<int>(l), false);
+  }
+  set_time_step(options_.time_step > 0.0 ? options_.time_step : options_.safety * critical_time_step());
+}
+
+Engine::~Engine() = default;
+Engine::Engine(Engine&&) noexcept = default;
+
+int Engine::add_tool(std::unique_ptr<Tool> tool) {
+  ToolState t;
+  const std::size_t n = s_->nodes.size();
+  t.previous_position = tool->position;
+  t.tool = std::move(tool);
+  t.shear.assign(n, Vector3::Zero());
+  t.force_on_node.assign(n, Vector3::Zero());
+  t.moment_on_node.assign(n, Vector3::Zero());
+  t.contact_point.assign(n, Vector3::Zero());
+  t.contact_energy.assign(n, 0.0);
+  t.friction_increment.assign(n, 0.0);
+  t.touching.assign(n, 0);
+  if (t.tool->mass > 0.0) energy_.boundary_work += 0.5 * t.tool->mass * t.tool->velocity.squaredNorm() +
+                                                   0.5 * t.tool->rotational_inertia * t.tool->angular_velocity.squaredNorm();
+  t.previous_force_on_nodes.setZero();
+  s_->tools.push_back(std::move(t));
+  const double critical = critical_time_step();
+  if (options_.time_step > 0.0) {
+    set_time_step(options_.time_step);
+  } else {
+    dt_ = std::min(dt_, options_.safety * critical);
+  }
+  return static_cast<int>(s_->tools.size()) - 1;
+}
+
+void Engine::place_tool(std::size_t i, const Vector3& position, const Vector3& velocity) {
+  ToolState& t = s_->tools.at(i);
+  if (t.tool->mass > 0.0)
+    energy_.boundary_work += 0.5 * t.tool->mass * (velocity.squaredNorm() - t.tool->velocity.squaredNorm());
+  t.tool->position = position;
+  t.previous_position = position;
+  t.tool->velocity = velocity;
+}
+
+void Engine::impose_positions(const std::vector<Vector3>& positions) {
+  if (positions.size() != s_->x.size()) throw std::invalid_argument("impose_positions: wrong node count");
+  if (steps_ != 0) throw std::logic_error("impose_positions: only before the first step");
+  s_->x = positions;
+  s_->imposed_pending = true;
+}
+
+double Engine::critical_time_step() const {
+  const State& s = *s_;
+  const std::size_t n = s.nodes.size();
+  // Upper bound of the largest eigenvalue of M^-1 K: the largest, over nodes, of the sum of the
+  // element bounds of the links and tool contacts at that node (docs/dem_engine.md).
+  std::vector<double> bound(n, 0.0);
+  for (std::size_t l = 0; l < s.links.size(); ++l) {
+    const NetLink& link = s.links[l].link;
+    const Vector6 k = probe_stiffness(*s.links[l].law);
+    const double im = s.inverse_mass[link.a] + s.inverse_mass[link.b];
+    const double ii = s.inverse_inertia[link.a] + s.inverse_inertia[link.b];
+    const double half = 0.5 * s.link_state[l].length;
+    const double element = k[0] * im + std::max(k[1], k[2]) * (im + half * half * ii) +
+                           std::max({k[3], k[4], k[5]}) * ii;
+    bound[link.a] += element;
+    bound[link.b] += element;
+  }
+  for (const ToolState& t : s.tools)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double r = s.nodes[i].radius;
+      bound[i] += t.tool->contact.normal_stiffness * s.inverse_mass[i] +
+                  t.tool->contact.shear_stiffness * (s.inverse_mass[i] + r * r * s.inverse_inertia[i]);
+    }
+  const double largest = n == 0 ? 0.0 : *std::max_element(bound.begin(), bound.end());
+  return largest > 0.0 ? 2.0 / std::sqrt(largest) : 1.0;
+}
+
+void Engine::set_time_step(double dt) {
+  if (!(dt > 0.0)) throw std::invalid_argument("time step must be positive");
+  const double critical = critical_time_step();
+  if (dt > critical && !options_.allow_above_critical)
+    throw std::invalid_argument("time step " + std::to_string(dt) + " s is above the critical step " +
+                                std::to_string(critical) + " s");
+  dt_ = dt;
+}
+
+void Engine::step() {
+  State& s = *s_;
+  const double dt = dt_;
+  const std::size_t n = s.nodes.size();
+  const std::size_t links = s.links.size();
+  const int threads = options_.threads;
+
+  // 1. Links: each writes only its own state.
+#pragma omp parallel for num_threads(threads) schedule(static) if (links >= options_.parallel_threshold)
+  for (std::size_t l = 0; l < links; ++l) {
+    LinkState& state = s.link_state[l];
+    ContactLaw& law = *s.links[l].law;
+    const NetLink& link = s.links[l].link;
+    const Vector3 d = s.x[link.b] - s.x[link.a];
+    const double length = d.norm();
+    const Vector3 axis = d / length;
+    Vector3 t1 = state.transverse - state.transverse.dot(axis) * axis;
+    t1.normalize();
+    const Vector3 t2 = axis.cross(t1);
+    const double half = 0.5 * length;
+    const Vector3 relative = (s.v[link.b] - half * s.w[link.b].cross(axis)) - (s.v[link.a] + half * s.w[link.a].cross(axis));
+    const Vector3 spin = s.w[link.b] - s.w[link.a];
+    Vector6 increment;
+    increment << length - state.length, dt * relative.dot(t1), dt * relative.dot(t2), dt * spin.dot(axis),
+        dt * spin.dot(t1), dt * spin.dot(t2);
+    if (s.imposed_pending) increment.tail<5>().setZero();
+    if (!state.broken) law.update(increment);
+    state.length = length;
+    state.transverse = t1;
+    state.broken = law.broken();
+    const Vector6 q = state.broken ? Vector6::Zero() : law.forces();
+    const Vector3 shear = q[1] * t1 + q[2] * t2;
+    const Vector3 couple = q[3] * axis + q[4] * t1 + q[5] * t2;
+    state.force_on_a = q[0] * axis + shear;
+    state.moment_on_a = couple + half * axis.cross(shear);
+    state.moment_on_b = -couple + half * axis.cross(shear);
+    const EnergyAccount e = law.energy();
+    state.elastic = e.elastic;
+    state.plastic = e.plastic;
+    state.damage = e.damage;
+  }
+
+  // 2. Tools: every node against every tool (each node writes its own slot).
+  for (ToolState& t : s.tools) {
+    const Tool& tool = *t.tool;
+    const double kn = tool.contact.normal_stiffness, ks = tool.contact.shear_stiffness, mu = tool.contact.friction;
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= options_.parallel_threshold)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double r = s.nodes[i].radius;
+      SurfacePoint surface;
+      t.force_on_node[i].setZero();
+      t.moment_on_node[i].setZero();
+      t.contact_energy[i] = 0.0;
+      t.friction_increment[i] = 0.0;
+      if (!tool.nearest(s.x[i], r, surface) || surface.distance >= r) {
+        t.shear[i].setZero();
+        t.touching[i] = 0;
+        continue;
+      }
+      t.touching[i] = 1;
+      const double penetration = r - surface.distance;
+      const Vector3& normal = surface.normal;
+      const Vector3 arm = -(r - 0.5 * penetration) * normal;  // node centre -> contact point
+      const Vector3 point = s.x[i] + arm;
+      const Vector3 slip_velocity = s.v[i] + s.w[i].cross(arm) - tool.velocity -
+                                    tool.angular_velocity.cross(point - tool.position);
+      const Vector3 tangential = slip_velocity - slip_velocity.dot(normal) * normal;
+      Vector3 shear = t.shear[i] - t.shear[i].dot(normal) * normal;
+      const double kept = t.shear[i].norm();
+      if (shear.norm() > 0.0) shear *= kept / shear.norm();
+      shear -= ks * dt * tangential;
+      const double normal_force = kn * penetration;
+      const double limit = mu * normal_force;
+      const double trial = shear.norm();
+      if (trial > limit) {
+        t.friction_increment[i] = limit * (trial - limit) / ks;
+        shear *= trial > 0.0 ? limit / trial : 0.0;
+      }
+      t.shear[i] = shear;
+      t.force_on_node[i] = normal_force * normal + shear;
+      t.moment_on_node[i] = arm.cross(shear);
+      t.contact_point[i] = point;
+      t.contact_energy[i] = 0.5 * normal_force * normal_force / kn + 0.5 * shear.squaredNorm() / ks;
+    }
+  }
+
+  // Works over x_{n-1} -> x_n (none for an imposed jump: its work is in the links).
+  const bool imposed = s.imposed_pending;
+  for (ToolState& t : s.tools) {
+    Vector3 on_nodes = Vector3::Zero(), on_tool_moment = Vector3::Zero();
+    std::size_t contacts = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!t.touching[i]) continue;
+      ++contacts;
+      on_nodes += t.force_on_node[i];
+      on_tool_moment += (t.contact_point[i] - t.tool->position).cross(-t.force_on_node[i]);
+      energy_.friction += t.friction_increment[i];
+    }
+    t.contacts = contacts;
+    if (t.tool->mass <= 0.0 && !imposed)
+      energy_.tool_work += 0.5 * (t.previous_force_on_nodes + on_nodes).dot(t.tool->position - t.previous_position);
+    t.previous_force_on_nodes = on_nodes;
+    t.force_on_tool = -on_nodes;
+    t.moment_on_tool = on_tool_moment;
+  }
+
+  // 3. Nodes: gather in a fixed order, damp, integrate.
+  const Vector3 gravity = options_.gravity;
+  const double alpha = options_.local_damping;
+#pragma omp parallel for num_threads(threads) schedule(static) if (n >= options_.parallel_threshold)
+  for (std::size_t i = 0; i < n; ++i) {
+    Vector3 f = s.nodes[i].mass * gravity, m = Vector3::Zero();
+    for (const auto& [l, is_a] : s.node_links[i]) {
+      const LinkState& state = s.link_state[l];
+      f += is_a ? state.force_on_a : Vector3(-state.force_on_a);
+      m += is_a ? state.moment_on_a : state.moment_on_b;
+    }
+    for (const ToolState& t : s.tools) {
+      f += t.force_on_node[i];
+      m += t.moment_on_node[i];
+    }
+    s.force[i] = f;
+    s.moment[i] = m;
+    const Vector3 dx = imposed ? Vector3::Zero() : Vector3(s.x[i] - s.x_previous[i]);
+    const NodeFixity fixity = s.nodes[i].fixity;
+    if (fixity != NodeFixity::Free) {
+      // The support supplies -f (held) or whatever keeps the prescribed velocity: its work.
+      s.node_damping_work[i] = 0.5 * (s.reaction_previous[i] - f).dot(dx);
+      s.reaction_previous[i] = -f;
+      s.node_kinetic[i] = fixity == NodeFixity::Guided ? 0.5 * s.nodes[i].mass * options_.mass_scale * s.v[i].squaredNorm() : 0.0;
+      continue;
+    }
+    const Vector3 fd = damping_force(f, s.v[i], s.inverse_mass[i], dt, alpha);
+    const Vector3 md = damping_force(m, s.w[i], s.inverse_inertia[i], dt, alpha);
+    const Vector3 dtheta = imposed ? Vector3::Zero() : Vector3(dt * s.w[i]);
+    s.node_damping_work[i] = -(0.5 * (s.damping_previous[i] + fd).dot(dx) +
+                               0.5 * (s.damping_moment_previous[i] + md).dot(dtheta));
+    s.damping_previous[i] = fd;
+    s.damping_moment_previous[i] = md;
+    const Vector3 v_old = s.v[i], w_old = s.w[i];
+    s.v[i] += dt * (f + fd) * s.inverse_mass[i];
+    s.w[i] += dt * (m + md) * s.inverse_inertia[i];
+    s.node_kinetic[i] = 0.5 * v_old.dot(s.v[i]) / s.inverse_mass[i] + 0.5 * w_old.dot(s.w[i]) / s.inverse_inertia[i];
+  }
+
+  // Serial sums (fixed order: deterministic).
+  double kinetic = 0.0, gravity_work = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    kinetic += s.node_kinetic[i];
+    if (s.nodes[i].fixity == NodeFixity::Free) {
+      energy_.damping += s.node_damping_work[i];
+      if (!imposed) gravity_work += s.nodes[i].mass * gravity.dot(s.x[i] - s.x_previous[i]);
+    } else {
+      energy_.boundary_work += s.node_damping_work[i];
+    }
+  }
+  energy_.gravity_work += gravity_work;
+  double elastic = 0.0, plastic = 0.0, damage = 0.0;
+  for (const LinkState& state : s.link_state) {
+    elastic += state.elastic;
+    plastic += state.plastic;
+    damage += state.damage;
+  }
+  if (imposed) energy_.boundary_work += elastic + plastic + damage;
+  energy_.link_elastic = elastic;
+  energy_.link_plastic = plastic;
+  energy_.link_damage = damage;
+  double contact = 0.0;
+  for (const ToolState& t : s.tools)
+    for (double e : t.contact_energy) contact += e;
+  energy_.contact_elastic = contact;
+
+  // Rigid tools: free bodies integrate their own motion, kinematic ones move as prescribed.
+  for (ToolState& t : s.tools) {
+    Tool& tool = *t.tool;
+    if (tool.mass > 0.0) {
+      const Vector3 weight = tool.mass * gravity;
+      if (!imposed) energy_.gravity_work += weight.dot(tool.position - t.previous_position);
+      const Vector3 v_old = tool.velocity, w_old = tool.angular_velocity;
+      tool.velocity += dt * (t.force_on_tool + weight) / tool.mass;
+      tool.angular_velocity += dt * t.moment_on_tool / tool.rotational_inertia;
+      kinetic += 0.5 * tool.mass * v_old.dot(tool.velocity) +
+                 0.5 * tool.rotational_inertia * w_old.dot(tool.angular_velocity);
+    }
+    t.previous_position = tool.position;
+    tool.position += dt * tool.velocity;
+    const double angle = dt * tool.angular_velocity.norm();
+    if (angle > 0.0)
+      tool.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(angle, tool.angular_velocity.normalized())) * tool.orientation;
+    tool.orientation.normalize();
+  }
+  energy_.kinetic = kinetic;
+
+  // Positions: free nodes by their velocity, guided nodes at their prescribed one.
+  for (std::size_t i = 0; i < n; ++i) {
+    s.x_previous[i] = s.x[i];
+    if (s.nodes[i].fixity == NodeFixity::Pinned) continue;
+    if (s.nodes[i].fixity == NodeFixity::Guided) s.v[i] = s.nodes[i].guided_velocity;
+    s.x[i] += dt * s.v[i];
+  }
+  s.imposed_pending = false;
+  time_ += dt;
+  ++steps_;
+}
+
+RelaxResult Engine::relax(double tolerance, long max_steps) {
+  RelaxResult result;
+  std::vector<Vector3> held;
+  for (ToolState& t : s_->tools) {
+    held.push_back(t.tool->velocity);
+    if (t.tool->mass <= 0.0) t.tool->velocity.setZero();
+  }
+  for (long k = 0; k < max_steps; ++k) {
+    step();
+    ++result.steps;
+    if (k % 10 != 9) continue;
+    double largest = 0.0, mean = 0.0;
+    for (std::size_t i = 0; i < s_->nodes.size(); ++i)
+      if (s_->nodes[i].fixity == NodeFixity::Free) largest = std::max(largest, s_->force[i].norm());
+    for (const LinkState& state : s_->link_state) mean += state.force_on_a.norm();
+    mean = s_->link_state.empty() ? 1.0 : mean / static_cast<double>(s_->link_state.size());
+    result.force_ratio = mean > 0.0 ? largest / mean : largest;
+    if (result.force_ratio < tolerance) {
+      result.converged = true;
+      break;
+    }
+  }
+  for (std::size_t j = 0; j < s_->tools.size(); ++j) s_->tools[j].tool->velocity = held[j];
+  return result;
+}
+
+std::size_t Engine::node_count() const { return s_->nodes.size(); }
+std::size_t Engine::link_count() const { return s_->links.size(); }
+const NetNode& Engine::node(std::size_t i) const { return s_->nodes.at(i); }
+Vector3 Engine::position(std::size_t i) const { return s_->x.at(i); }
+Vector3 Engine::velocity(std::size_t i) const { return s_->v.at(i); }
+Vector3 Engine::unbalanced_force(std::size_t i) const { return s_->force.at(i); }
+const EngineLink& Engine::link(std::size_t i) const { return s_->links.at(i); }
+Vector3 Engine::link_direction(std::size_t i) const {
+  const NetLink& link = s_->links.at(i).link;
+  return (s_->x[link.b] - s_->x[link.a]).normalized();
+}
+double Engine::link_length(std::size_t i) const {
+  const NetLink& link = s_->links.at(i).link;
+  return (s_->x[link.b] - s_->x[link.a]).norm();
+}
+std::size_t Engine::broken_links() const {
+  return static_cast<std::size_t>(std::count_if(s_->link_state.begin(), s_->link_state.end(),
+                                                [](const LinkState& state) { return state.broken; }));
+}
+Tool& Engine::tool(std::size_t i) { return *s_->tools.at(i).tool; }
+const Tool& Engine::tool(std::size_t i) const { return *s_->tools.at(i).tool; }
+std::size_t Engine::tool_count() const { return s_->tools.size(); }
+Vector3 Engine::tool_force(std::size_t i) const { return s_->tools.at(i).force_on_tool; }
+std::size_t Engine::tool_contacts(std::size_t i) const { return s_->tools.at(i).contacts; }
+
+}  // namespace dtwire::dem

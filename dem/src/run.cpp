@@ -1,0 +1,212 @@
+// `dtwire dem run`: builds the net and the tool from the input, runs the phases (settle under
+// gravity, then the punch, the cyclic punch or the impact), records the history.
+#include "dtwire/dem/run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+#include "dtwire/core/error.hpp"
+#include "dtwire/dem/wirepm.hpp"
+#include "run_outputs.hpp"
+
+namespace dtwire::dem {
+namespace {
+
+Vector3 panel_centre(const HexMesh& mesh) {
+  Vector3 low = Vector3::Constant(1e300), high = Vector3::Constant(-1e300);
+  for (const NetNode& node : mesh.net.nodes) {
+    low = low.cwiseMin(node.position);
+    high = high.cwiseMax(node.position);
+  }
+  return 0.5 * (low + high);
+}
+
+// The tool placed so that its surface is `gap` below (platter) or above (boulder) the nodes.
+std::unique_ptr<Tool> make_tool(const RunInput& in, const Vector3& centre, double lowest_z, double highest_z) {
+  const double r = in.mesh.node_radius;
+  std::unique_ptr<Tool> tool;
+  if (in.tool == "platter") {
+    tool = std::make_unique<SemiSpheroidPlatter>(in.platter_base_radius, in.platter_height);
+    tool->position = Vector3(centre.x(), centre.y(), lowest_z - r - in.start_gap - in.platter_height);
+  } else {
+    tool = std::make_unique<TruncatedCube>(in.boulder_side, in.boulder_corner_plane);
+    tool->position = Vector3(centre.x(), centre.y(), highest_z + r + in.start_gap + 0.5 * in.boulder_side);
+    tool->mass = in.boulder_mass;
+    tool->rotational_inertia = in.boulder_mass * in.boulder_side * in.boulder_side / 6.0;  // cube, isotropic
+    tool->velocity = Vector3(0.0, 0.0, -in.speed);
+  }
+  tool->contact = in.contact;
+  return tool;
+}
+
+void check_tool_clear(const RunInput& in, const Tool& tool, const Engine& engine) {
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < engine.node_count(); ++i) {
+    SurfacePoint surface;
+    if (tool.nearest(engine.position(i), engine.node(i).radius, surface) && surface.distance < engine.node(i).radius) ++inside;
+  }
+  if (inside > 0)
+    throw InputError(in.file.string(), "tool: the " + tool.kind() + " overlaps " + std::to_string(inside) +
+                                           " mesh nodes at the start; expected it clear of the mesh (tool.gap_m)");
+}
+
+}  // namespace
+
+BuiltNet build_net(const RunInput& in) {
+  BuiltNet built;
+  try {
+    built.mesh = generate_hex_mesh(in.mesh);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(in.file.string(), std::string("mesh.") + e.what());
+  }
+  for (std::size_t n = 0; n < built.mesh.net.nodes.size(); ++n)
+    if (built.mesh.sides[n] & in.pinned_sides) built.mesh.net.nodes[n].fixity = NodeFixity::Pinned;
+  for (std::size_t l = 0; l < built.mesh.net.links.size(); ++l) {
+    const NetLink& link = built.mesh.net.links[l];
+    const std::string tag = link_tag_name(link.tag);
+    const auto set = in.link_sets.find(link.tag);
+    if (set == in.link_sets.end()) throw InputError(in.file.string(), "links." + tag + ": missing: no law set for the " + tag + " links");
+    ParameterMap parameters = set->second.parameters;
+    if (set->second.law == "wirepm") {
+      // As YADE: the reference length is the link's own length; each link its own seed.
+      parameters["reference_length_m"] =
+          (built.mesh.net.nodes[link.b].position - built.mesh.net.nodes[link.a].position).norm();
+      if (!parameters.count("seed")) parameters["seed"] = static_cast<double>(l + 1);
+    }
+    try {
+      built.links.push_back({link, make_contact_law(set->second.law, parameters)});
+    } catch (const std::invalid_argument& e) {
+      throw InputError(in.file.string(), "links." + tag + ": " + e.what());
+    }
+  }
+  return built;
+}
+
+std::vector<Vector3> pretensioned_positions(const RunInput& in, const HexMesh& mesh) {
+  const Vector3 centre = panel_centre(mesh);
+  std::vector<Vector3> positions;
+  for (const NetNode& node : mesh.net.nodes) {
+    Vector3 p = node.position;
+    p.head<2>() = centre.head<2>() + (1.0 + in.pretension_strain) * (p - centre).head<2>();
+    positions.push_back(p);
+  }
+  return positions;
+}
+
+RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  BuiltNet built = build_net(in);
+  EngineOptions engine_options = in.engine;
+  if (options.threads > 0) engine_options.threads = options.threads;
+  if (options.parallel_threshold >= 0) engine_options.parallel_threshold = static_cast<std::size_t>(options.parallel_threshold);
+  const std::size_t node_count = built.mesh.net.nodes.size();
+  const HexMesh mesh_copy = [&] { HexMesh m = built.mesh; return m; }();
+  std::unique_ptr<Engine> engine;
+  const Vector3 centre = panel_centre(built.mesh);
+  try {
+    engine = std::make_unique<Engine>(built.mesh.net.nodes, std::move(built.links), engine_options);
+    if (in.tool != "none") {
+      // Parked far from the net while it settles; placed after settling.
+      std::unique_ptr<Tool> tool = make_tool(in, centre, 0.0, 0.0);
+      tool->position.z() += in.tool == "platter" ? -10.0 : 10.0;
+      tool->velocity.setZero();
+      engine->add_tool(std::move(tool));
+    }
+  } catch (const std::invalid_argument& e) {
+    throw InputError(in.file.string(), std::string(in.engine.time_step > 0.0 ? "dynamics.time_step_s: " : "") + e.what());
+  }
+  if (in.pretension_strain > 0.0) engine->impose_positions(pretensioned_positions(in, mesh_copy));
+
+  RunRecorder recorder(in, mesh_copy, options);
+  RunSummary summary;
+  summary.nodes = node_count;
+  summary.links = engine->link_count();
+  summary.time_step = engine->time_step();
+  summary.critical_time_step = engine->critical_time_step();
+
+  // Phase 1: settle under gravity (and the pre-tension).
+  while (engine->time() < in.settle_time) engine->step();
+  double lowest = std::numeric_limits<double>::max(), highest = -lowest;
+  for (std::size_t i = 0; i < node_count; ++i) {
+    lowest = std::min(lowest, engine->position(i).z());
+    highest = std::max(highest, engine->position(i).z());
+  }
+  summary.sag = -lowest;
+
+  // Phase 2: the tool.
+  Vector3 start = Vector3::Zero(), direction = Vector3::UnitZ();
+  if (in.tool != "none") {
+    std::unique_ptr<Tool> placed = make_tool(in, centre, lowest, highest);
+    engine->place_tool(0, placed->position, in.tool == "platter" ? Vector3(0.0, 0.0, in.speed) : placed->velocity);
+    check_tool_clear(in, engine->tool(0), *engine);
+    start = engine->tool(0).position;
+    direction = in.tool == "platter" ? Vector3(Vector3::UnitZ()) : Vector3(-Vector3::UnitZ());
+  }
+  const double t0 = engine->time();
+  const double expected = in.tool == "boulder" || in.tool == "none" ? in.duration : in.travel / in.speed;
+  std::size_t level = 0;
+  bool unloading = false;
+  double next_output = t0, next_frame = t0;
+  Vector3 impulse = Vector3::Zero();  // sum over the steps of the interval of the tool's force on the net
+  long steps_in_interval = 0;
+  const double frame_interval = in.frames > 0 ? expected / in.frames : 0.0;
+  auto last_progress = std::chrono::steady_clock::now();
+  for (;;) {
+    double displacement = 0.0, force = 0.0;
+    Vector3 tool_velocity = Vector3::Zero();
+    if (in.tool != "none") {
+      displacement = (engine->tool(0).position - start).dot(direction);
+      force = engine->tool_force(0).norm();
+      tool_velocity = engine->tool(0).velocity;
+    }
+    const double elapsed = engine->time() - t0;
+    const bool done = in.tool == "platter" ? (displacement >= in.travel || (!in.force_levels.empty() && level >= in.force_levels.size()))
+                                            : elapsed >= in.duration;
+    if (engine->time() >= next_output || done) {
+      // The mean over the interval: node-platter impacts make the instantaneous force chatter.
+      const Vector3 mean = steps_in_interval > 0 ? Vector3(impulse / steps_in_interval) : (in.tool == "none" ? Vector3(Vector3::Zero()) : Vector3(-engine->tool_force(0)));
+      recorder.record(*engine, elapsed, displacement, tool_velocity.dot(direction), mean);
+      impulse.setZero();
+      steps_in_interval = 0;
+      next_output += in.output_interval;
+    }
+    if (options.write_frames && frame_interval > 0.0 && (engine->time() >= next_frame || done)) {
+      recorder.frame(*engine, elapsed);
+      next_frame += frame_interval;
+    }
+    if (done) break;
+    // Cyclic punch: reverse at each force level, reload near zero force.
+    if (in.tool == "platter" && !in.force_levels.empty()) {
+      if (!unloading && force >= in.force_levels[level]) unloading = true;
+      else if (unloading && force <= in.unload_force) {
+        unloading = false;
+        ++level;
+      }
+      engine->tool(0).velocity = Vector3(0.0, 0.0, unloading ? -in.speed : in.speed);
+    }
+    engine->step();
+    if (in.tool != "none") {
+      impulse -= engine->tool_force(0);
+      ++steps_in_interval;
+    }
+    if (!std::isfinite(engine->energy().kinetic))
+      throw ComputationError("dem run: the state became non-finite at t = " + std::to_string(engine->time()) + " s");
+    const auto now = std::chrono::steady_clock::now();
+    if (!options.quiet && now - last_progress > std::chrono::seconds(2)) {
+      last_progress = now;
+      std::cerr << "\r[dem run] t " << elapsed << " s of " << expected << ", tool " << 1000.0 * displacement << " mm, "
+                << force / 1000.0 << " kN, broken " << engine->broken_links() << ", "
+                << static_cast<int>(100.0 * std::min(1.0, elapsed / expected)) << " %   " << std::flush;
+    }
+  }
+  if (!options.quiet) std::cerr << "\n";
+  summary.steps = engine->steps_taken();
+  summary.broken_links = engine->broken_links();
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  recorder.finish(*engine, summary);
+  return summary;
+}
+
+}  // namespace dtwire::dem

@@ -1,0 +1,254 @@
+// Reading a `dtwire dem run` TOML input (format: docs/dem_engine.md). Every error names
+// file:line and the field.
+#include <toml++/toml.h>
+
+#include <set>
+
+#include "dtwire/core/error.hpp"
+#include "dtwire/dem/export_params.hpp"
+#include "dtwire/dem/run.hpp"
+
+namespace dtwire::dem {
+namespace {
+
+class Reader {
+ public:
+  explicit Reader(std::filesystem::path file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const toml::node* node, const std::string& field, const std::string& message) const {
+    if (node) {
+      const auto& where = node->source().begin;
+      throw InputError(file_.string(), static_cast<int>(where.line), static_cast<int>(where.column), field + ": " + message);
+    }
+    throw InputError(file_.string(), field + ": " + message);
+  }
+
+  void check_keys(const toml::table& table, const std::string& prefix, const std::set<std::string>& allowed) const {
+    for (const auto& [key, node] : table)
+      if (!allowed.count(std::string(key.str())))
+        fail(&node, prefix + std::string(key.str()), "unknown key");
+  }
+
+  double number(const toml::table& table, const std::string& prefix, const std::string& key, double fallback,
+                bool positive = false) const {
+    const toml::node* node = table.get(key);
+    if (!node) return fallback;
+    const auto value = node->value<double>();
+    if (!value || !std::isfinite(*value)) fail(node, prefix + key, "expected a number");
+    if (positive && !(*value > 0.0)) fail(node, prefix + key, "expected a positive number");
+    return *value;
+  }
+  double required_number(const toml::table& table, const std::string& prefix, const std::string& key, bool positive) const {
+    if (!table.get(key)) fail(&table, prefix + key, "missing");
+    return number(table, prefix, key, 0.0, positive);
+  }
+  std::string text(const toml::table& table, const std::string& prefix, const std::string& key,
+                   const std::string& fallback) const {
+    const toml::node* node = table.get(key);
+    if (!node) return fallback;
+    const auto value = node->value<std::string>();
+    if (!value) fail(node, prefix + key, "expected a string");
+    return *value;
+  }
+  bool boolean(const toml::table& table, const std::string& prefix, const std::string& key, bool fallback) const {
+    const toml::node* node = table.get(key);
+    if (!node) return fallback;
+    const auto value = node->value<bool>();
+    if (!value) fail(node, prefix + key, "expected true or false");
+    return *value;
+  }
+  const toml::table* table(const toml::table& parent, const std::string& key) const {
+    const toml::node* node = parent.get(key);
+    if (!node) return nullptr;
+    if (!node->is_table()) fail(node, key, "expected a table");
+    return node->as_table();
+  }
+  std::filesystem::path path(const std::string& relative) const {
+    const std::filesystem::path p(relative);
+    return p.is_absolute() ? p : file_.parent_path() / p;
+  }
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  std::filesystem::path file_;
+};
+
+LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std::string& prefix) {
+  r.check_keys(table, prefix, {"law", "params", "wire_type", "backbone"});
+  LinkSetInput set;
+  const std::string params = r.text(table, prefix, "params", "");
+  if (params.empty()) r.fail(&table, prefix + "params", "missing: the parameter file (.json) of this link type");
+  const std::filesystem::path params_path = r.path(params);
+  if (!std::filesystem::exists(params_path)) r.fail(table.get("params"), prefix + "params", "no such file " + params_path.string());
+  const std::vector<ParameterSet> sets = read_parameter_file(params_path);
+  ParameterSet chosen = select_wire_type(sets, r.text(table, prefix, "wire_type", ""), params_path);
+  set.files.push_back(params_path);
+  const std::string backbone = r.text(table, prefix, "backbone", "");
+  if (!backbone.empty()) {
+    const std::filesystem::path backbone_path = r.path(backbone);
+    if (!std::filesystem::exists(backbone_path))
+      r.fail(table.get("backbone"), prefix + "backbone", "no such file " + backbone_path.string());
+    add_backbone(chosen, read_backbone_csv(backbone_path));
+    set.files.push_back(backbone_path);
+  }
+  set.law = r.text(table, prefix, "law", chosen.law);
+  if (set.law.empty()) r.fail(&table, prefix + "law", "missing (the parameter file names no law)");
+  if (!chosen.law.empty() && chosen.law != set.law)
+    r.fail(table.get("law"), prefix + "law", "'" + set.law + "' but the parameter file says '" + chosen.law + "'");
+  set.parameters = chosen.map();
+  try {
+    ParameterMap probe = set.parameters;
+    if (set.law == "wirepm" && !probe.count("reference_length_m")) probe["reference_length_m"] = 0.05;
+    make_contact_law(set.law, probe);  // validates names and values now, not in the middle of a run
+  } catch (const std::invalid_argument& e) {
+    r.fail(&table, prefix + "params", e.what());
+  }
+  return set;
+}
+
+}  // namespace
+
+RunInput read_run_input(const std::filesystem::path& file) {
+  toml::table root;
+  try {
+    root = toml::parse_file(file.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError(file.string(), static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column),
+                     std::string(e.description()));
+  }
+  Reader r(file);
+  RunInput in;
+  in.file = file;
+  r.check_keys(root, "", {"title", "mesh", "links", "boundary", "dynamics", "tool", "output"});
+  in.title = r.text(root, "", "title", file.stem().string());
+
+  const toml::table* mesh = r.table(root, "mesh");
+  if (!mesh) r.fail(nullptr, "mesh", "missing table");
+  r.check_keys(*mesh, "mesh.", {"pattern", "width_m", "height_m", "selvedge", "node_mass_kg", "node_radius_m"});
+  in.pattern = r.text(*mesh, "mesh.", "pattern", in.pattern);
+  try {
+    in.mesh = hex_pattern(in.pattern);
+  } catch (const std::invalid_argument& e) {
+    r.fail(mesh->get("pattern"), "mesh.pattern", e.what());
+  }
+  in.mesh.width = r.required_number(*mesh, "mesh.", "width_m", true);
+  in.mesh.height = r.required_number(*mesh, "mesh.", "height_m", true);
+  in.mesh.selvedge = r.boolean(*mesh, "mesh.", "selvedge", false);
+  in.mesh.node_mass = r.number(*mesh, "mesh.", "node_mass_kg", 0.0);
+  in.mesh.node_radius = r.number(*mesh, "mesh.", "node_radius_m", in.mesh.node_radius, true);
+  if (in.mesh.width < in.mesh.opening_width)
+    r.fail(mesh->get("width_m"), "mesh.width_m", "the panel is narrower than one mesh opening (" +
+                                                      std::to_string(in.mesh.opening_width) + " m)");
+  if (in.mesh.height < in.mesh.opening_height)
+    r.fail(mesh->get("height_m"), "mesh.height_m", "the panel is shorter than one mesh opening (" +
+                                                        std::to_string(in.mesh.opening_height) + " m)");
+
+  const toml::table* links = r.table(root, "links");
+  if (!links) r.fail(nullptr, "links", "missing table: a law set for each link type (links.sw, links.dt)");
+  r.check_keys(*links, "links.", {"sw", "dt", "selvedge"});
+  const std::vector<std::pair<LinkTag, std::string>> tags = {
+      {LinkTag::SingleWire, "sw"}, {LinkTag::DoubleTwist, "dt"}, {LinkTag::Selvedge, "selvedge"}};
+  for (const auto& [tag, name] : tags) {
+    const toml::table* set = r.table(*links, name);
+    if (!set) {
+      if (tag == LinkTag::Selvedge && !in.mesh.selvedge) continue;
+      r.fail(links, "links." + name, "missing: no law set for the " + name + " links");
+    }
+    in.link_sets[tag] = read_link_set(r, *set, "links." + name + ".");
+  }
+
+  if (const toml::table* boundary = r.table(root, "boundary")) {
+    r.check_keys(*boundary, "boundary.", {"pinned", "pretension_strain"});
+    if (const toml::node* pinned = boundary->get("pinned")) {
+      const toml::array* sides = pinned->as_array();
+      if (!sides) r.fail(pinned, "boundary.pinned", "expected an array of sides");
+      in.pinned_sides = 0;
+      for (const toml::node& side : *sides) {
+        const auto name = side.value<std::string>();
+        const std::map<std::string, unsigned> known = {{"left", kLeft}, {"right", kRight}, {"bottom", kBottom}, {"top", kTop}};
+        if (!name || !known.count(*name)) r.fail(&side, "boundary.pinned", "expected left, right, bottom or top");
+        in.pinned_sides |= known.at(*name);
+      }
+    }
+    in.pretension_strain = r.number(*boundary, "boundary.", "pretension_strain", 0.0);
+    if (in.pretension_strain < 0.0 || in.pretension_strain > 0.05)
+      r.fail(boundary->get("pretension_strain"), "boundary.pretension_strain", "expected a value in [0, 0.05]");
+  }
+
+  if (const toml::table* dynamics = r.table(root, "dynamics")) {
+    r.check_keys(*dynamics, "dynamics.", {"gravity_m_per_s2", "local_damping", "mass_scale", "safety", "time_step_s",
+                                          "threads", "settle_s"});
+    in.engine.gravity = Vector3(0.0, 0.0, -r.number(*dynamics, "dynamics.", "gravity_m_per_s2", 9.81));
+    in.engine.local_damping = r.number(*dynamics, "dynamics.", "local_damping", 0.0);
+    if (in.engine.local_damping < 0.0 || in.engine.local_damping >= 1.0)
+      r.fail(dynamics->get("local_damping"), "dynamics.local_damping", "expected a value in [0, 1)");
+    in.engine.mass_scale = r.number(*dynamics, "dynamics.", "mass_scale", 1.0, true);
+    in.engine.safety = r.number(*dynamics, "dynamics.", "safety", 0.5, true);
+    if (in.engine.safety > 1.0) r.fail(dynamics->get("safety"), "dynamics.safety", "expected a value in (0, 1]");
+    in.engine.time_step = r.number(*dynamics, "dynamics.", "time_step_s", 0.0, true);
+    in.engine.threads = static_cast<int>(r.number(*dynamics, "dynamics.", "threads", 1.0, true));
+    in.settle_time = r.number(*dynamics, "dynamics.", "settle_s", 0.0);
+  }
+
+  const toml::table* tool = r.table(root, "tool");
+  if (!tool) r.fail(nullptr, "tool", "missing table");
+  r.check_keys(*tool, "tool.", {"kind", "base_radius_m", "height_m", "gap_m", "speed_m_per_s", "travel_m",
+                                "force_levels_N", "unload_force_N", "side_m", "corner_plane_m", "mass_kg",
+                                "duration_s", "kn_N_per_m", "ks_N_per_m", "friction"});
+  in.tool = r.text(*tool, "tool.", "kind", "platter");
+  if (in.tool != "platter" && in.tool != "boulder" && in.tool != "none")
+    r.fail(tool->get("kind"), "tool.kind", "expected platter, boulder or none");
+  in.platter_base_radius = r.number(*tool, "tool.", "base_radius_m", in.platter_base_radius, true);
+  in.platter_height = r.number(*tool, "tool.", "height_m", in.platter_height, true);
+  in.start_gap = r.number(*tool, "tool.", "gap_m", in.start_gap);
+  if (in.start_gap < 0.0)
+    r.fail(tool->get("gap_m"), "tool.gap_m", "negative: the tool would start inside the mesh");
+  in.speed = r.number(*tool, "tool.", "speed_m_per_s", in.speed, true);
+  in.travel = r.number(*tool, "tool.", "travel_m", in.travel, true);
+  if (const toml::node* levels = tool->get("force_levels_N")) {
+    const toml::array* array = levels->as_array();
+    if (!array) r.fail(levels, "tool.force_levels_N", "expected an array of forces");
+    for (const toml::node& level : *array) {
+      const auto value = level.value<double>();
+      if (!value || !(*value > 0.0)) r.fail(&level, "tool.force_levels_N", "expected positive forces");
+      in.force_levels.push_back(*value);
+    }
+  }
+  in.unload_force = r.number(*tool, "tool.", "unload_force_N", in.unload_force, true);
+  in.boulder_side = r.number(*tool, "tool.", "side_m", in.boulder_side, true);
+  in.boulder_corner_plane = r.number(*tool, "tool.", "corner_plane_m", 0.625 * in.boulder_side * 1.0, true);
+  in.boulder_mass = r.number(*tool, "tool.", "mass_kg", in.boulder_mass, true);
+  in.duration = r.number(*tool, "tool.", "duration_s", 0.0);
+  in.contact.normal_stiffness = r.number(*tool, "tool.", "kn_N_per_m", 1e9, true);
+  in.contact.shear_stiffness = r.number(*tool, "tool.", "ks_N_per_m", 1e8, true);
+  in.contact.friction = r.number(*tool, "tool.", "friction", 0.2);
+  if (in.tool == "boulder" && !(in.duration > 0.0))
+    r.fail(tool, "tool.duration_s", "missing: an impact runs for a given time");
+
+  if (const toml::table* output = r.table(root, "output")) {
+    r.check_keys(*output, "output.", {"interval_s", "frames"});
+    in.output_interval = r.number(*output, "output.", "interval_s", in.output_interval, true);
+    in.frames = static_cast<int>(r.number(*output, "output.", "frames", in.frames));
+  }
+  return in;
+}
+
+void override_link_set(RunInput& input, const std::string& tag, const std::filesystem::path& params,
+                       const std::string& option) {
+  const std::map<std::string, LinkTag> tags = {{"sw", LinkTag::SingleWire}, {"dt", LinkTag::DoubleTwist}, {"selvedge", LinkTag::Selvedge}};
+  if (!tags.count(tag)) throw InputError(option, "expected sw, dt or selvedge before '=', found '" + tag + "'");
+  LinkSetInput& set = input.link_sets[tags.at(tag)];
+  const std::vector<ParameterSet> sets = read_parameter_file(params);
+  const ParameterSet chosen = select_wire_type(sets, sets.size() == 1 ? "" : (tag == "dt" ? "double_twist" : "single_wire"), params);
+  if (!chosen.law.empty()) set.law = chosen.law;
+  if (set.law.empty()) throw InputError(option, params.string() + " names no law and the input has none for " + tag);
+  set.parameters = chosen.map();
+  set.files = {params};
+  try {
+    make_contact_law(set.law, set.parameters);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(option, e.what());
+  }
+}
+
+}  // namespace dtwire::dem

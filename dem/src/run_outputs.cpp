@@ -1,0 +1,216 @@
+// The files of a `dtwire dem run` (see run_outputs.hpp).
+#include "run_outputs.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+
+#include "dtwire/core/atomic_file.hpp"
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/provenance.hpp"
+#include "dtwire/core/results_store.hpp"
+
+namespace dtwire::dem {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+const std::vector<std::pair<std::string, std::string>>& history_columns() {
+  static const std::vector<std::pair<std::string, std::string>> columns = {
+      {"time", "s"}, {"tool_displacement", "mm"}, {"tool_velocity", "mps"}, {"tool_force", "N"},
+      {"tool_force_z", "N"}, {"tool_force_instant", "N"}, {"tool_contacts", "1"}, {"kinetic_energy", "J"}, {"link_elastic_energy", "J"},
+      {"contact_elastic_energy", "J"}, {"plastic_work", "J"}, {"damage_work", "J"}, {"friction_work", "J"},
+      {"damping_work", "J"}, {"gravity_work", "J"}, {"tool_work", "J"}, {"boundary_work", "J"},
+      {"balance_error", "J"}, {"broken_links", "1"}, {"largest_link_force", "N"}};
+  return columns;
+}
+
+Curve histogram(const std::string& quantity, const std::string& unit, double width, const std::vector<double>& at_peak,
+                const std::vector<double>& at_end) {
+  double top = width;
+  for (double v : at_peak) top = std::max(top, v);
+  for (double v : at_end) top = std::max(top, v);
+  const std::size_t bins = static_cast<std::size_t>(std::ceil(top / width)) + 1;
+  std::vector<double> low(bins), high(bins), peak(bins, 0.0), end(bins, 0.0);
+  for (std::size_t b = 0; b < bins; ++b) {
+    low[b] = b * width;
+    high[b] = (b + 1) * width;
+  }
+  for (double v : at_peak) peak[std::min(bins - 1, static_cast<std::size_t>(v / width))] += 1.0;
+  for (double v : at_end) end[std::min(bins - 1, static_cast<std::size_t>(v / width))] += 1.0;
+  Curve curve;
+  curve.add_channel(quantity + "_low", *find_unit(unit), low);
+  curve.add_channel(quantity + "_high", *find_unit(unit), high);
+  curve.add_channel("count_at_peak", *find_unit("1"), peak);
+  curve.add_channel("count_at_end", *find_unit("1"), end);
+  return curve;
+}
+
+}  // namespace
+
+RunRecorder::RunRecorder(const RunInput& input, const HexMesh& mesh, const RunOptions& options)
+    : input_(input), mesh_(mesh), options_(options), columns_(history_columns().size()) {
+  // Every SW link leaving a DT end, paired with that twist.
+  std::vector<int> twist_at(mesh.net.nodes.size(), -1);
+  for (std::size_t l = 0; l < mesh.net.links.size(); ++l)
+    if (mesh.net.links[l].tag == LinkTag::DoubleTwist) {
+      twist_at[mesh.net.links[l].a] = static_cast<int>(l);
+      twist_at[mesh.net.links[l].b] = static_cast<int>(l);
+    }
+  for (std::size_t l = 0; l < mesh.net.links.size(); ++l) {
+    const NetLink& link = mesh.net.links[l];
+    if (link.tag != LinkTag::SingleWire) continue;
+    for (int node : {link.a, link.b})
+      if (twist_at[node] >= 0) angle_pairs_.push_back({twist_at[node], static_cast<int>(l), node});
+  }
+  std::filesystem::create_directories(options_.out);
+  if (options_.write_frames) std::filesystem::create_directories(options_.out / "frames");
+}
+
+RunRecorder::Snapshot RunRecorder::snapshot(const Engine& engine) const {
+  Snapshot s;
+  for (std::size_t l = 0; l < engine.link_count(); ++l)
+    if (!engine.link(l).law->broken()) s.link_forces.push_back(std::abs(engine.link(l).law->forces()[0]));
+  for (const AnglePair& pair : angle_pairs_) {
+    if (engine.link(pair.twist).law->broken() || engine.link(pair.wire).law->broken()) continue;
+    const NetLink& twist = engine.link(pair.twist).link;
+    const NetLink& wire = engine.link(pair.wire).link;
+    // Twist axis pointing out of the twist at the shared node; the wire leaving that node.
+    const Vector3 axis = (twist.b == pair.node ? 1.0 : -1.0) * engine.link_direction(pair.twist);
+    const Vector3 along = (wire.a == pair.node ? 1.0 : -1.0) * engine.link_direction(pair.wire);
+    s.pulling_angles.push_back(std::acos(std::clamp(axis.dot(along), -1.0, 1.0)) * 180.0 / kPi);
+  }
+  return s;
+}
+
+void RunRecorder::record(const Engine& engine, double time, double displacement, double velocity, const Vector3& mean_force) {
+  const EnergySplit& e = engine.energy();
+  const Vector3 instant = engine.tool_count() ? Vector3(-engine.tool_force(0)) : Vector3::Zero();
+  double largest = 0.0;
+  for (std::size_t l = 0; l < engine.link_count(); ++l)
+    if (!engine.link(l).law->broken()) largest = std::max(largest, std::abs(engine.link(l).law->forces()[0]));
+  const double contacts = engine.tool_count() ? static_cast<double>(engine.tool_contacts(0)) : 0.0;
+  // The force the tool exerts on the net (minus the net's force on the tool), interval mean.
+  const std::vector<double> row = {time, 1000.0 * displacement, velocity, mean_force.norm(), mean_force.z(), instant.norm(), contacts,
+                                   e.kinetic, e.link_elastic, e.contact_elastic, e.link_plastic, e.link_damage,
+                                   e.friction, e.damping, e.gravity_work, e.tool_work, e.boundary_work,
+                                   e.balance_error(), static_cast<double>(engine.broken_links()), largest};
+  for (std::size_t c = 0; c < row.size(); ++c) columns_[c].push_back(row[c]);
+  if (mean_force.norm() > peak_force_) {
+    peak_force_ = mean_force.norm();
+    at_peak_ = snapshot(engine);
+  }
+}
+
+void RunRecorder::frame(const Engine& engine, double time) {
+  const std::string name = "net_" + std::to_string(frames_.size()) + ".vtu";
+  write_file_atomically(options_.out / "frames" / name, [&](std::ostream& os) {
+    const std::size_t n = engine.node_count(), m = engine.link_count();
+    os << std::setprecision(9);
+    os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+       << "<UnstructuredGrid><Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << m << "\">\n"
+       << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vector3 p = engine.position(i);
+      os << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+    }
+    os << "</DataArray></Points>\n<Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for (std::size_t l = 0; l < m; ++l) os << engine.link(l).link.a << ' ' << engine.link(l).link.b << '\n';
+    os << "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for (std::size_t l = 0; l < m; ++l) os << 2 * (l + 1) << '\n';
+    os << "</DataArray><DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (std::size_t l = 0; l < m; ++l) os << "3\n";
+    os << "</DataArray></Cells>\n<PointData><DataArray type=\"Float64\" Name=\"displacement_m\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vector3 d = engine.position(i) - mesh_.net.nodes[i].position;
+      os << d.x() << ' ' << d.y() << ' ' << d.z() << '\n';
+    }
+    os << "</DataArray></PointData>\n<CellData><DataArray type=\"Float64\" Name=\"axial_force_N\" format=\"ascii\">\n";
+    for (std::size_t l = 0; l < m; ++l)
+      os << (engine.link(l).law->broken() ? 0.0 : engine.link(l).law->forces()[0]) << '\n';
+    os << "</DataArray><DataArray type=\"Int32\" Name=\"tag\" format=\"ascii\">\n";
+    for (std::size_t l = 0; l < m; ++l) os << static_cast<int>(engine.link(l).link.tag) << '\n';
+    os << "</DataArray><DataArray type=\"Int32\" Name=\"broken\" format=\"ascii\">\n";
+    for (std::size_t l = 0; l < m; ++l) os << (engine.link(l).law->broken() ? 1 : 0) << '\n';
+    os << "</DataArray></CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  });
+  frames_.emplace_back(time, name);
+}
+
+void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
+  Curve history;
+  const auto& names = history_columns();
+  for (std::size_t c = 0; c < names.size(); ++c) history.add_channel(names[c].first, *find_unit(names[c].second), columns_[c]);
+  history.set_metadata("source", "dtwire dem run " + input_.file.filename().string());
+  history.set_metadata("title", input_.title);
+  history.set_metadata("tool", input_.tool);
+  history.set_metadata("time_step_s", format_number(summary.time_step));
+  history.set_metadata("sag_after_settling_mm", format_number(1000.0 * summary.sag));
+
+  // Figures: peak, displacement at the peak, the largest balance error against the work on the
+  // mesh (rows after 5 % of the final work, so that round-off on a tiny work does not count).
+  const auto& force = columns_[3];
+  const auto& displacement = columns_[1];
+  std::size_t peak = 0;
+  for (std::size_t r = 0; r < force.size(); ++r)
+    if (force[r] > force[peak]) peak = r;
+  summary.peak_force = force.empty() ? 0.0 : force[peak];
+  summary.displacement_at_peak = force.empty() ? 0.0 : displacement[peak] / 1000.0;
+  const auto& gravity = columns_[14];
+  const auto& tool = columns_[15];
+  const auto& boundary = columns_[16];
+  const auto& error = columns_[17];
+  auto work = [&](std::size_t r) { return std::abs(gravity[r]) + std::abs(tool[r]) + std::abs(boundary[r]); };
+  const double final_work = force.empty() ? 0.0 : work(force.size() - 1);
+  for (std::size_t r = 0; r < force.size(); ++r)
+    if (work(r) > 0.05 * final_work && work(r) > 0.0)
+      summary.largest_balance_error = std::max(summary.largest_balance_error, std::abs(error[r]) / work(r));
+  summary.history = history;
+
+  write_csv(history, options_.out / "curve.csv");
+  const Snapshot at_end = snapshot(engine);
+  if (peak_force_ < 0.0) at_peak_ = at_end;
+  const Curve forces = histogram("link_force", "N", 250.0, at_peak_.link_forces, at_end.link_forces);
+  const Curve angles = histogram("pulling_angle", "deg", 5.0, at_peak_.pulling_angles, at_end.pulling_angles);
+  write_csv(forces, options_.out / "link_force_histogram.csv");
+  write_csv(angles, options_.out / "pulling_angle_histogram.csv");
+
+  if (!frames_.empty()) {
+    write_file_atomically(options_.out / "net.pvd", [&](std::ostream& os) {
+      os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+      for (const auto& [time, name] : frames_)
+        os << "  <DataSet timestep=\"" << format_number(time) << "\" file=\"frames/" << name << "\"/>\n";
+      os << "</Collection>\n</VTKFile>\n";
+    });
+  }
+
+  Results results;
+  results.curves = {{"history", history}, {"link_force_histogram", forces}, {"pulling_angle_histogram", angles}};
+  auto parameter = [&](const std::string& name, double value, const std::string& unit) {
+    results.parameters.push_back({name, value, unit, std::nullopt});
+  };
+  parameter("time_step_s", summary.time_step, "s");
+  parameter("critical_time_step_s", summary.critical_time_step, "s");
+  parameter("mass_scale", input_.engine.mass_scale, "1");
+  parameter("local_damping", input_.engine.local_damping, "1");
+  parameter("nodes", static_cast<double>(summary.nodes), "1");
+  parameter("links", static_cast<double>(summary.links), "1");
+  parameter("mass_per_area_kg_per_m2", mesh_.mass_per_area, "1");
+  parameter("sag_after_settling_m", summary.sag, "m");
+  parameter("peak_force_N", summary.peak_force, "N");
+  parameter("displacement_at_peak_m", summary.displacement_at_peak, "m");
+  parameter("largest_balance_error_1", summary.largest_balance_error, "1");
+  parameter("broken_links", static_cast<double>(summary.broken_links), "1");
+  results.fields.emplace_back("frames", frames_.empty() ? "none" : "net.pvd (frames/net_<k>.vtu)");
+  results.fields.emplace_back("title", input_.title);
+  std::vector<std::filesystem::path> inputs{input_.file};
+  for (const auto& [tag, set] : input_.link_sets)
+    for (const auto& file : set.files)
+      if (std::find(inputs.begin(), inputs.end(), file) == inputs.end()) inputs.push_back(file);  // one entry per file
+  results.provenance = make_provenance(options_.command_line, inputs);
+  write_results(results, options_.out / "results.h5");
+}
+
+}  // namespace dtwire::dem

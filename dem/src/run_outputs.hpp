@@ -1,0 +1,40 @@
+#pragma once
+// What `dtwire dem run` writes (docs/dem_engine.md): curve.csv and results.h5 (history with
+// provenance), link_force_histogram.csv and pulling_angle_histogram.csv (at the peak force and
+// at the end), frames/net_<k>.vtu + net.pvd for ParaView.
+#include <vector>
+
+#include "dtwire/dem/run.hpp"
+
+namespace dtwire::dem {
+
+class RunRecorder {
+ public:
+  RunRecorder(const RunInput& input, const HexMesh& mesh, const RunOptions& options);
+  // `mean_force`: the tool's force on the net averaged over the output interval.
+  void record(const Engine& engine, double time, double displacement, double velocity, const Vector3& mean_force);
+  void frame(const Engine& engine, double time);
+  // Writes every file; fills summary's curve figures.
+  void finish(const Engine& engine, RunSummary& summary);
+
+ private:
+  struct Snapshot {
+    std::vector<double> link_forces, pulling_angles;
+  };
+  Snapshot snapshot(const Engine& engine) const;
+
+  const RunInput& input_;
+  const HexMesh& mesh_;
+  RunOptions options_;
+  std::vector<std::vector<double>> columns_;
+  Snapshot at_peak_;
+  double peak_force_ = -1.0;
+  std::vector<std::pair<double, std::string>> frames_;
+  // DT pulling angle pairs: (DT link, SW link, the DT end node they share).
+  struct AnglePair {
+    int twist, wire, node;
+  };
+  std::vector<AnglePair> angle_pairs_;
+};
+
+}  // namespace dtwire::dem

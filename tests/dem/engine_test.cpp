@@ -1,0 +1,209 @@
+// The engine against closed forms: a one-link oscillator (period, stability limit of the
+// central-difference scheme), a hanging chain and a taut string under gravity (static
+// solutions by dynamic relaxation), energy balance, 1 vs 2 threads.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dtwire/dem/engine.hpp"
+
+namespace dtwire::dem {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+NetNode make_node(const Vector3& p, double mass, NodeFixity fixity = NodeFixity::Free) {
+  NetNode node;
+  node.position = p;
+  node.mass = mass;
+  node.rotational_inertia = 0.4 * mass * 0.0054 * 0.0054;
+  node.radius = 0.0054;
+  node.fixity = fixity;
+  return node;
+}
+
+// A linear elastic bond: k_n = E A / L.
+std::unique_ptr<ContactLaw> elastic_bond(double length) {
+  return make_contact_law("parallel_bond", {{"E_Pa", 2e11}, {"diameter_m", 0.0027}, {"length_m", length}});
+}
+double elastic_bond_stiffness(double length) { return 2e11 * kPi * 0.0027 * 0.0027 / 4.0 / length; }
+
+// Tension-only wire (WirePM), elastic up to 250 MPa: no shear or bending stiffness (a string).
+std::unique_ptr<ContactLaw> string_link(double length) {
+  return make_contact_law("wirepm", {{"reference_length_m", length}, {"diameter_m", 0.0027},
+                                     {"backbone_0_strain_1", 0.0019230769}, {"backbone_0_stress_Pa", 2.5e8},
+                                     {"backbone_1_strain_1", 0.0192}, {"backbone_1_stress_Pa", 3.2195e8}});
+}
+double string_stiffness(double length) { return 2.5e8 / 0.0019230769 * kPi * 0.0027 * 0.0027 / 4.0 / length; }
+
+struct Oscillator {
+  double mass = 0.0043, length = 0.05, k = elastic_bond_stiffness(0.05);
+  double omega() const { return std::sqrt(k / mass); }
+  Engine make(double dt, double amplitude) const {
+    std::vector<NetNode> nodes{make_node(Vector3::Zero(), mass, NodeFixity::Pinned), make_node(Vector3(length, 0, 0), mass)};
+    std::vector<EngineLink> links;
+    links.push_back({{0, 1, LinkTag::SingleWire}, elastic_bond(length)});
+    EngineOptions options;
+    options.gravity = Vector3::Zero();
+    options.time_step = dt;
+    options.allow_above_critical = true;
+    Engine engine(nodes, std::move(links), options);
+    engine.impose_positions({Vector3::Zero(), Vector3(length + amplitude, 0, 0)});
+    return engine;
+  }
+};
+
+TEST(DemEngine, OneLinkOscillatorPeriodMatchesClosedForm) {
+  const Oscillator o;
+  const double period = 2.0 * kPi / o.omega();
+  Engine engine = o.make(period / 2000.0, 1e-5);
+  // Upward zero crossings of the displacement, interpolated.
+  std::vector<double> crossings;
+  double previous = 1e-5;
+  double previous_time = 0.0;
+  while (engine.time() < 5.2 * period) {
+    engine.step();
+    const double u = engine.position(1).x() - o.length;
+    if (previous < 0.0 && u >= 0.0) crossings.push_back(previous_time + (engine.time() - previous_time) * (-previous) / (u - previous));
+    previous = u;
+    previous_time = engine.time();
+  }
+  ASSERT_GE(crossings.size(), 4u);
+  const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  // Central differences shorten the period by (omega dt)^2 / 24 = 4e-7 here; tolerance 1e-4.
+  EXPECT_NEAR(measured / period, 1.0, 1e-4);
+}
+
+TEST(DemEngine, CriticalStepIsAConservativeBoundAndTheSchemeDivergesAboveTheTrueOne) {
+  const Oscillator o;
+  const double exact = 2.0 / o.omega();  // central-difference limit of the axial mode
+  const Engine probe = o.make(exact / 10.0, 1e-6);
+  // The engine's bound includes the bond's shear-rotation modes: at most the axial limit.
+  EXPECT_LE(probe.critical_time_step(), exact * (1.0 + 1e-12));
+  EXPECT_GT(probe.critical_time_step(), 0.05 * exact);
+  auto largest_amplitude = [&](double dt) {
+    Engine engine = o.make(dt, 1e-6);
+    double largest = 0.0;
+    for (int k = 0; k < 400; ++k) {
+      engine.step();
+      largest = std::max(largest, std::abs(engine.position(1).x() - o.length));
+    }
+    return largest;
+  };
+  EXPECT_LT(largest_amplitude(0.98 * exact), 1e-5);  // bounded (amplification ~5 near the limit)
+  EXPECT_GT(largest_amplitude(1.02 * exact), 1e-3);  // grows without bound
+  // An explicit step above the bound is refused.
+  EngineOptions options;
+  options.time_step = 1.01 * probe.critical_time_step();
+  std::vector<NetNode> nodes{make_node(Vector3::Zero(), o.mass, NodeFixity::Pinned), make_node(Vector3(o.length, 0, 0), o.mass)};
+  std::vector<EngineLink> links;
+  links.push_back({{0, 1, LinkTag::SingleWire}, elastic_bond(o.length)});
+  EXPECT_THROW(Engine(nodes, std::move(links), options), std::invalid_argument);
+}
+
+TEST(DemEngine, HangingChainStaticExtensionMatchesClosedForm) {
+  const int count = 8;  // node 0 pinned, nodes 1..7 hang below
+  const double mass = 0.004, spacing = 0.05, g = 9.81;
+  std::vector<NetNode> nodes;
+  std::vector<EngineLink> links;
+  for (int j = 0; j < count; ++j) nodes.push_back(make_node(Vector3(0, 0, -j * spacing), mass, j == 0 ? NodeFixity::Pinned : NodeFixity::Free));
+  for (int j = 1; j < count; ++j) links.push_back({{j - 1, j, LinkTag::SingleWire}, string_link(spacing)});
+  EngineOptions options;
+  options.local_damping = 0.7;
+  Engine engine(nodes, std::move(links), options);
+  const RelaxResult relaxed = engine.relax(1e-7, 2000000);
+  ASSERT_TRUE(relaxed.converged) << relaxed.force_ratio;
+  const double k = string_stiffness(spacing);
+  double expected = 0.0;
+  for (int j = 1; j < count; ++j) {
+    expected += (count - j) * mass * g / k;  // link j carries the nodes j..count-1
+    const double stretch = -engine.position(j).z() - j * spacing;
+    EXPECT_NEAR(stretch / expected, 1.0, 1e-5) << "node " << j;  // elastic; relaxed to 1e-7 of the link force
+  }
+}
+
+TEST(DemEngine, TautStringUnderGravityTakesTheDiscreteParabola) {
+  const int segments = 10;
+  const double mass = 0.004, spacing = 0.05, g = 9.81, strain = 2e-4;
+  std::vector<NetNode> nodes;
+  std::vector<EngineLink> links;
+  for (int j = 0; j <= segments; ++j)
+    nodes.push_back(make_node(Vector3(j * spacing, 0, 0), mass, j == 0 || j == segments ? NodeFixity::Pinned : NodeFixity::Free));
+  for (int j = 1; j <= segments; ++j) links.push_back({{j - 1, j, LinkTag::SingleWire}, string_link(spacing)});
+  EngineOptions options;
+  options.local_damping = 0.7;
+  Engine engine(nodes, std::move(links), options);
+  std::vector<Vector3> stretched;
+  for (int j = 0; j <= segments; ++j) stretched.emplace_back(j * spacing * (1.0 + strain), 0, 0);
+  engine.impose_positions(stretched);
+  ASSERT_TRUE(engine.relax(1e-10, 4000000).converged);
+  // Horizontal tension H from the first link; equal loads m g at equal spacing a give
+  // z_j = -(a m g / 2H) j (N - j) (a funicular polygon on a parabola).
+  const double a = spacing * (1.0 + strain);
+  const Vector3 first = engine.position(1) - engine.position(0);
+  const double H = engine.link(0).law->forces()[0] * first.x() / first.norm();
+  for (int j = 1; j < segments; ++j) {
+    const double expected = -(a * mass * g / (2.0 * H)) * j * (segments - j);
+    EXPECT_NEAR(engine.position(j).z() / expected, 1.0, 2e-3) << "node " << j;  // horizontal spacing changes by ~1e-4
+  }
+}
+
+// The hanging chain released from a 1 % stretch (beyond yield, links snapping slack): gravity,
+// plastic work and damping all act. The balance error is the time discretisation's (trapezoidal
+// link work across the slack and yield kinks against the law's exact energy): second order.
+double chain_balance_error(double safety, EnergySplit* split = nullptr) {
+  const int count = 6;
+  std::vector<NetNode> nodes;
+  std::vector<EngineLink> links;
+  std::vector<Vector3> imposed;
+  for (int j = 0; j < count; ++j) {
+    nodes.push_back(make_node(Vector3(0, 0, -j * 0.05), 0.004, j == 0 ? NodeFixity::Pinned : NodeFixity::Free));
+    imposed.emplace_back(0.001 * j, 0, -j * 0.0505);
+  }
+  for (int j = 1; j < count; ++j) links.push_back({{j - 1, j, LinkTag::SingleWire}, string_link(0.05)});
+  EngineOptions options;
+  options.local_damping = 0.3;
+  options.safety = safety;
+  Engine engine(nodes, std::move(links), options);
+  engine.impose_positions(imposed);
+  const double duration = 20000 * engine.critical_time_step() * 0.5;
+  while (engine.time() < duration) engine.step();
+  if (split) *split = engine.energy();
+  return std::abs(engine.energy().balance_error()) / engine.energy().external();
+}
+
+TEST(DemEngine, EnergyBalanceClosesWithGravityDampingAndPlasticity) {
+  EnergySplit split;
+  const double coarse = chain_balance_error(0.5, &split);
+  EXPECT_GT(split.link_plastic, 0.0);
+  EXPECT_GT(split.damping, 0.0);
+  EXPECT_LT(coarse, 0.01);  // measured 0.30 % on this violent snap-back (issue: < 2 %)
+  EXPECT_LT(chain_balance_error(0.1), 0.1 * coarse);  // second order: 25x smaller expected
+}
+
+TEST(DemEngine, OneAndTwoThreadsGiveIdenticalStates) {
+  auto run = [](int threads) {
+    std::vector<NetNode> nodes;
+    std::vector<EngineLink> links;
+    const int n = 40;
+    for (int j = 0; j <= n; ++j)
+      nodes.push_back(make_node(Vector3(j * 0.05, 0.01 * std::sin(j), 0), 0.004, j == 0 || j == n ? NodeFixity::Pinned : NodeFixity::Free));
+    for (int j = 1; j <= n; ++j)
+      links.push_back({{j - 1, j, LinkTag::SingleWire}, j % 2 ? elastic_bond(0.05) : string_link(0.05)});
+    EngineOptions options;
+    options.local_damping = 0.2;
+    options.threads = threads;
+    options.parallel_threshold = 0;
+    Engine engine(nodes, std::move(links), options);
+    for (int k = 0; k < 3000; ++k) engine.step();
+    std::vector<double> state;
+    for (int j = 0; j <= n; ++j)
+      for (int c = 0; c < 3; ++c) state.push_back(engine.position(j)[c]);
+    state.push_back(engine.energy().balance_error());
+    return state;
+  };
+  EXPECT_EQ(run(1), run(2));  // bit-identical
+}
+
+}  // namespace
+}  // namespace dtwire::dem

@@ -1,0 +1,131 @@
+// `dtwire dem run`: the input's bad-input errors (exit 2 naming the field), a small punch run
+// through the library (outputs, energy balance, 1 vs 2 threads) and the YADE export.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/dem/run.hpp"
+
+namespace dtwire::dem {
+namespace {
+
+const std::string kData = std::string(DTWIRE_SOURCE_DIR) + "/experiments/data/";
+
+std::string small_punch(const std::string& replace_from = "", const std::string& replace_to = "") {
+  std::string text = "title = \"small punch\"\n"
+                     "[mesh]\npattern = \"8x10_2.7mm\"\nwidth_m = 0.6\nheight_m = 0.6\n"
+                     "[links.sw]\nparams = \"" + kData + "wirepm_sw_2.7mm.json\"\nbackbone = \"" + kData + "sw_2.7mm_dem_backbone.csv\"\n"
+                     "[links.dt]\nparams = \"" + kData + "wirepm_dt_2.7mm.json\"\nbackbone = \"" + kData + "sw_2.7mm_dem_backbone.csv\"\n"
+                     "[boundary]\npinned = [\"left\", \"right\", \"bottom\", \"top\"]\npretension_strain = 1e-4\n"
+                     "[dynamics]\nlocal_damping = 0.5\nmass_scale = 100\nsettle_s = 0.05\n"
+                     "[tool]\nkind = \"platter\"\nbase_radius_m = 0.12\nheight_m = 0.05\ngap_m = 0.002\n"
+                     "speed_m_per_s = 0.5\ntravel_m = 0.2\n"
+                     "[output]\ninterval_s = 0.01\nframes = 2\n";
+  if (!replace_from.empty()) {
+    const auto at = text.find(replace_from);
+    if (at == std::string::npos) throw std::logic_error("test text has no " + replace_from);
+    text.replace(at, replace_from.size(), replace_to);
+  }
+  return text;
+}
+
+std::filesystem::path write_input(const std::string& name, const std::string& text) {
+  const auto dir = std::filesystem::temp_directory_path() / "dtwire_dem_run_test";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+struct Outcome {
+  int code;
+  std::string output;
+};
+Outcome run_cli(const std::string& arguments) {
+  const std::string command = std::string(DTWIRE_EXECUTABLE) + " " + arguments + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  char buffer[512];
+  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
+  const int status = pclose(pipe);
+  return {WEXITSTATUS(status), output};
+}
+
+void expect_bad_input(const std::string& name, const std::string& text, const std::string& field) {
+  const auto path = write_input(name, text);
+  const Outcome o = run_cli("dem run " + path.string() + " -q -o " + (path.parent_path() / "out_bad").string());
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find(field), std::string::npos) << o.output;
+}
+
+TEST(DemRun, BadInputsExitTwoNamingTheField) {
+  expect_bad_input("small.toml", small_punch("width_m = 0.6", "width_m = 0.05"), "mesh.width_m");
+  expect_bad_input("nodt.toml", small_punch("[links.dt]", "[links.xx]"), "links.xx");
+  {
+    std::string text = small_punch();
+    const auto at = text.find("[links.dt]");
+    const auto end = text.find("[boundary]");
+    text.erase(at, end - at);
+    expect_bad_input("nodt2.toml", text, "links.dt");
+  }
+  expect_bad_input("dt.toml", small_punch("settle_s = 0.05", "settle_s = 0.05\ntime_step_s = 0.01"), "dynamics.time_step_s");
+  expect_bad_input("inside.toml", small_punch("gap_m = 0.002", "gap_m = -0.01"), "tool.gap_m");
+  expect_bad_input("law.toml", small_punch("[links.sw]\n", "[links.sw]\nlaw = \"thesis\"\n"), "links.sw.law");
+  expect_bad_input("key.toml", small_punch("frames = 2", "frames = 2\nfrmes = 3"), "output.frmes");
+}
+
+TEST(DemRun, SmallPunchWritesItsFilesBalancesEnergyAndIsThreadIndependent) {
+  const auto path = write_input("punch.toml", small_punch());
+  RunOptions options;
+  options.quiet = true;
+  options.out = path.parent_path() / "out1";
+  options.threads = 1;
+  const RunSummary one = run_simulation(read_run_input(path), options);
+  // 1 vs 2 threads (threading forced on this small net) on the first 6 cm of the push.
+  const auto short_path = write_input("short.toml", small_punch("travel_m = 0.2", "travel_m = 0.06"));
+  options.write_frames = false;
+  options.parallel_threshold = 0;
+  options.out = path.parent_path() / "out_serial";
+  const RunSummary serial = run_simulation(read_run_input(short_path), options);
+  options.out = path.parent_path() / "out_threads";
+  options.threads = 2;
+  const RunSummary threaded = run_simulation(read_run_input(short_path), options);
+  EXPECT_TRUE(serial.history == threaded.history);  // the same curve, bit for bit
+  EXPECT_GT(serial.peak_force, 100.0);
+  EXPECT_GT(one.peak_force, 100.0);
+  EXPECT_LT(one.largest_balance_error, 0.02);  // issue: < 2 % of the work on the mesh
+  for (const char* file : {"curve.csv", "results.h5", "link_force_histogram.csv", "pulling_angle_histogram.csv", "net.pvd",
+                           "frames/net_0.vtu"})
+    EXPECT_TRUE(std::filesystem::exists(path.parent_path() / "out1" / file)) << file;
+  const Curve curve = read_csv(path.parent_path() / "out1" / "curve.csv");
+  for (const char* column : {"tool_displacement", "tool_velocity", "tool_force", "plastic_work", "damping_work", "balance_error"})
+    EXPECT_TRUE(curve.has(column)) << column;
+  // Pulling angles start at atan(40/30) = 53.13 deg; the histogram counts every SW-DT pair.
+  const Curve angles = read_csv(path.parent_path() / "out1" / "pulling_angle_histogram.csv");
+  double total = 0.0;
+  for (double c : angles.channel("count_at_end").values) total += c;
+  EXPECT_GT(total, 0.0);
+}
+
+TEST(DemRun, YadeScriptOfThePunchNamesTheSameNet) {
+  const auto path = write_input("punch_yade.toml", small_punch());
+  const RunInput input = read_run_input(path);
+  const std::string script = yade_run_script(input);
+  const BuiltNet built = build_net(input);
+  EXPECT_NE(script.find("if links != " + std::to_string(built.mesh.net.links.size())), std::string::npos);
+  EXPECT_NE(script.find("Law2_ScGeom_WirePhys_WirePM"), std::string::npos);
+  // Macro-element sets cannot go to YADE.
+  std::string macro = small_punch("[links.sw]\n", "[links.sw]\nlaw = \"thesis\"\nwire_type = \"single_wire\"\n");
+  macro.replace(macro.find(kData + "wirepm_sw_2.7mm.json"), (kData + "wirepm_sw_2.7mm.json").size(),
+                kData + "macroelement_thesis_params.json");
+  macro.erase(macro.find("backbone = \"" + kData + "sw_2.7mm_dem_backbone.csv\"\n"),
+              ("backbone = \"" + kData + "sw_2.7mm_dem_backbone.csv\"\n").size());
+  EXPECT_THROW(yade_run_script(read_run_input(write_input("macro.toml", macro))), InputError);
+}
+
+}  // namespace
+}  // namespace dtwire::dem
