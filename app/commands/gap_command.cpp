@@ -87,7 +87,7 @@ std::string png_for_mode(const std::string& png, const std::string& mode) {
 void add_gap_command(CLI::App& root, CommandSet& commands) {
   struct Options {
     std::vector<std::string> labs, sims, models, modes;
-    std::string lab_summary, effects, json, plot, report;
+    std::string lab_summary, effects, columns, json, plot, report;
     std::size_t model_runs = 3;
     double gauge_mm = 0.0, area_mm2 = 0.0;
     bool no_pairs = false;
@@ -133,6 +133,9 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
                       "Gauge length turning strain_1 columns into displacement");
   command->add_option("--area-mm2", options->area_mm2,
                       "Cross-section turning stress columns into force");
+  command->add_option("--columns", options->columns,
+                      "Displacement and force channels of every curve, names without unit "
+                      "(e.g. tool_displacement,tool_force of a DEM run); default displacement,force");
   command->add_flag("--no-pairs", options->no_pairs, "Do not try pairs of effects");
   command->add_option("--seed", options->seed, "Seed of the multi-start fits")->capture_default_str();
 
@@ -155,6 +158,13 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     gap::CurveConversion conversion;
     if (options->gauge_mm > 0) conversion.gauge_length_m = options->gauge_mm * 1e-3;
     if (options->area_mm2 > 0) conversion.area_m2 = options->area_mm2 * 1e-6;
+    if (!options->columns.empty()) {
+      const auto names = split_names(options->columns);
+      if (names.size() != 2)
+        throw InputError("--columns", "expected two channel names, displacement,force; found '" + options->columns + "'");
+      conversion.displacement_channel = names[0];
+      conversion.force_channel = names[1];
+    }
     // One FE model per .prm (its runs cached across the modes that use it).
     std::map<std::string, FeModel> fe_models;
     std::vector<RemoveWhenEmpty> cleanup;

@@ -48,6 +48,17 @@ ForceCurve load_force_curve(const std::filesystem::path& path, const CurveConver
   const Curve curve = read_csv(path);
   ForceCurve out;
   out.source = file;
+  if (!conversion.displacement_channel.empty()) {
+    const Channel* displacement = curve.find(conversion.displacement_channel);
+    const Channel* force = curve.find(conversion.force_channel);
+    if (!displacement || !force)
+      throw InputError(file, "expected the channels " + conversion.displacement_channel + " and " +
+                                 conversion.force_channel + " (--columns), found: " + columns_of(curve));
+    out.u = checked_si(*displacement, Dimension::Length, file, "a displacement");
+    out.f = checked_si(*force, Dimension::Force, file, "a force");
+    validate_force_curve(out);
+    return out;
+  }
   const Channel* displacement = find_any(curve, {"displacement", "elongation", "extension"});
   const Channel* force = curve.find("force");
   if (displacement && force) {

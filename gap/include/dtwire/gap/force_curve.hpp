@@ -19,6 +19,9 @@ struct ForceCurve {
 struct CurveConversion {
   std::optional<double> gauge_length_m;  // turns strain_1 into displacement
   std::optional<double> area_m2;         // turns stress into force
+  // Channels (names without unit) to read instead of displacement and force, e.g. a DEM run's
+  // tool_displacement and tool_force; empty: the default names.
+  std::string displacement_channel, force_channel;
 };
 
 // Reads a curve CSV: a length channel named displacement (or elongation/extension) and a
