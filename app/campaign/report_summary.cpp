@@ -282,6 +282,27 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   if (by_kind[Kind::Validation].empty())
     md << "No mesh-scale DEM step (`dtwire dem run`, e.g. the punch test against the thesis figures) in this "
           "campaign yet.\n\n";
+  bool table_started = false;
+  for (const StepFiles& s : by_kind[Kind::Validation])
+    for (const auto& file : s.files) {
+      if (file.filename() != "summary.json") continue;
+      const json run = read_json(file);
+      if (!run.is_object()) continue;
+      if (!table_started)
+        md << "| step | peak force (kN) | displacement at peak (mm) | sag after settling (mm) | broken links | "
+              "largest energy balance error (% of work) |\n|---|---|---|---|---|---|\n";
+      table_started = true;
+      const auto number = [&](const char* key, double scale) {
+        std::ostringstream o;
+        o << std::fixed << std::setprecision(1) << run.value(key, 0.0) * scale;
+        return o.str();
+      };
+      md << "| " << link(s.step->name, s.step->name) << " | " << number("peak_force_N", 1e-3) << " | "
+         << number("displacement_at_peak_mm", 1.0) << " | " << number("sag_after_settling_mm", 1.0) << " | "
+         << run.value("broken_links", 0) << " of " << run.value("links", 0) << " | "
+         << number("largest_balance_error_percent", 1.0) << " |\n";
+    }
+  if (table_started) md << "\n";
   for (const StepFiles& s : by_kind[Kind::Validation]) {
     md << "From step " << link(s.step->name, s.step->name) << ": " << s.step->description << "\n\n";
     if (s.files.empty()) md << "(no results: " << status_name(s.outcome->status) << ")\n\n";

@@ -32,6 +32,8 @@ int run_dem_run(const RunCommandOptions& o) {
     const auto equals = entry.find('=');
     if (equals == std::string::npos) throw InputError("--set-params", "expected TAG=FILE, found '" + entry + "'");
     dem::override_link_set(input, entry.substr(0, equals), entry.substr(equals + 1), "--set-params");
+    // The title labels the curve in plots: say which sets were swapped in.
+    input.title += " [" + entry.substr(0, equals) + ": " + std::filesystem::path(entry.substr(equals + 1)).filename().string() + "]";
   }
   const std::filesystem::path out = o.out.empty() ? std::filesystem::path("dem-out") / input.file.stem() : std::filesystem::path(o.out);
   if (!o.yade_script.empty()) {
@@ -45,6 +47,8 @@ int run_dem_run(const RunCommandOptions& o) {
   dem::RunOptions options;
   options.out = out;
   options.command_line = "dtwire dem run " + o.file;
+  for (const std::string& entry : o.set_params) options.command_line += " --set-params " + entry;
+  if (o.threads > 0) options.command_line += " --threads " + std::to_string(o.threads);
   options.threads = o.threads;
   options.quiet = o.quiet;
   options.write_frames = !o.no_frames;

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <iomanip>
 
+#include <nlohmann/json.hpp>
+
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
@@ -145,6 +147,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   for (std::size_t c = 0; c < names.size(); ++c) history.add_channel(names[c].first, *find_unit(names[c].second), columns_[c]);
   history.set_metadata("source", "dtwire dem run " + input_.file.filename().string());
   history.set_metadata("title", input_.title);
+  history.set_metadata("label", input_.title);  // the legend entry of plots
   history.set_metadata("tool", input_.tool);
   history.set_metadata("time_step_s", format_number(summary.time_step));
   history.set_metadata("sag_after_settling_mm", format_number(1000.0 * summary.sag));
@@ -211,6 +214,21 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
       if (std::find(inputs.begin(), inputs.end(), file) == inputs.end()) inputs.push_back(file);  // one entry per file
   results.provenance = make_provenance(options_.command_line, inputs);
   write_results(results, options_.out / "results.h5");
+
+  // The headline figures for reports (the campaign's validation table), SI-named columns.
+  const nlohmann::json headline = {
+      {"title", input_.title},
+      {"peak_force_N", summary.peak_force},
+      {"displacement_at_peak_mm", 1000.0 * summary.displacement_at_peak},
+      {"sag_after_settling_mm", 1000.0 * summary.sag},
+      {"broken_links", summary.broken_links},
+      {"links", summary.links},
+      {"largest_balance_error_percent", 100.0 * summary.largest_balance_error},
+      {"time_step_s", summary.time_step},
+      {"steps", summary.steps},
+      {"wall_seconds", summary.wall_seconds},
+      {"command", options_.command_line}};
+  write_file_atomically(options_.out / "summary.json", [&](std::ostream& os) { os << headline.dump(2) << "\n"; });
 }
 
 }  // namespace dtwire::dem
