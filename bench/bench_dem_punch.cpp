@@ -18,23 +18,12 @@ double seconds_since(Clock::time_point start) { return std::chrono::duration<dou
 
 // Steps of the punch net with every link on `law`, the platter pushing up at 0.5 m/s; returns
 // link updates per second on one thread.
-double link_updates_per_second(RunInput input, const std::string& law, const std::string& file, long steps) {
-  for (auto& [tag, set] : input.link_sets) {
-    if (law == "wirepm") continue;
-    set.law = law;
-    const std::string wire_type = tag == LinkTag::DoubleTwist ? "double_twist" : "single_wire";
-    set.parameters.clear();
-    // The thesis calibrations, converted to macro3d by the factory (thesis keys).
-    const std::map<std::string, ParameterMap> sets = {
-        {"single_wire", {{"D_m", 0.0027}, {"EA_N", 1.6e7}, {"EI_Nm2_per_deg_convention", 0.122}, {"N0_N", 2750},
-                         {"Nult_N", 3200}, {"Nc_N", 1650}, {"m_f", 0.0285}, {"beta_f", 0.195}, {"k_F", 2.39e4},
-                         {"k_M", 1.12e3}, {"m_g", 4.78}, {"alpha_g", 0.5}, {"beta_g", 0.0358}, {"W1_J", 9.21},
-                         {"W2_J", 140.01}, {"alpha_d", 2.7}, {"slide_a", 0.0}, {"slide_b", 0.0}}},
-        {"double_twist", {{"D_m", 0.0027}, {"EA_N", 1.71e6}, {"EI_Nm2_per_deg_convention", 0.257}, {"N0_N", 2800},
-                          {"Nult_N", 5000}, {"Nc_N", 1650}, {"m_f", 0.0354}, {"beta_f", 0.0642}, {"k_F", 4.08e3},
-                          {"k_M", 0.112}, {"m_g", 6.32e-4}, {"alpha_g", 0.5}, {"beta_g", 3.24}, {"W1_J", 10.5},
-                          {"W2_J", 202.278}, {"alpha_d", 2.75}, {"slide_a", 0.0}, {"slide_b", 0.0}}}};
-    set.parameters = sets.at(wire_type);
+double link_updates_per_second(RunInput input, const std::string& law, long steps) {
+  if (law != "wirepm") {
+    // The thesis calibrations (PFC7 example), run by the macro3d law (it reads thesis keys).
+    const std::filesystem::path thesis = std::string(DTWIRE_SOURCE_DIR) + "/experiments/data/macroelement_thesis_params.json";
+    for (const std::string tag : {"sw", "dt"}) override_link_set(input, tag, thesis, "bench");
+    for (auto& [tag, set] : input.link_sets) set.law = law;
   }
   input.engine.threads = 1;
   BuiltNet built = build_net(input);
@@ -82,7 +71,7 @@ int main(int argc, char** argv) {
     std::cout << "YADE not installed: no comparison\n";
   }
   for (const std::string law : {"wirepm", "macro3d"})
-    std::cout << law << ": " << link_updates_per_second(input, law, file, 2000) / 1e6
+    std::cout << law << ": " << link_updates_per_second(input, law, 2000) / 1e6
               << " M link updates per second per core (whole engine step)\n";
   return 0;
 }
