@@ -1,11 +1,13 @@
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 
 #include "../cli.hpp"
 #include "../commands.hpp"
 #include "../data_path.hpp"
+#include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/driver.hpp"
@@ -55,6 +57,16 @@ int run_export_command(const ExportOptions& o) {
       throw InputError(o.params, std::string("wire type '") + set.wire_type + "': " + e.what());
     }
     written.push_back(script);
+  }
+  if (std::any_of(sets.begin(), sets.end(), dem::is_pfc7_macroelement_set)) {
+    const std::filesystem::path pfc7 = out / "macroelement_pfc7.dat";
+    try {
+      const std::string commands = dem::pfc7_macroelement_commands(sets, provenance);
+      write_file_atomically(pfc7, [&](std::ostream& os) { os << commands; });
+    } catch (const std::invalid_argument& e) {
+      throw InputError(o.params, e.what());
+    }
+    written.push_back(pfc7);
   }
   for (const auto& file : dem::export_c_abi(out / "c_abi", data_path("c_abi/include"), data_path("c_abi/examples"))) written.push_back(file);
   for (const auto& file : written) std::cout << "wrote " << file.string() << "\n";

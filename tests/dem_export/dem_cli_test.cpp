@@ -98,6 +98,7 @@ TEST(DemCli, ExportWritesTablesScriptAndTheCAbiBundle) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("single_wire: no YADE script"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir / "thesis" / "double_twist_parameters.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "thesis" / "macroelement_pfc7.dat"));  // the PFC7 plugin's commands
   r = run_in(dir, "export --params '" + kData + "macroelement_thesis_params.json' --wire-type gabion --out thesis");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("gabion"), std::string::npos) << r.output;

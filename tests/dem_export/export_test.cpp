@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/results_store.hpp"
@@ -121,6 +122,46 @@ TEST(ParameterTables, RoundTripThroughJsonCsvAndHdf5) {
       if (!line.empty() && line[0] != '#' && line != "name,value,unit,sigma") ++rows;
     EXPECT_EQ(rows, set.entries.size());
   }
+}
+
+// The PFC7 plugin's commands read back to every value of the thesis file, and the published
+// load_properties.dat of the plugin's punch example (marcoprevitali/macroelement-doubletwist-PFC7)
+// as the independent reference for property names, groups and rgap = reference length - D.
+TEST(Pfc7Commands, ThesisSetsReadBackToEveryValueUnderThePluginsNames) {
+  const std::vector<ParameterSet> sets = read_parameter_file(kData + "macroelement_thesis_params.json");
+  const auto commands = read_pfc7_macroelement_commands(pfc7_macroelement_commands(sets, make_provenance("test")));
+  ASSERT_EQ(commands.size(), 2u);
+  const std::map<std::string, std::string> names = {
+      {"me_ea", "EA_N"},      {"me_ei", "EI_Nm2_per_deg_convention"}, {"me_nzero", "N0_N"}, {"me_nult", "Nult_N"},
+      {"me_ntens", "Nc_N"},   {"me_mff", "m_f"},   {"me_betaf", "beta_f"}, {"me_kf", "k_F"},   {"me_km", "k_M"},
+      {"me_wpl1", "W1_J"},    {"me_wpl2", "W2_J"}, {"me_dalpha", "alpha_d"}, {"me_mfg", "m_g"}, {"me_alphag", "alpha_g"},
+      {"me_betag", "beta_g"}, {"me_rata", "slide_a"}, {"me_ratb", "slide_b"}, {"me_ref_l", "reference_length_m"},
+      {"me_d", "D_m"}};
+  for (const ParameterSet& set : sets) {
+    const int cmat = set.wire_type == "single_wire" ? 1 : 2;
+    const auto& read = commands.at(cmat);
+    const ParameterMap values = set.map();
+    for (const auto& [property, key] : names) EXPECT_EQ(read.at(property), values.at(key)) << set.wire_type << " " << property;
+    EXPECT_EQ(read.at("pb_ten"), 1e99);
+  }
+  // Published (load_properties.dat): SW me_ea 1.6e7, me_nzero 2.75e3, rgap 0.06 - 2.7e-3; DT me_nult
+  // 5.0e3, me_km 1.12e-1, me_ratb 0.0015, rgap 0.035 - 2.7e-3 (the example's DT gap is 5 mm shorter than
+  // its me_ref_l 0.04; we write reference length - D for both).
+  EXPECT_EQ(commands.at(1).at("me_ea"), 1.6e7);
+  EXPECT_EQ(commands.at(1).at("me_nzero"), 2.75e3);
+  EXPECT_NEAR(commands.at(1).at("rgap"), 0.06 - 2.7e-3, 1e-15);
+  EXPECT_EQ(commands.at(2).at("me_nult"), 5.0e3);
+  EXPECT_EQ(commands.at(2).at("me_km"), 1.12e-1);
+  EXPECT_EQ(commands.at(2).at("me_ratb"), 0.0015);
+  EXPECT_NEAR(commands.at(2).at("rgap"), 0.04 - 2.7e-3, 1e-15);
+}
+
+TEST(Pfc7Commands, OtherLawsAreLeftOutAndNoThesisSetIsAnError) {
+  ParameterSet wirepm;
+  wirepm.wire_type = "single_wire";
+  wirepm.law = "wirepm";
+  EXPECT_FALSE(is_pfc7_macroelement_set(wirepm));
+  EXPECT_THROW(pfc7_macroelement_commands({wirepm}, make_provenance("test")), std::invalid_argument);
 }
 
 TEST(YadeScript, DescribesTheMaterialAndRefusesWhatYadeCannotDo) {
