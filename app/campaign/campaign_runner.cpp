@@ -191,11 +191,20 @@ std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOp
       header << "\n";
     }
     const auto start = std::chrono::steady_clock::now();
-    outcome.exit_code = run_step_process(options.executable, command, log, [&](double seconds) {
-      line.update(seconds, step_progress(progress_logs(log, outputs)));
-    });
+    std::string start_failure;
+    try {
+      outcome.exit_code = run_step_process(options.executable, command, log, [&](double seconds) {
+        line.update(seconds, step_progress(progress_logs(log, outputs)));
+      });
+    } catch (const ComputationError& e) {  // the step could not be started: it fails, the others run
+      start_failure = e.what();
+      outcome.exit_code = 1;
+    }
     outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (outcome.exit_code != 0) {
+    if (!start_failure.empty()) {
+      outcome.status = StepStatus::Failed;
+      outcome.message = start_failure;
+    } else if (outcome.exit_code != 0) {
       outcome.status = StepStatus::Failed;
       outcome.message = "exit code " + std::to_string(outcome.exit_code) + ": " + last_line(log);
     } else if (!outputs_exist(outputs)) {
