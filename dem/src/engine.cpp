@@ -150,8 +150,12 @@ int Engine::add_tool(std::unique_ptr<Tool> tool) {
   t.contact_energy.assign(n, 0.0);
   t.friction_increment.assign(n, 0.0);
   t.touching.assign(n, 0);
-  if (t.tool->mass > 0.0) energy_.boundary_work += 0.5 * t.tool->mass * t.tool->velocity.squaredNorm() +
-                                                   0.5 * t.tool->rotational_inertia * t.tool->angular_velocity.squaredNorm();
+  if (t.tool->mass > 0.0) {  // its kinetic energy is given from outside: booked on both sides at once
+    const double given = 0.5 * t.tool->mass * t.tool->velocity.squaredNorm() +
+                         0.5 * t.tool->rotational_inertia * t.tool->angular_velocity.squaredNorm();
+    energy_.boundary_work += given;
+    energy_.kinetic += given;
+  }
   t.previous_force_on_nodes.setZero();
   s_->tools.push_back(std::move(t));
   const double critical = critical_time_step();
@@ -165,8 +169,11 @@ int Engine::add_tool(std::unique_ptr<Tool> tool) {
 
 void Engine::place_tool(std::size_t i, const Vector3& position, const Vector3& velocity) {
   ToolState& t = s_->tools.at(i);
-  if (t.tool->mass > 0.0)
-    energy_.boundary_work += 0.5 * t.tool->mass * (velocity.squaredNorm() - t.tool->velocity.squaredNorm());
+  if (t.tool->mass > 0.0) {
+    const double given = 0.5 * t.tool->mass * (velocity.squaredNorm() - t.tool->velocity.squaredNorm());
+    energy_.boundary_work += given;
+    energy_.kinetic += given;
+  }
   t.tool->position = position;
   t.previous_position = position;
   t.tool->velocity = velocity;
