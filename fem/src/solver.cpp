@@ -24,6 +24,11 @@
 #include <deal.II/numerics/vector_tools.h>
 #include <petscksp.h>
 
+#include <boost/archive/binary_iarchive.hpp>
+#include <boost/archive/binary_oarchive.hpp>
+#include <boost/serialization/array.hpp>
+#include <boost/serialization/vector.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -901,34 +906,34 @@ std::filesystem::path WireSolver::Impl::checkpoint_file(unsigned step) const {
 }
 
 namespace {
-constexpr char kCheckpointMagic[16] = "dtwire-ckpt-1";
+constexpr char kCheckpointMagic[16] = "dtwire-ckpt-2";
 }  // namespace
 
+// Layout: magic, then one boost binary archive: the header (ranks, DoFs, cells, quadrature
+// points), the stepping state, the statistics, the step records (each serialises every field),
+// this rank's solution and last step values, and the committed material state of its points.
 void WireSolver::Impl::write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step) {
   const auto file = checkpoint_file(state.step);
   std::filesystem::create_directories(file.parent_path());
-  std::vector<double> data = {static_cast<double>(stats.ranks), static_cast<double>(stats.dofs),
-                              static_cast<double>(triangulation.n_active_cells()), static_cast<double>(quadrature.size()),
-                              static_cast<double>(state.step), state.t, state.dt, state.last_dt, state.last_knot,
-                              static_cast<double>(stats.steps), static_cast<double>(stats.newton_iterations),
-                              static_cast<double>(stats.cutbacks), static_cast<double>(history.size())};
-  for (const auto& r : history)
-    data.insert(data.end(), {static_cast<double>(r.step), r.time, r.displacement, r.force, r.plastic_dissipation,
-                             r.elastic_energy, r.neck_radius, static_cast<double>(r.iterations), r.damage,
-                             r.damage_triaxiality, r.damage_lode, r.damage_z});
-  for (const auto i : owned) data.push_back(solution[i]);
-  for (const auto i : owned) data.push_back(last_step[i]);
+  std::vector<double> header = {static_cast<double>(stats.ranks), static_cast<double>(stats.dofs),
+                                static_cast<double>(triangulation.n_active_cells()), static_cast<double>(quadrature.size())};
+  std::vector<double> stepping = {static_cast<double>(state.step), state.t, state.dt, state.last_dt, state.last_knot,
+                                  static_cast<double>(stats.steps), static_cast<double>(stats.newton_iterations),
+                                  static_cast<double>(stats.cutbacks)};
+  std::vector<double> values;
+  for (const auto i : owned) values.push_back(solution[i]);
+  for (const auto i : owned) values.push_back(last_step[i]);
   for (const auto& p : points) {
-    for (unsigned k = 0; k < 6; ++k)
-      data.push_back(p.committed.plastic_metric_inverse.access_raw_entry(k));
-    data.insert(data.end(), {p.committed.equivalent_plastic_strain, p.committed.plastic_dissipation, p.committed.damage});
-    for (unsigned k = 0; k < 6; ++k) data.push_back(p.committed.backstress.access_raw_entry(k));
+    for (unsigned k = 0; k < 6; ++k) values.push_back(p.committed.plastic_metric_inverse.access_raw_entry(k));
+    values.insert(values.end(), {p.committed.equivalent_plastic_strain, p.committed.plastic_dissipation, p.committed.damage});
+    for (unsigned k = 0; k < 6; ++k) values.push_back(p.committed.backstress.access_raw_entry(k));
   }
   const auto temporary = file.string() + ".tmp";
   {
     std::ofstream out(temporary, std::ios::binary);
     out.write(kCheckpointMagic, sizeof kCheckpointMagic);
-    out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size() * sizeof(double)));
+    boost::archive::binary_oarchive archive(out);
+    archive << header << stepping << history << values;
     if (!out) throw ComputationError("cannot write checkpoint " + temporary);
   }
   std::filesystem::rename(temporary, file);
@@ -941,54 +946,42 @@ void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETS
   char magic[sizeof kCheckpointMagic] = {};
   in.read(magic, sizeof magic);
   if (!in || std::string(magic) != kCheckpointMagic)
-    throw InputError(file.string(), "not a dtwire checkpoint (or missing)");
-  std::vector<double> data;
-  double value = 0.0;
-  while (in.read(reinterpret_cast<char*>(&value), sizeof value)) data.push_back(value);
-  std::size_t k = 0;
-  auto next = [&]() {
-    if (k >= data.size()) throw InputError(file.string(), "truncated checkpoint");
-    return data[k++];
-  };
-  if (next() != stats.ranks || next() != stats.dofs || next() != triangulation.n_active_cells() ||
-      next() != quadrature.size())
-    throw InputError(file.string(), "checkpoint from another mesh, element or number of MPI ranks");
-  state.step = static_cast<unsigned>(next());
-  state.t = next();
-  state.dt = next();
-  state.last_dt = next();
-  state.last_knot = next();
-  stats.steps = static_cast<std::size_t>(next());
-  stats.newton_iterations = static_cast<std::size_t>(next());
-  stats.cutbacks = static_cast<std::size_t>(next());
-  history.resize(static_cast<std::size_t>(next()));
-  for (auto& r : history) {
-    r.step = static_cast<unsigned>(next());
-    r.time = next();
-    r.displacement = next();
-    r.force = next();
-    r.plastic_dissipation = next();
-    r.elastic_energy = next();
-    r.neck_radius = next();
-    r.iterations = static_cast<unsigned>(next());
-    r.damage = next();
-    r.damage_triaxiality = next();
-    r.damage_lode = next();
-    r.damage_z = next();
+    throw InputError(file.string(), "not a dtwire checkpoint of this version (or missing)");
+  std::vector<double> header, stepping, values;
+  try {
+    boost::archive::binary_iarchive archive(in);
+    archive >> header >> stepping >> history >> values;
+  } catch (const std::exception& e) {
+    throw InputError(file.string(), std::string("unreadable checkpoint: ") + e.what());
   }
-  for (const auto i : owned) solution[i] = next();
-  for (const auto i : owned) last_step[i] = next();
+  const std::vector<double> expected = {static_cast<double>(stats.ranks), static_cast<double>(stats.dofs),
+                                        static_cast<double>(triangulation.n_active_cells()), static_cast<double>(quadrature.size())};
+  if (header != expected)
+    throw InputError(file.string(), "checkpoint from another mesh, element or number of MPI ranks");
+  const std::size_t n_values = 2 * owned.n_elements() + 15 * points.size();
+  if (stepping.size() != 8 || values.size() != n_values)
+    throw InputError(file.string(), "checkpoint of another size than this run's state");
+  state.step = static_cast<unsigned>(stepping[0]);
+  state.t = stepping[1];
+  state.dt = stepping[2];
+  state.last_dt = stepping[3];
+  state.last_knot = stepping[4];
+  stats.steps = static_cast<std::size_t>(stepping[5]);
+  stats.newton_iterations = static_cast<std::size_t>(stepping[6]);
+  stats.cutbacks = static_cast<std::size_t>(stepping[7]);
+  std::size_t k = 0;
+  for (const auto i : owned) solution[i] = values[k++];
+  for (const auto i : owned) last_step[i] = values[k++];
   solution.compress(VectorOperation::insert);
   last_step.compress(VectorOperation::insert);
   for (auto& p : points) {
-    for (unsigned j = 0; j < 6; ++j) p.committed.plastic_metric_inverse.access_raw_entry(j) = next();
-    p.committed.equivalent_plastic_strain = next();
-    p.committed.plastic_dissipation = next();
-    p.committed.damage = next();
-    for (unsigned j = 0; j < 6; ++j) p.committed.backstress.access_raw_entry(j) = next();
+    for (unsigned j = 0; j < 6; ++j) p.committed.plastic_metric_inverse.access_raw_entry(j) = values[k++];
+    p.committed.equivalent_plastic_strain = values[k++];
+    p.committed.plastic_dissipation = values[k++];
+    p.committed.damage = values[k++];
+    for (unsigned j = 0; j < 6; ++j) p.committed.backstress.access_raw_entry(j) = values[k++];
     p.trial = p.committed;
   }
-  if (k != data.size()) throw InputError(file.string(), "checkpoint longer than expected");
 }
 
 void WireSolver::set_checkpoints(const std::filesystem::path& directory, unsigned interval, int restart_step) {

@@ -38,6 +38,15 @@ struct StepRecord {
   std::array<double, 3> end_force{}, end_moment{}, end_translation{};
   std::vector<std::array<double, 3>> probe_displacements;  // m, one per Output/Probe points entry
   double end_rotation = 0.0, external_work = 0.0;
+
+  // Every field, so that a checkpoint cannot drop one (boost::serialization).
+  template <class Archive>
+  void serialize(Archive& ar, const unsigned /*version*/) {
+    ar& step & time & displacement & force & plastic_dissipation & elastic_energy & neck_radius & iterations;
+    ar& damage & damage_triaxiality & damage_lode & damage_z & damage_r;
+    ar& contact & wire_contact & grip;
+    ar& end_force & end_moment & end_translation & probe_displacements & end_rotation & external_work;
+  }
 };
 
 struct SolverStatistics {

@@ -1,6 +1,6 @@
 #pragma once
 // Contact results of a converged load step (part of the solver's StepRecord). Light header:
-// deal.II tensors only.
+// deal.II tensors only. Each record serialises itself (checkpoints, boost::serialization).
 #include <array>
 #include <vector>
 
@@ -17,6 +17,11 @@ struct ContactSample {
   double gap = 0.0;                       // m
   double slip = 0.0;                      // m, accumulated
   bool slipping = false;
+
+  template <class Archive>
+  void serialize(Archive& ar, const unsigned /*version*/) {
+    ar& tool & reference_position & position & weight & pressure & gap & slip & slipping;
+  }
 };
 
 // Contact results of a converged step. Totals are summed over MPI ranks and multiplied by the
@@ -39,6 +44,11 @@ struct ContactRecord {
   unsigned augmentations = 0;          // Uzawa updates in this step
   std::array<double, 3> bottom_reaction{}, top_reaction{};  // N, all components at the wire ends
   std::vector<ContactSample> samples;  // filled when keep_samples is set
+
+  template <class Archive>
+  void serialize(Archive& ar, const unsigned /*version*/) {
+    ar& enabled & normal_force & friction_force & tool_displacements & tool_forces & friction_dissipation & contact_energy & active_area & max_pressure & max_slip & max_penetration & augmentations & bottom_reaction & top_reaction & samples;
+  }
 };
 
 // Wire-wire contact results of a converged step (totals over ranks, symmetry multipliers applied).
@@ -56,6 +66,11 @@ struct WireContactRecord {
   double max_pressure = 0.0, max_slip = 0.0, max_penetration = 0.0;  // Pa, m, m
   unsigned augmentations = 0;
   std::vector<ContactSample> samples;  // filled when keep_samples is set (tool = 0)
+
+  template <class Archive>
+  void serialize(Archive& ar, const unsigned /*version*/) {
+    ar& enabled & normal_force & friction_force & friction_dissipation & contact_energy & active_area & active_points & slipping_points & candidate_pairs & frozen_points & max_pressure & max_slip & max_penetration & augmentations & samples;
+  }
 };
 
 // Bonded grips (contact/bonded_grip.hpp) at a converged step: totals over ranks, symmetry
@@ -67,6 +82,11 @@ struct GripRecord {
   double max_slip = 0.0;           // m, accumulated, largest over the top grips' points
   double slipping_fraction = 0.0;  // share of the top grips' bonded area that slipped in this step
   double top_area = 0.0;           // m^2, bonded area of the top grips (whole specimen)
+
+  template <class Archive>
+  void serialize(Archive& ar, const unsigned /*version*/) {
+    ar& enabled & bond_energy & slip_dissipation & max_slip & slipping_fraction & top_area;
+  }
 };
 
 }  // namespace dtwire::fem::contact
