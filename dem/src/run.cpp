@@ -2,6 +2,7 @@
 // gravity, then the punch, the cyclic punch or the impact), records the history.
 #include "dtwire/dem/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -148,6 +149,9 @@ RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
   const double expected = in.tool == "boulder" || in.tool == "none" ? in.duration : in.travel / in.speed;
   std::size_t level = 0;
   bool unloading = false;
+  // The cyclic punch reverses on the force averaged over about one output interval
+  // (exponential moving average): the instantaneous node-platter force chatters far above its mean.
+  double smoothed_force = 0.0;
   double next_output = t0, next_frame = t0;
   Vector3 impulse = Vector3::Zero();  // sum over the steps of the interval of the tool's force on the net
   long steps_in_interval = 0;
@@ -179,8 +183,9 @@ RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
     if (done) break;
     // Cyclic punch: reverse at each force level, reload near zero force.
     if (in.tool == "platter" && !in.force_levels.empty()) {
-      if (!unloading && force >= in.force_levels[level]) unloading = true;
-      else if (unloading && force <= in.unload_force) {
+      smoothed_force += std::min(1.0, engine->time_step() / in.output_interval) * (force - smoothed_force);
+      if (!unloading && smoothed_force >= in.force_levels[level]) unloading = true;
+      else if (unloading && smoothed_force <= in.unload_force) {
         unloading = false;
         ++level;
       }

@@ -2,6 +2,7 @@
 // through the library (outputs, energy balance, 1 vs 2 threads) and the YADE export.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -109,6 +110,33 @@ TEST(DemRun, SmallPunchWritesItsFilesBalancesEnergyAndIsThreadIndependent) {
   double total = 0.0;
   for (double c : angles.channel("count_at_end").values) total += c;
   EXPECT_GT(total, 0.0);
+}
+
+// Cyclic punch: the platter reverses when the (interval-averaged) force reaches each level and
+// reloads below the unload force, so the recorded force peaks once near each level, in order.
+// The chattering instantaneous force once reversed it at a fraction of the first level.
+TEST(DemRun, CyclicPunchReversesAtEachForceLevel) {
+  const auto path = write_input("cyclic.toml", small_punch("travel_m = 0.2", "travel_m = 0.3\nforce_levels_N = [300.0, 800.0]\nunload_force_N = 50.0"));
+  RunOptions options;
+  options.quiet = true;
+  options.write_frames = false;
+  options.out = path.parent_path() / "out_cyclic";
+  const RunSummary run = run_simulation(read_run_input(path), options);
+  const auto& velocity = run.history.channel("tool_velocity").values;
+  const auto& force = run.history.channel("tool_force").values;
+  std::vector<double> peaks;  // largest force of each loading phase
+  double phase_peak = 0.0;
+  for (std::size_t i = 1; i < velocity.size(); ++i) {
+    phase_peak = std::max(phase_peak, force[i]);
+    if (velocity[i - 1] > 0.0 && velocity[i] < 0.0) {
+      peaks.push_back(phase_peak);
+      phase_peak = 0.0;
+    }
+  }
+  ASSERT_EQ(peaks.size(), 2u);
+  // The recorded mean lags the control average by up to an interval: within 25 % of each level.
+  EXPECT_NEAR(peaks[0] / 300.0, 1.0, 0.25);
+  EXPECT_NEAR(peaks[1] / 800.0, 1.0, 0.25);
 }
 
 TEST(DemRun, YadeScriptOfThePunchNamesTheSameNet) {
