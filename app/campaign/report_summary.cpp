@@ -292,15 +292,15 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
         md << "| step | peak force (kN) | displacement at peak (mm) | sag after settling (mm) | broken links | "
               "largest energy balance error (% of work) |\n|---|---|---|---|---|---|\n";
       table_started = true;
-      const auto number = [&](const char* key, double scale) {
+      const auto number = [&](const char* key, double scale, int digits = 1) {
         std::ostringstream o;
-        o << std::fixed << std::setprecision(1) << run.value(key, 0.0) * scale;
+        o << std::fixed << std::setprecision(digits) << run.value(key, 0.0) * scale;
         return o.str();
       };
       md << "| " << link(s.step->name, s.step->name) << " | " << number("peak_force_N", 1e-3) << " | "
          << number("displacement_at_peak_mm", 1.0) << " | " << number("sag_after_settling_mm", 1.0) << " | "
          << run.value("broken_links", 0) << " of " << run.value("links", 0) << " | "
-         << number("largest_balance_error_percent", 1.0) << " |\n";
+         << number("largest_balance_error_percent", 1.0, 2) << " |\n";
     }
   if (table_started) md << "\n";
   for (const StepFiles& s : by_kind[Kind::Validation]) {
