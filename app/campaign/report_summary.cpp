@@ -275,10 +275,7 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   md << "\n";
 
   md << "### Mesh-scale validation\n\n";
-  glance.push_back(by_kind[Kind::Validation].empty()
-                       ? std::string("**Mesh-scale validation**: no DEM mesh step yet ([validation](#mesh-scale-validation)).")
-                       : "**Mesh-scale validation**: " + std::to_string(by_kind[Kind::Validation].size()) +
-                             " step(s), figures in [validation](#mesh-scale-validation).");
+  std::string peaks;  // "step: peak at displacement" of each run, for the at-a-glance line
   if (by_kind[Kind::Validation].empty())
     md << "No mesh-scale DEM step (`dtwire dem run`, e.g. the punch test against the thesis figures) in this "
           "campaign yet.\n\n";
@@ -301,8 +298,16 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
          << number("displacement_at_peak_mm", 1.0) << " | " << number("sag_after_settling_mm", 1.0) << " | "
          << run.value("broken_links", 0) << " of " << run.value("links", 0) << " | "
          << number("largest_balance_error_percent", 1.0, 2) << " |\n";
+      peaks += std::string(peaks.empty() ? "" : "; ") + s.step->name + " peak " + number("peak_force_N", 1e-3) +
+               " kN at " + number("displacement_at_peak_mm", 1.0, 0) + " mm";
     }
   if (table_started) md << "\n";
+  if (by_kind[Kind::Validation].empty())
+    glance.push_back("**Mesh-scale validation**: no DEM mesh step yet ([validation](#mesh-scale-validation)).");
+  else
+    glance.push_back("**Mesh-scale validation**: " +
+                     (peaks.empty() ? std::to_string(by_kind[Kind::Validation].size()) + " step(s)" : peaks) +
+                     " ([validation](#mesh-scale-validation)).");
   for (const StepFiles& s : by_kind[Kind::Validation]) {
     md << "From step " << link(s.step->name, s.step->name) << ": " << s.step->description << "\n\n";
     if (s.files.empty()) md << "(no results: " << status_name(s.outcome->status) << ")\n\n";
