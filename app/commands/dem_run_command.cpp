@@ -60,7 +60,7 @@ int run_dem_run(const RunCommandOptions& o) {
             << "; largest energy balance error " << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"
             << "-> " << (out / "curve.csv").string() << ", " << (out / "results.h5").string() << "\n";
   if (!o.plot.empty()) {
-    std::vector<std::string> arguments{o.plot, "tool_displacement", "tool_force", input.title, (out / "curve.csv").string()};
+    std::vector<std::string> arguments{o.plot, "tool_displacement", "tool_force", "Tool force against displacement (legend: run titles)", (out / "curve.csv").string()};
     arguments.insert(arguments.end(), o.compare.begin(), o.compare.end());
     run_plot_script("plot_curves.py", arguments);
     std::cout << "plot: " << o.plot << "\n";
