@@ -22,8 +22,8 @@ double link_updates_per_second(RunInput input, const std::string& law, long step
   if (law != "wirepm") {
     // The thesis calibrations (PFC7 example), run by the macro3d law (it reads thesis keys).
     const std::filesystem::path thesis = std::string(DTWIRE_SOURCE_DIR) + "/experiments/data/macroelement_thesis_params.json";
+    for (auto& [tag, set] : input.link_sets) set.law = law;  // the thesis file names no law
     for (const std::string tag : {"sw", "dt"}) override_link_set(input, tag, thesis, "bench");
-    for (auto& [tag, set] : input.link_sets) set.law = law;
   }
   input.engine.threads = 1;
   BuiltNet built = build_net(input);
@@ -53,7 +53,7 @@ int main(int argc, char** argv) {
   options.threads = 1;
   const RunSummary ours = run_simulation(input, options);
   std::cout << "ours (1 thread): " << ours.wall_seconds << " s wall, " << ours.steps << " steps, " << ours.links
-            << " links, peak " << ours.peak_force << " N\n";
+            << " links, peak " << ours.peak_force << " N" << std::endl;
   options.threads = 2;
   options.out = dir / "ours2";
   const RunSummary ours2 = run_simulation(input, options);
