@@ -208,7 +208,18 @@ RunSummary run_experiment(const RunOptions& options) {
   std::ostream log(&tee);
   log << "dtwire " << kVersion << " (" << kGitHash << "): " << options.parameter_file.string() << "\n";
 
-  WireSolver solver(parameters, log, parameters.output.fields ? out / "fields" : std::filesystem::path());
+  // A mesh file deal.II cannot read is bad input, named as such (not a failed computation).
+  const auto make_solver = [&]() {
+    try {
+      return std::make_unique<WireSolver>(parameters, log,
+                                          parameters.output.fields ? out / "fields" : std::filesystem::path());
+    } catch (const dealii::ExceptionBase& e) {
+      if (parameters.geometry.mesh_file.empty()) throw ComputationError(deal_ii_message(e.what()));
+      throw InputError(parameters.geometry.mesh_file.string(), "cannot read the mesh: " + deal_ii_message(e.what()));
+    }
+  };
+  const std::unique_ptr<WireSolver> solver_owner = make_solver();
+  WireSolver& solver = *solver_owner;
   parameters.geometry = solver.geometry();  // as read from a mesh file (length, double twist)
   solver.set_checkpoints(out / "checkpoints", parameters.output.checkpoint_interval, options.restart_step);
   std::vector<StepRecord> records;
