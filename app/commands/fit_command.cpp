@@ -85,7 +85,8 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                     "Continue from <out>/checkpoint.json if present (same fit definition)");
   command->add_flag("--plot", options->plot,
                     "Also draw <out>/fit_curves.png with scripts/plot_fit.py (python3-matplotlib)");
-  command->add_option("--threads", options->threads, "Parallel simulation runs (default: fit file, else all cores)");
+  command->add_option("--threads", options->threads, "Parallel simulation runs (default: fit file, else all cores)")
+      ->check(CLI::Range(1, 1024));
   command->add_option("--synthesize", options->synthesize,
                       "Instead of fitting: write the targets simulated at the parameters' reference "
                       "values into this directory");
