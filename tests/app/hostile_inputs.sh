@@ -29,6 +29,19 @@ for m in garbage empty broken; do
   printf 'subsection Geometry\n  set Cross section = full\n  set Mesh file = %s.msh\nend\n' $m > mesh_$m.prm
 done
 
+thesis=$src/experiments/data/macroelement_thesis_params.json
+export_set() {  # export_set <python statement on the single_wire set s> <file>
+  python3 -c "import json, sys
+s = json.load(open('$thesis'))['single_wire']
+exec(sys.argv[1])
+json.dump({'single_wire': s}, open(sys.argv[2], 'w'))" "$1" "$2"
+}
+export_set "s['EA_N'] = -1" ea_negative.json
+export_set "del s['EA_N']" ea_missing.json
+export_set "s['Nult_N'] = 100" nult_below_n0.json
+export_set "s['reference_length_m'] = 0" length_zero.json
+python3 -c "import json; print(json.dumps({'single_wire': json.load(open('$thesis'))['single_wire']}).replace('16000000.0', '1e999'))" > overflow.json
+
 pass=0 total=0
 # case <expected text in the output> <dtwire arguments...>
 case_() {
@@ -69,6 +82,12 @@ case_ "--threads: Value 0 not in range" fit "$fit" --threads 0 -o "$work/fit"
 case_ "--trials: Value -1 not in range" gap selfcheck --trials -1
 case_ "--steps" export --params "$src/experiments/data/macroelement_thesis_params.json" --steps 0 --out "$work/export"
 case_ "no_such.prm" run no_such.prm $out
+case_ "ea_negative.json: wire type 'single_wire' (law thesis): thesis: parameter 'EA_N' must be finite and > 0" export --params ea_negative.json --out export
+case_ "ea_missing.json: wire type 'single_wire' (law thesis): thesis: missing parameter 'EA_N'" export --params ea_missing.json --out export
+case_ "nult_below_n0.json: wire type 'single_wire' (law thesis): thesis: Nult_N must be >= N0_N" export --params nult_below_n0.json --out export
+case_ "length_zero.json: wire type 'single_wire': 'reference_length_m': expected a length > 0" export --params length_zero.json --out export
+case_ "overflow.json: not valid JSON" export --params overflow.json --out export
+[ -e "$work/export" ] && { echo "FAIL: a refused export left $work/export"; total=$((total + 1)); }
 [ -e "$work/out/curve.csv" ] && { echo "FAIL: a refused run left $work/out/curve.csv"; total=$((total + 1)); }
 echo "hostile inputs: $pass of $total cases refused as the input contract says"
 [ $pass -eq $total ]
