@@ -112,6 +112,10 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     if (options->threads >= 0) def.evaluation.threads = static_cast<unsigned>(options->threads);
     if (def.disk_cache) def.evaluation.cache_directory = out / "cache";
     def.fit.checkpoint = out / "checkpoint.json";
+    // A new fit's folder never shows an earlier fit's results beside its checkpoint.
+    if (!options->resume)
+      for (const char* stale : {"parameters.json", "parameters.h5", "fit_report.md", "fit_curves.png"})
+        std::filesystem::remove(out / stale);
     def.fit.resume = options->resume;
     def.fit.progress = &std::cerr;
     stop_requested = false;
@@ -127,8 +131,9 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     }
     std::signal(SIGINT, previous);
     if (!result.completed) {
-      std::cerr << "fit interrupted; continue with: dtwire fit " << options->file << " --out "
-                << out.string() << " --resume\n";
+      std::cerr << "fit interrupted; continue with: dtwire fit " << options->file
+                << (options->targets.empty() ? "" : " --targets " + options->targets) << " --out " << out.string()
+                << " --resume\n";
       return kExitFailure;
     }
     const auto provenance = make_provenance(
