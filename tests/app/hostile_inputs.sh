@@ -89,5 +89,16 @@ case_ "length_zero.json: wire type 'single_wire': 'reference_length_m': expected
 case_ "overflow.json: not valid JSON" export --params overflow.json --out export
 [ -e "$work/export" ] && { echo "FAIL: a refused export left $work/export"; total=$((total + 1)); }
 [ -e "$work/out/curve.csv" ] && { echo "FAIL: a refused run left $work/out/curve.csv"; total=$((total + 1)); }
+# An interrupted run into a folder of an earlier run: the earlier results are gone and run.log
+# says how to resume.
+mkdir -p interrupted && touch interrupted/curve.csv interrupted/results.h5
+"$dtwire" run "$prm" -o interrupted -q & pid=$!
+sleep 3; kill -INT $pid; wait $pid
+total=$((total + 1))
+if [ ! -e interrupted/curve.csv ] && [ ! -e interrupted/results.h5 ] && grep -q "interrupted (SIGINT); resume with: dtwire run" interrupted/run.log; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: SIGINT into a folder of an earlier run:"; ls interrupted; tail -2 interrupted/run.log
+fi
 echo "hostile inputs: $pass of $total cases refused as the input contract says"
 [ $pass -eq $total ]
