@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "dtwire/core/closest_name.hpp"
 #include "dtwire/core/error.hpp"
 
 namespace dtwire::app {
@@ -105,30 +106,6 @@ void check_graph(const Campaign& campaign) {
   const auto line = step.field_lines.find(field);
   throw InputError(campaign.file.string(), line != step.field_lines.end() ? line->second : step.line, 0,
                    message);
-}
-
-std::string closest_name(const std::string& word, const std::vector<std::string>& candidates) {
-  // Levenshtein distance; a name within a third of its length (at least 2 edits) is close.
-  std::string best;
-  std::size_t best_distance = std::max<std::size_t>(2, word.size() / 3) + 1;
-  for (const std::string& candidate : candidates) {
-    std::vector<std::size_t> row(candidate.size() + 1);
-    for (std::size_t j = 0; j < row.size(); ++j) row[j] = j;
-    for (std::size_t i = 1; i <= word.size(); ++i) {
-      std::size_t diagonal = row[0];
-      row[0] = i;
-      for (std::size_t j = 1; j <= candidate.size(); ++j) {
-        const std::size_t above = row[j];
-        row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (word[i - 1] == candidate[j - 1] ? 0 : 1)});
-        diagonal = above;
-      }
-    }
-    if (row.back() < best_distance) {
-      best_distance = row.back();
-      best = candidate;
-    }
-  }
-  return best;
 }
 
 Campaign read_campaign(const std::filesystem::path& file) {

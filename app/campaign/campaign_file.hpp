@@ -52,7 +52,4 @@ void check_commands(const Campaign& campaign, const std::vector<std::string>& kn
 std::string expand(const std::string& text, const std::filesystem::path& out,
                    const std::filesystem::path& campaign_dir);
 
-// The closest of `candidates` to `word` (edit distance), or "" if none is close.
-std::string closest_name(const std::string& word, const std::vector<std::string>& candidates);
-
 }  // namespace dtwire::app

@@ -10,6 +10,7 @@
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "dtwire/dem/contact_law.hpp"
 #include "dtwire/dem/driver.hpp"
 #include "dtwire/dem/export.hpp"
 
@@ -35,6 +36,25 @@ int run_export_command(const ExportOptions& o) {
   if (!o.backbone.empty()) {
     const Curve backbone = dem::read_backbone_csv(o.backbone);
     for (dem::ParameterSet& set : sets) dem::add_backbone(set, backbone);
+  }
+  // Every set is checked by the law the DEM driver would build from it (the same checks as
+  // `dtwire dem driver` and the C ABI) before anything is written: a refused set leaves no export.
+  for (const dem::ParameterSet& set : sets) {
+    const dem::ParameterMap values = set.map();
+    for (const char* length : {"reference_length_m", "diameter_m", "D_m"})
+      if (values.count(length) && !(values.at(length) > 0.0))
+        throw InputError(o.params, "wire type '" + set.wire_type + "': '" + length + "': expected a length > 0, found " +
+                                       std::to_string(values.at(length)));
+    const std::string law = !set.law.empty() ? set.law
+                            : is_wirepm_set(set)                       ? "wirepm"
+                            : set.has("N0_N") || set.has("Nult_N")     ? "thesis"
+                                                                       : "";
+    if (law.empty()) continue;
+    try {
+      dem::make_contact_law(law, values);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(o.params, "wire type '" + set.wire_type + "' (law " + law + "): " + e.what());
+    }
   }
   std::vector<std::filesystem::path> inputs{o.params};
   if (!o.backbone.empty()) inputs.emplace_back(o.backbone);

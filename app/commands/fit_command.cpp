@@ -85,7 +85,8 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                     "Continue from <out>/checkpoint.json if present (same fit definition)");
   command->add_flag("--plot", options->plot,
                     "Also draw <out>/fit_curves.png with scripts/plot_fit.py (python3-matplotlib)");
-  command->add_option("--threads", options->threads, "Parallel simulation runs (default: fit file, else all cores)");
+  command->add_option("--threads", options->threads, "Parallel simulation runs (default: fit file, else all cores)")
+      ->check(CLI::Range(1, 1024));
   command->add_option("--synthesize", options->synthesize,
                       "Instead of fitting: write the targets simulated at the parameters' reference "
                       "values into this directory");
@@ -111,6 +112,10 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     if (options->threads >= 0) def.evaluation.threads = static_cast<unsigned>(options->threads);
     if (def.disk_cache) def.evaluation.cache_directory = out / "cache";
     def.fit.checkpoint = out / "checkpoint.json";
+    // A new fit's folder never shows an earlier fit's results beside its checkpoint.
+    if (!options->resume)
+      for (const char* stale : {"parameters.json", "parameters.h5", "fit_report.md", "fit_curves.png"})
+        std::filesystem::remove(out / stale);
     def.fit.resume = options->resume;
     def.fit.progress = &std::cerr;
     stop_requested = false;
@@ -126,8 +131,9 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     }
     std::signal(SIGINT, previous);
     if (!result.completed) {
-      std::cerr << "fit interrupted; continue with: dtwire fit " << options->file << " --out "
-                << out.string() << " --resume\n";
+      std::cerr << "fit interrupted; continue with: dtwire fit " << options->file
+                << (options->targets.empty() ? "" : " --targets " + options->targets) << " --out " << out.string()
+                << " --resume\n";
       return kExitFailure;
     }
     const auto provenance = make_provenance(

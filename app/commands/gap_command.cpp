@@ -318,9 +318,9 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   self->run.backbone_csv = data_path("experiments/data/sw_2.7mm_dem_backbone.csv").string();
   CLI::App* selfcheck = command->add_subcommand(
       "selfcheck", "Inject effects into model curves, withhold them, and check the diagnosis");
-  selfcheck->add_option("--trials", self->run.trials, "Trials per single effect")->capture_default_str();
-  selfcheck->add_option("--pair-trials", self->run.pair_trials, "Trials with two effects")->capture_default_str();
-  selfcheck->add_option("--none-trials", self->run.none_trials, "Effect-free trials")->capture_default_str();
+  selfcheck->add_option("--trials", self->run.trials, "Trials per single effect")->capture_default_str()->check(CLI::Range(0, 100000));
+  selfcheck->add_option("--pair-trials", self->run.pair_trials, "Trials with two effects")->capture_default_str()->check(CLI::Range(0, 100000));
+  selfcheck->add_option("--none-trials", self->run.none_trials, "Effect-free trials")->capture_default_str()->check(CLI::Range(0, 100000));
   selfcheck->add_option("--seed", self->run.seed, "Random seed")->capture_default_str();
   selfcheck->add_option("--backbone", self->run.backbone_csv, "DEM backbone CSV used as a base model")
       ->capture_default_str();

@@ -37,7 +37,8 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
   command->add_option("-o,--out", options->out, "Output directory (default: fem-out/<file stem>)");
   command->add_flag("-q,--quiet", options->quiet, "Write progress only to run.log");
   command->add_option("--restart", options->restart_step,
-                      "Resume from the checkpoint of this step in the output directory (Checkpoint interval)");
+                      "Resume from the checkpoint of this step in the output directory (Checkpoint interval)")
+      ->check(CLI::Range(0, 1000000000));
   command->add_option("--plot", options->plot,
                       "Also draw a curve of the run to this PNG (python3-matplotlib)");
   command->add_option("--plot-x", options->plot_x, "Quantity on the plot's x axis (a curve.csv column without its unit)")

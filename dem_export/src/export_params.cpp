@@ -133,7 +133,7 @@ std::vector<ParameterSet> read_parameter_file(const std::filesystem::path& file)
   json root;
   try {
     root = json::parse(text.str());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // syntax, or a number out of range (1e999)
     throw InputError(file.string(), std::string("not valid JSON: ") + e.what());
   }
   if (!root.is_object()) throw InputError(file.string(), "expected a JSON object at the top level");

@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <set>
 #include <regex>
 #include <sstream>
 
 #include "dtwire/core/error.hpp"
+#include "prm_check.hpp"
 
 namespace dtwire::fem {
 namespace {
@@ -171,23 +174,22 @@ std::vector<std::pair<double, double>> parse_pairs(const std::string& text, cons
   return pairs;
 }
 
+// A gmsh file starts with $MeshFormat ($NOD in format 1); an empty or garbage file would otherwise reach deal.II's
+// reader and fail there without naming the file.
+bool looks_like_gmsh(const std::filesystem::path& mesh) {
+  std::ifstream in(mesh);
+  std::string line;
+  while (std::getline(in, line) && line.find_first_not_of(" \t\r") == std::string::npos) {
+  }
+  return line.rfind("$MeshFormat", 0) == 0 || line.rfind("$NOD", 0) == 0;  // gmsh 2-4, gmsh 1
+}
+
 EndCondition end_condition(const std::string& s) {
   if (s == "axial") return EndCondition::axial;
   if (s == "symmetry") return EndCondition::symmetry;
   if (s == "guided") return EndCondition::guided;
   if (s == "free") return EndCondition::free;
   return EndCondition::clamped;
-}
-
-// deal.II's exception text is long; keep its "Additional information" on one line.
-std::string short_message(const std::string& what) {
-  std::string text = what;
-  const auto pos = text.find("Additional information:");
-  if (pos != std::string::npos) text = text.substr(pos + 23);
-  const auto stack = text.find("Stacktrace:");
-  if (stack != std::string::npos) text = text.substr(0, stack);
-  text = std::regex_replace(text, std::regex("[\\s-]+\\n|\\s+"), " ");
-  return std::regex_replace(text, std::regex("^ +| +$"), "");
 }
 
 // `Section/Sub/Entry=value` from the command line, set on top of the file; a relative
@@ -208,28 +210,55 @@ void apply_setting(ParameterHandler& prm, const std::string& setting) {
     prm.set(path, value);
   } catch (const std::exception& e) {
     for (std::size_t i = 0; i < sections.size(); ++i) prm.leave_subsection();
-    throw InputError("--set", "'" + setting + "': " + short_message(e.what()));
+    throw InputError("--set", "'" + setting + "': " + deal_ii_message(e.what()));
   }
   for (std::size_t i = 0; i < sections.size(); ++i) prm.leave_subsection();
 }
 
 }  // namespace
 
-Parameters read_parameters(const std::filesystem::path& file, const std::vector<std::string>& settings) {
+// deal.II's exception text is long; keep its "Additional information" on one line.
+std::string deal_ii_message(const std::string& what) {
+  std::string text = what;
+  const auto pos = text.find("Additional information:");
+  if (pos != std::string::npos) text = text.substr(pos + 23);
+  const auto stack = text.find("Stacktrace:");
+  if (stack != std::string::npos) text = text.substr(0, stack);
+  text = std::regex_replace(text, std::regex("[\\s-]+\\n|\\s+"), " ");
+  return std::regex_replace(text, std::regex("^ +| +$"), "");
+}
+
+namespace {
+Parameters read_and_convert(const std::filesystem::path& file, const std::vector<std::string>& settings) {
   const std::string name = file.string();
   if (!std::filesystem::is_regular_file(file)) throw InputError(name, "cannot open the parameter file");
   ParameterHandler prm;
   declare(prm);
+  const EntryLines lines = check_prm_names(prm, name);
   try {
-    prm.parse_input(name, "", true);
+    prm.parse_input(name, "", false);  // undeclared names are errors, never skipped
   } catch (const std::exception& e) {
-    const std::string message = short_message(e.what());
+    const std::string message = deal_ii_message(e.what());
     std::smatch m;
     if (std::regex_search(message, m, std::regex("[Ll]ine <(\\d+)>")))
       throw InputError(name, std::stoi(m[1]), 0, message);
     throw InputError(name, message);
   }
-  for (const auto& setting : settings) apply_setting(prm, setting);
+  std::set<std::string> set_on_command_line;
+  for (const auto& setting : settings) {
+    apply_setting(prm, setting);
+    set_on_command_line.insert(setting.substr(0, setting.find('=')));
+  }
+  // A value outside its physical range, reported where it was given: --set, the file's line, or
+  // the file (a default). Called inside `section`.
+  const auto require = [&](bool ok, const std::string& section, const std::string& entry, const std::string& expected) {
+    if (ok) return;
+    const std::string path = section + "/" + entry;
+    const std::string message = "'" + entry + "': expected " + expected + ", found '" + prm.get(entry) + "'";
+    if (set_on_command_line.count(path)) throw InputError("--set", path + ": " + message);
+    const auto line = lines.find(path);
+    throw InputError(name, line == lines.end() ? 0 : line->second, 0, "subsection " + section + ": " + message);
+  };
 
   Parameters p;
   prm.enter_subsection("Geometry");
@@ -245,11 +274,17 @@ Parameters read_parameters(const std::filesystem::path& file, const std::vector<
   p.geometry.bow = prm.get_double("Bow imperfection (mm)") * 1e-3;
   if (!prm.get("Mesh file").empty()) {
     p.geometry.mesh_file = file.parent_path() / prm.get("Mesh file");
-    if (!std::filesystem::is_regular_file(p.geometry.mesh_file))
-      throw InputError(name, "'Mesh file': cannot open " + p.geometry.mesh_file.string());
+    const std::string mesh = p.geometry.mesh_file.string();
+    require(std::filesystem::is_regular_file(p.geometry.mesh_file), "Geometry", "Mesh file",
+            "a readable file (cannot open " + mesh + ")");
+    require(looks_like_gmsh(p.geometry.mesh_file), "Geometry", "Mesh file",
+            "a gmsh .msh file starting with $MeshFormat or $NOD (" + mesh + " is empty or is not one)");
     if (p.geometry.quarter || p.geometry.imperfection != 0.0 || p.geometry.bow != 0.0 || p.geometry.mesh_distortion != 0.0)
       throw InputError(name, "'Mesh file' needs Cross section = full and no imperfection, bow or distortion");
   }
+  const bool generated = p.geometry.mesh_file.empty();  // a mesh file brings its own sizes
+  require(!generated || p.geometry.diameter > 0.0, "Geometry", "Diameter (mm)", "a diameter > 0");
+  require(!generated || p.geometry.length > 0.0, "Geometry", "Length (mm)", "a length > 0");
   if (p.geometry.bow != 0.0 && p.geometry.quarter)
     throw InputError(name, "'Bow imperfection (mm)' needs Cross section = full");
   prm.leave_subsection();
@@ -257,6 +292,9 @@ Parameters read_parameters(const std::filesystem::path& file, const std::vector<
   prm.enter_subsection("Material");
   p.material.young = prm.get_double("Young modulus (MPa)") * 1e6;
   p.material.poisson = prm.get_double("Poisson ratio");
+  require(p.material.young > 0.0, "Material", "Young modulus (MPa)", "a modulus > 0");
+  require(p.material.poisson > -1.0 && p.material.poisson < 0.5, "Material", "Poisson ratio",
+          "a ratio in (-1, 0.5) exclusive (0.5: incompressible, no bulk modulus)");
   auto& h = p.material.hardening;
   h.law = parse_hardening_law(prm.get("Hardening law"));
   p.material.failure.d1 = prm.get_double("Failure d1");
@@ -385,6 +423,9 @@ Parameters read_parameters(const std::filesystem::path& file, const std::vector<
   p.stepping.growth_factor = prm.get_double("Growth factor");
   p.stepping.cutback_factor = prm.get_double("Cutback factor");
   p.stepping.easy_iterations = prm.get_integer("Easy iterations");
+  require(p.stepping.minimum_step > 0.0, "Load stepping", "Minimum step", "a pseudo-time step > 0");
+  require(p.stepping.cutback_factor > 0.0 && p.stepping.cutback_factor < 1.0, "Load stepping", "Cutback factor",
+          "a factor in (0, 1) exclusive");
   if (!(p.stepping.minimum_step <= p.stepping.initial_step && p.stepping.initial_step <= p.stepping.maximum_step))
     throw InputError(name, "Load stepping: expected Minimum step <= Initial step <= Maximum step");
   prm.leave_subsection();
@@ -396,6 +437,7 @@ Parameters read_parameters(const std::filesystem::path& file, const std::vector<
   p.newton.maximum_line_search_steps = prm.get_integer("Maximum line search steps");
   p.newton.krylov = prm.get("Linear solver") == "gmres-amg";
   p.newton.linear_tolerance = prm.get_double("Linear tolerance");
+  require(p.newton.relative_tolerance > 0.0, "Newton", "Relative tolerance", "a tolerance > 0");
   p.newton.maximum_linear_iterations = prm.get_integer("Maximum linear iterations");
   prm.leave_subsection();
 
@@ -450,6 +492,15 @@ Parameters read_parameters(const std::filesystem::path& file, const std::vector<
       !p.contact.enabled())
     throw InputError(name, "a full cross-section needs at least one clamped end or contact tools (rigid-body modes)");
   return p;
+}
+}  // namespace
+
+Parameters read_parameters(const std::filesystem::path& file, const std::vector<std::string>& settings) {
+  try {
+    return read_and_convert(file, settings);
+  } catch (const dealii::ExceptionBase& e) {  // a value deal.II could not convert (e.g. an unfilled {placeholder})
+    throw InputError(file.string(), deal_ii_message(e.what()));
+  }
 }
 
 namespace {

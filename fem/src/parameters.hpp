@@ -137,6 +137,9 @@ struct Parameters {
 // `settings` ("Section/Entry=value", as `dtwire run --set`) override the file's entries.
 Parameters read_parameters(const std::filesystem::path& file, const std::vector<std::string>& settings = {});
 
+// deal.II's exception text reduced to its "Additional information", on one line.
+std::string deal_ii_message(const std::string& what);
+
 // Top displacement (m) at pseudo-time t, piecewise linear in the load path.
 double path_displacement(const LoadParameters& load, double t);
 // Rotation (rad) of the top end at pseudo-time t (0 without a rotation path).

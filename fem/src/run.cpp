@@ -2,7 +2,12 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <array>
+#include <csignal>
+#include <optional>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -118,6 +123,42 @@ double extensometer_elongation(const StepRecord& s, const OutputParameters& outp
   return sum / static_cast<double>(output.extensometer.size());
 }
 
+// SIGINT during a run: the note (with how to resume) is appended to run.log through a plain
+// file descriptor, the only async-signal-safe way, then the default action ends the process.
+int interrupt_log = -1;
+std::string interrupt_note;
+
+extern "C" void record_interrupt(int signal_number) {
+  if (interrupt_log >= 0) {
+    [[maybe_unused]] const auto written = ::write(interrupt_log, interrupt_note.data(), interrupt_note.size());
+  }
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+class InterruptRecord {
+ public:
+  InterruptRecord(const std::filesystem::path& log, const RunOptions& options, const Parameters& p) {
+    const auto& out = options.output_directory.string();
+    interrupt_note = "\ninterrupted (SIGINT); resume with: dtwire run " + options.parameter_file.string() + " -o " + out +
+                     (p.output.checkpoint_interval > 0
+                          ? " --restart STEP (STEP: the latest step under " + out + "/checkpoints)\n"
+                          : " (no checkpoints: set Output/Checkpoint interval to resume part-way)\n");
+    interrupt_log = ::open(log.c_str(), O_WRONLY | O_APPEND);
+    previous_ = std::signal(SIGINT, record_interrupt);
+  }
+  ~InterruptRecord() {
+    std::signal(SIGINT, previous_);
+    if (interrupt_log >= 0) ::close(interrupt_log);
+    interrupt_log = -1;
+  }
+  InterruptRecord(const InterruptRecord&) = delete;
+  InterruptRecord& operator=(const InterruptRecord&) = delete;
+
+ private:
+  void (*previous_)(int) = SIG_DFL;
+};
+
 Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& options, const Parameters& p) {
   std::vector<double> u, f, d, e, r, gauge;
   for (const auto& s : records) {
@@ -199,7 +240,11 @@ RunSummary run_experiment(const RunOptions& options) {
   Parameters parameters = read_parameters(options.parameter_file, options.settings);
   const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const auto& out = options.output_directory;
-  if (root) std::filesystem::create_directories(out);
+  if (root) {
+    std::filesystem::create_directories(out);
+    // Results of an earlier run in this folder would sit beside this run's log: remove them.
+    for (const char* stale : {"curve.csv", "curve.partial.csv", "results.h5"}) std::filesystem::remove(out / stale);
+  }
   MPI_Barrier(MPI_COMM_WORLD);
 
   std::ofstream log_file;
@@ -207,8 +252,22 @@ RunSummary run_experiment(const RunOptions& options) {
   TeeBuffer tee(root ? log_file.rdbuf() : nullptr, root && options.echo ? std::cout.rdbuf() : nullptr);
   std::ostream log(&tee);
   log << "dtwire " << kVersion << " (" << kGitHash << "): " << options.parameter_file.string() << "\n";
+  log.flush();
+  std::optional<InterruptRecord> interrupt;
+  if (root) interrupt.emplace(out / "run.log", options, parameters);
 
-  WireSolver solver(parameters, log, parameters.output.fields ? out / "fields" : std::filesystem::path());
+  // A mesh file deal.II cannot read is bad input, named as such (not a failed computation).
+  const auto make_solver = [&]() {
+    try {
+      return std::make_unique<WireSolver>(parameters, log,
+                                          parameters.output.fields ? out / "fields" : std::filesystem::path());
+    } catch (const dealii::ExceptionBase& e) {
+      if (parameters.geometry.mesh_file.empty()) throw ComputationError(deal_ii_message(e.what()));
+      throw InputError(parameters.geometry.mesh_file.string(), "cannot read the mesh: " + deal_ii_message(e.what()));
+    }
+  };
+  const std::unique_ptr<WireSolver> solver_owner = make_solver();
+  WireSolver& solver = *solver_owner;
   parameters.geometry = solver.geometry();  // as read from a mesh file (length, double twist)
   solver.set_checkpoints(out / "checkpoints", parameters.output.checkpoint_interval, options.restart_step);
   std::vector<StepRecord> records;

@@ -1,0 +1,104 @@
+#!/bin/bash
+# Hostile but realistic inputs through the dtwire executable (issue 20): each case must exit 2
+# before any work, naming the file (and line) or option and the closest known name where one
+# exists. Prints the count of cases that behave as the README's input contract says.
+# Usage: hostile_inputs.sh <dtwire> <source dir> <scratch dir>
+set -u
+dtwire=$1 src=$2 work=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
+prm=$src/experiments/default/sw_tension.prm
+fit=$src/experiments/sw_fe_fit/macro_fit.toml
+
+# Files the cases read.
+sed 's/set Diameter (mm)/set Diamter (mm)/' "$prm" > typo_entry.prm
+sed 's/set Young modulus (MPa)/set Youngs modulus (MPa)/' "$prm" > typo_young.prm
+sed 's/^subsection Geometry/subsection Geometri/' "$prm" > typo_subsection.prm
+: > empty.prm
+printf '# only a comment\n\n' > comment_only.prm
+sed 's/set Poisson ratio *=.*/set Poisson ratio = 0.5/' "$prm" > poisson_half.prm
+sed 's/set Young modulus (MPa) *=.*/set Young modulus (MPa) = 0/' "$prm" > young_zero.prm
+sed 's/set Length (mm) *=.*/set Length (mm) = 0/' "$prm" > length_zero.prm
+sed 's/set Diameter (mm) *=.*/set Diameter (mm) = 0/' "$prm" > diameter_zero.prm
+printf 'subsection Geometry\n  set Length (mm) = 60\n' > unclosed.prm
+printf 'subsection Geometry\n  Length (mm) = 60\nend\n' > no_set.prm
+printf 'end\n' > stray_end.prm
+echo "garbage" > garbage.msh
+: > empty.msh
+printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\nxx\n' > broken.msh
+for m in garbage empty broken; do
+  printf 'subsection Geometry\n  set Cross section = full\n  set Mesh file = %s.msh\nend\n' $m > mesh_$m.prm
+done
+
+thesis=$src/experiments/data/macroelement_thesis_params.json
+export_set() {  # export_set <python statement on the single_wire set s> <file>
+  python3 -c "import json, sys
+s = json.load(open('$thesis'))['single_wire']
+exec(sys.argv[1])
+json.dump({'single_wire': s}, open(sys.argv[2], 'w'))" "$1" "$2"
+}
+export_set "s['EA_N'] = -1" ea_negative.json
+export_set "del s['EA_N']" ea_missing.json
+export_set "s['Nult_N'] = 100" nult_below_n0.json
+export_set "s['reference_length_m'] = 0" length_zero.json
+python3 -c "import json; print(json.dumps({'single_wire': json.load(open('$thesis'))['single_wire']}).replace('16000000.0', '1e999'))" > overflow.json
+
+pass=0 total=0
+# case <expected text in the output> <dtwire arguments...>
+case_() {
+  local expected=$1; shift
+  total=$((total + 1))
+  local output code
+  output=$("$dtwire" "$@" 2>&1); code=$?
+  if [ $code -eq 2 ] && [[ "$output" == *"$expected"* ]]; then
+    pass=$((pass + 1))
+  else
+    echo "FAIL: dtwire $* -> exit $code, expected 2 and '$expected':"
+    echo "$output" | head -5
+  fi
+}
+out="-o $work/out -q"
+case_ "typo_entry.prm:13: unknown entry 'Diamter (mm)' in subsection 'Geometry' (did you mean 'Diameter (mm)'?)" run typo_entry.prm $out
+case_ "did you mean 'Young modulus (MPa)'" run typo_young.prm $out
+case_ "typo_subsection.prm:" run typo_subsection.prm $out
+case_ "did you mean 'Geometry'" run typo_subsection.prm $out
+case_ "empty.prm: no 'set' line" run empty.prm $out
+case_ "comment_only.prm: no 'set' line" run comment_only.prm $out
+case_ "poisson_half.prm:24: subsection Material: 'Poisson ratio': expected a ratio in (-1, 0.5)" run poisson_half.prm $out
+case_ "young_zero.prm:23: subsection Material: 'Young modulus (MPa)': expected a modulus > 0" run young_zero.prm $out
+case_ "length_zero.prm:14: subsection Geometry: 'Length (mm)': expected a length > 0" run length_zero.prm $out
+case_ "diameter_zero.prm:13: subsection Geometry: 'Diameter (mm)'" run diameter_zero.prm $out
+case_ "unclosed.prm:2: subsection 'Geometry' is not closed" run unclosed.prm $out
+case_ "no_set.prm:2: expected 'set Entry = value'" run no_set.prm $out
+case_ "stray_end.prm:1: 'end' without a subsection" run stray_end.prm $out
+case_ "mesh_garbage.prm:3: subsection Geometry: 'Mesh file'" run mesh_garbage.prm $out
+case_ "empty.msh is empty or is not one" run mesh_empty.prm $out
+case_ "broken.msh: cannot read the mesh" run mesh_broken.prm $out
+case_ "--set: Material/Poisson ratio: 'Poisson ratio': expected a ratio" run "$prm" --set 'Material/Poisson ratio=0.5' $out
+case_ "--set: Newton/Relative tolerance" run "$prm" --set 'Newton/Relative tolerance=0' $out
+case_ "--set: 'Geometry/Diamter (mm)=3'" run "$prm" --set 'Geometry/Diamter (mm)=3' $out
+case_ "--restart: Value -5 not in range" run "$prm" --restart -5 $out
+case_ "--threads: Value -1 not in range" fit "$fit" --threads -1 -o "$work/fit"
+case_ "--threads: Value 0 not in range" fit "$fit" --threads 0 -o "$work/fit"
+case_ "--trials: Value -1 not in range" gap selfcheck --trials -1
+case_ "--steps" export --params "$src/experiments/data/macroelement_thesis_params.json" --steps 0 --out "$work/export"
+case_ "no_such.prm" run no_such.prm $out
+case_ "ea_negative.json: wire type 'single_wire' (law thesis): thesis: parameter 'EA_N' must be finite and > 0" export --params ea_negative.json --out export
+case_ "ea_missing.json: wire type 'single_wire' (law thesis): thesis: missing parameter 'EA_N'" export --params ea_missing.json --out export
+case_ "nult_below_n0.json: wire type 'single_wire' (law thesis): thesis: Nult_N must be >= N0_N" export --params nult_below_n0.json --out export
+case_ "length_zero.json: wire type 'single_wire': 'reference_length_m': expected a length > 0" export --params length_zero.json --out export
+case_ "overflow.json: not valid JSON" export --params overflow.json --out export
+[ -e "$work/export" ] && { echo "FAIL: a refused export left $work/export"; total=$((total + 1)); }
+[ -e "$work/out/curve.csv" ] && { echo "FAIL: a refused run left $work/out/curve.csv"; total=$((total + 1)); }
+# An interrupted run into a folder of an earlier run: the earlier results are gone and run.log
+# says how to resume.
+mkdir -p interrupted && touch interrupted/curve.csv interrupted/results.h5
+"$dtwire" run "$prm" -o interrupted -q & pid=$!
+sleep 3; kill -INT $pid; wait $pid
+total=$((total + 1))
+if [ ! -e interrupted/curve.csv ] && [ ! -e interrupted/results.h5 ] && grep -q "interrupted (SIGINT); resume with: dtwire run" interrupted/run.log; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: SIGINT into a folder of an earlier run:"; ls interrupted; tail -2 interrupted/run.log
+fi
+echo "hostile inputs: $pass of $total cases refused as the input contract says"
+[ $pass -eq $total ]
