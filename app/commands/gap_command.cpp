@@ -322,6 +322,14 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   selfcheck->add_option("--pair-trials", self->run.pair_trials, "Trials with two effects")->capture_default_str()->check(CLI::Range(0, 100000));
   selfcheck->add_option("--none-trials", self->run.none_trials, "Effect-free trials")->capture_default_str()->check(CLI::Range(0, 100000));
   selfcheck->add_option("--seed", self->run.seed, "Random seed")->capture_default_str();
+  selfcheck->add_option("--family", self->run.family,
+                        "Effect generators: fitted (the fitted augmentations) or independent (other physical forms, "
+                        "realistic measurement chain, repeated specimens)")
+      ->check(CLI::IsMember({"fitted", "independent"}))
+      ->capture_default_str();
+  selfcheck->add_option("--repeats", self->run.repeats, "Independent family: laboratory curves (specimens) per trial")
+      ->check(CLI::Range(1, 5))
+      ->capture_default_str();
   selfcheck->add_option("--backbone", self->run.backbone_csv, "DEM backbone CSV used as a base model")
       ->capture_default_str();
   selfcheck->add_option("--json", self->json, "Write the figures and every trial as JSON");

@@ -9,6 +9,7 @@
 #include "dtwire/gap/model_search.hpp"
 #include "dtwire/gap/noise.hpp"
 #include "evidence.hpp"
+#include "parsimony.hpp"
 
 namespace dtwire::gap {
 namespace {
@@ -354,6 +355,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
       }
     score_ranking(ranking, fits, ctx, baseline_mse, d);
     evidence::demote_weak_pairs(ranking, singles, single_gap);
+    parsimony::apply(ranking, fits, singles, ctx.problem, rng);
   }
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });

@@ -76,6 +76,20 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                        {"parameters", r.parameters},
                        {"qualifies", r.qualifies}});
     if (r.search_points > 0) ranking.back()["search_points"] = r.search_points;
+    if (r.against_single.done) {
+      const PairEvidence& e = r.against_single;
+      nlohmann::json j = {{"single", e.single}, {"lag1_autocorrelation", e.lag1},
+                          {"effective_sample_size", e.n_eff}, {"bic_single", e.bic_single},
+                          {"bic_pair", e.bic_pair}, {"information_ok", e.information_ok},
+                          {"heldout_done", e.heldout_done}};
+      if (e.heldout_done) {
+        j["heldout_error_single"] = e.heldout_error_single;
+        j["heldout_error_pair"] = e.heldout_error_pair;
+        j["heldout_ok"] = e.heldout_ok;
+      }
+      ranking.back()["against_single"] = j;
+      ranking.back()["also_possible"] = r.also_possible;
+    }
     if (!r.fitted_by_mode.empty()) {
       std::vector<std::string> modes;
       for (const auto& [mode, fitted] : r.fitted_by_mode) modes.push_back(mode);
@@ -114,6 +128,10 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                         {"lab", labs},
                         {"sim", d.sim.source}};
   if (d.scatter_gap >= 0) out["scatter_gap"] = d.scatter_gap;
+  std::vector<std::string> also_possible;
+  for (const RankedEffect& r : d.ranking)
+    if (r.also_possible) also_possible.push_back(r.effect);
+  out["also_possible"] = also_possible;
   require_finite(out);
   return out;
 }
@@ -132,6 +150,15 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     << (d.scatter_gap >= 0 ? ", scatter between the laboratory curves " + std::to_string(d.scatter_gap) : std::string())
     << ")\n"
     << "- **cause: " << d.cause << "** (" << d.reason << ")\n";
+  for (const RankedEffect& r : d.ranking)
+    if (r.also_possible)
+      s << "- also possible: " << r.effect << " (fits better than " << r.against_single.single
+        << " but fails the parsimony rule: BIC " << r.against_single.bic_pair << " against "
+        << r.against_single.bic_single << " on " << r.against_single.n_eff << " effective points"
+        << (r.against_single.heldout_done ? ", held-out error " + std::to_string(r.against_single.heldout_error_pair) +
+                                                " against " + std::to_string(r.against_single.heldout_error_single)
+                                          : std::string())
+        << ")\n";
   if (!d.not_tested.empty()) {
     s << "- not tested:";
     for (const auto& n : d.not_tested) {

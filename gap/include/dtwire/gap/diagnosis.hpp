@@ -27,6 +27,17 @@ struct DiagnosisOptions {
   std::size_t model_runs = 3;
 };
 
+// Evidence for a pair against the best single effect (see gap/src/parsimony.cpp).
+struct PairEvidence {
+  bool done = false;
+  std::string single;            // the best single effect it is compared with
+  double lag1 = 0.0, n_eff = 0.0;  // of the single's residual
+  double bic_single = 0.0, bic_pair = 0.0;
+  bool heldout_done = false;      // not for pairs with a model-only effect (FE cost)
+  double heldout_error_single = 0.0, heldout_error_pair = 0.0;  // weighted SSE on held-out blocks
+  bool information_ok = false, heldout_ok = false;
+};
+
 struct RankedEffect {
   std::string effect;  // catalogue name, or "a+b" for a pair
   std::vector<AppliedEffect> fitted;
@@ -42,6 +53,8 @@ struct RankedEffect {
   std::vector<double> gap_after_by_segment;  // per entry of Diagnosis::where
   bool qualifies = false;  // beats the noise floor and the information criterion
   int search_points = 0;   // pairs with a model-only effect: points of the bounded search
+  PairEvidence against_single;  // pairs only
+  bool also_possible = false;   // a pair that fits better but fails the parsimony rule
   // Combined ranking over several loading modes: the effects as applied in each mode.
   std::vector<std::pair<std::string, std::vector<AppliedEffect>>> fitted_by_mode;
 };
@@ -90,6 +103,9 @@ inline constexpr double kMinimumReduction = 0.3;    // x expected noise-only are
 inline constexpr double kMinimumOverlap = 0.2;      // of the laboratory displacement range
 inline constexpr double kInformationMargin = 10.0;  // AICc units an accepted effect must gain
 inline constexpr double kPairGapRatio = 0.8;        // a pair must cut the single's gap by 20 %
+inline constexpr double kPairBicMargin = 6.0;       // BIC units a pair must gain over the single
+inline constexpr double kPairHeldOutRatio = 0.8;    // held-out error of the pair / the single's
+inline constexpr int kHeldOutBlocks = 10;           // alternate blocks: even fitted, odd held out
 // Laboratory curves with fewer points are digitised polylines: refined between their vertices,
 // and their noise taken as at least 0.5 % of the peak force (digitisation resolution).
 inline constexpr std::size_t kSparseCurvePoints = 50;
