@@ -41,6 +41,7 @@ void drive_set(const DriverOptions& o, dem::ParameterSet set, const std::filesys
 
   std::vector<dem::DriverRun> runs;
   try {
+    dem::check_parameter_names(set, law, o.params);
     dem::PathOptions path_options = dem::default_path_options(law, parameters);
     path_options.steps = o.steps;
     if (o.max_strain) path_options.max_axial_strain = *o.max_strain;

@@ -13,6 +13,7 @@
 #include "dtwire/dem/contact_law.hpp"
 #include "dtwire/dem/driver.hpp"
 #include "dtwire/dem/export.hpp"
+#include "dtwire/dem/export_params.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -28,6 +29,15 @@ struct ExportOptions {
 bool is_wirepm_set(const dem::ParameterSet& set) {
   return set.law == "wirepm" ||
          (set.has("diameter_m") && set.has("reference_length_m") && set.has("backbone_0_strain_1"));
+}
+
+// The names an export writes (so an earlier export's folder may be replaced).
+bool is_export_output(const std::string& name) {
+  const auto ends_with = [&](const std::string& suffix) {
+    return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  return name == "c_abi" || name == "macroelement_pfc7.dat" || ends_with("_parameters.h5") ||
+         ends_with("_parameters.json") || ends_with("_parameters.csv") || ends_with("_wirepm_yade.py");
 }
 
 int run_export_command(const ExportOptions& o) {
@@ -51,6 +61,7 @@ int run_export_command(const ExportOptions& o) {
                                                                        : "";
     if (law.empty()) continue;
     try {
+      dem::check_parameter_names(set, law, o.params);
       dem::make_contact_law(law, values);
     } catch (const std::invalid_argument& e) {
       throw InputError(o.params, "wire type '" + set.wire_type + "' (law " + law + "): " + e.what());
@@ -59,7 +70,10 @@ int run_export_command(const ExportOptions& o) {
   std::vector<std::filesystem::path> inputs{o.params};
   if (!o.backbone.empty()) inputs.emplace_back(o.backbone);
   const Provenance provenance = make_provenance("dtwire export --params " + o.params, inputs);
-  const std::filesystem::path out(o.out);
+  // Everything goes to a fresh folder moved into place at the end: an earlier export's files
+  // (e.g. a set this parameter file no longer has) never sit beside this one's.
+  PendingFolder folder(o.out, is_export_output);
+  const std::filesystem::path& out = folder.temporary();
 
   std::vector<std::filesystem::path> written = dem::export_parameter_tables(sets, out, provenance);
   for (const dem::ParameterSet& set : sets) {
@@ -89,7 +103,9 @@ int run_export_command(const ExportOptions& o) {
     written.push_back(pfc7);
   }
   for (const auto& file : dem::export_c_abi(out / "c_abi", data_path("c_abi/include"), data_path("c_abi/examples"))) written.push_back(file);
-  for (const auto& file : written) std::cout << "wrote " << file.string() << "\n";
+  folder.commit();
+  for (const auto& file : written)
+    std::cout << "wrote " << (folder.target() / std::filesystem::relative(file, out)).string() << "\n";
   return 0;
 }
 

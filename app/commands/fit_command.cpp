@@ -4,7 +4,6 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
-#include <random>
 
 #include "../cli.hpp"
 #include "../plotting.hpp"
@@ -13,7 +12,6 @@
 #include "dtwire/calibrate/fit_output.hpp"
 #include "dtwire/calibrate/fitter.hpp"
 #include "dtwire/calibrate/synthesize.hpp"
-#include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/version.hpp"
 
@@ -22,40 +20,6 @@ namespace {
 
 std::atomic<bool> stop_requested{false};
 extern "C" void request_stop(int) { stop_requested = true; }
-
-// Simulated curves at the parameters' reference values (else initial values), written as
-// target CSVs with optional Gaussian noise, under the target's column names (the experiment's
-// target_columns inverted), so that the definition reads them back. For demonstrations and
-// tests; the files say so.
-void synthesize_targets(const calibrate::FitDefinition& def, const std::filesystem::path& dir,
-                        double noise, std::uint64_t seed, std::size_t points) {
-  calibrate::ParameterValues values;
-  for (const auto& p : def.parameters) values[p.name] = p.reference.value_or(p.initial);
-  for (std::size_t e = 0; e < def.experiments.size(); ++e)
-    for (std::size_t other = 0; other < e; ++other)
-      if (def.experiment_target_names[e] == def.experiment_target_names[other])
-        throw InputError(def.file.string(), "experiments '" + def.experiments[other].name + "' and '" +
-                                                def.experiments[e].name + "' have the same target name " +
-                                                def.experiment_target_names[e].string() + ": --synthesize would write it twice");
-  std::mt19937_64 generator(seed);
-  for (std::size_t e = 0; e < def.experiments.size(); ++e) {
-    Curve out = calibrate::synthesize_target(def.experiments[e], values, noise, generator, points);
-    try {
-      out = calibrate::unmap_columns(out, def.experiment_columns[e]);
-    } catch (const std::invalid_argument& error) {
-      throw InputError(def.file.string(), "experiment '" + def.experiments[e].name + "': target_columns " + error.what());
-    }
-    out.set_metadata("source", "synthetic: dtwire fit --synthesize, simulator " + def.simulator + " law " +
-                                   def.law + " at the reference parameter values of " +
-                                   def.file.filename().string());
-    out.set_metadata("noise", format_number(noise) + " x channel range (Gaussian, seed " +
-                                  std::to_string(seed) + ")");
-    const auto file = dir / def.experiment_target_names.at(e);
-    std::filesystem::create_directories(file.parent_path());
-    write_csv(out, file);
-    std::cout << "wrote " << file.string() << "\n";
-  }
-}
 
 }  // namespace
 
@@ -100,7 +64,9 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
       calibrate::FitReadOptions read;
       read.read_targets = false;
       const auto def = calibrate::read_fit_file(options->file, read);
-      synthesize_targets(def, options->synthesize, options->noise, options->seed, options->points);
+      for (const auto& file :
+           calibrate::write_synthetic_targets(def, options->synthesize, options->noise, options->seed, options->points))
+        std::cout << "wrote " << file.string() << "\n";
       return 0;
     }
     calibrate::FitReadOptions read;

@@ -230,9 +230,14 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     // Each laboratory curve's mode, then the curves grouped by mode (in order of appearance).
     std::vector<gap::ModeInput> inputs;
     std::vector<std::string> input_sim, input_model, input_first_lab;
+    std::vector<std::string> order_warnings;  // flagged, not refused: the user may know better
     for (std::size_t k = 0; k < n; ++k) {
       const std::string& path = options->labs[k];
       const gap::ForceCurve lab = gap::load_force_curve(path, conversion);
+      if (const std::string warning = gap::row_order_warning(lab); !warning.empty()) {
+        std::cerr << "warning: " << warning << "\n";
+        order_warnings.push_back(warning);
+      }
       const gap::ModeGuess guess = given_modes.empty()
                                        ? gap::detect_loading_mode(read_csv(path), lab, path)
                                        : gap::ModeGuess{gap::parse_loading_mode(given_modes[k], "--mode"), "--mode"};
@@ -278,8 +283,16 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     diagnosis_options.seed = options->seed;
     diagnosis_options.model_runs = options->model_runs;
     const gap::MultiModeDiagnosis result = gap::diagnose_modes(inputs, diagnosis_options);
-    write_text(options->json, gap::multimode_json(result).dump(2) + "\n");
-    write_text(options->report, gap::multimode_markdown(result));
+    auto document = gap::multimode_json(result);
+    std::string markdown = gap::multimode_markdown(result);
+    if (!order_warnings.empty()) {
+      document["input_warnings"] = order_warnings;
+      std::string flagged;
+      for (const std::string& w : order_warnings) flagged += "> **Warning**: " + w + "\n\n";
+      markdown = flagged + markdown;
+    }
+    write_text(options->json, document.dump(2) + "\n");
+    write_text(options->report, markdown);
     const auto summary_line = [](const gap::Diagnosis& d) {
       std::ostringstream line;
       line << "gap " << d.gap_before << " (noise floor " << d.noise_floor << "), cause: " << d.cause << " ("

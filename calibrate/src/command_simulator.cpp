@@ -1,5 +1,6 @@
 #include "dtwire/calibrate/command_simulator.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -46,6 +47,15 @@ std::string CommandSimulator::instantiate(const ParameterValues& parameters) con
   if (std::regex_search(text, left, placeholder))
     throw ComputationError("input template: no value for placeholder " + left.str());
   return text;
+}
+
+std::vector<std::string> CommandSimulator::parameter_names() const {
+  static const std::regex placeholder(R"(\{([A-Za-z_][A-Za-z0-9_]*)\})");
+  std::vector<std::string> names;
+  for (auto it = std::sregex_iterator(spec_.input_template.begin(), spec_.input_template.end(), placeholder);
+       it != std::sregex_iterator(); ++it)
+    if (std::find(names.begin(), names.end(), (*it)[1].str()) == names.end()) names.push_back((*it)[1].str());
+  return names;
 }
 
 Curve CommandSimulator::simulate(const ParameterValues& parameters) const {

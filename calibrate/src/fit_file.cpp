@@ -13,10 +13,12 @@
 #include "dtwire/calibrate/command_simulator.hpp"
 #include "dtwire/calibrate/law_replay.hpp"
 #include "dtwire/calibrate/voce_bar.hpp"
+#include "dtwire/core/closest_name.hpp"
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/core/units.hpp"
+#include "dtwire/dem/law_schema.hpp"
 
 namespace dtwire::calibrate {
 namespace {
@@ -128,6 +130,45 @@ std::vector<double> waypoints(const Table& t, const std::string& prefix, Dimensi
     for (double& v : out) v *= unit->to_si;
   }
   return out;
+}
+
+// law_replay: the law must exist and read every fixed name (a typo would leave the law's
+// default in place without a word).
+void check_fixed_law_parameters(const FitDefinition& def, const Table& sim) {
+  try {
+    dem::law_parameter_names(def.law);
+  } catch (const std::invalid_argument& error) {
+    sim.fail(sim.get("law"), "law", error.what());
+  }
+  for (const auto& [parameter, value] : def.fixed)
+    if (!dem::is_law_parameter(def.law, parameter)) {
+      const toml::node* fixed = sim.get("fixed");
+      const bool inline_value = fixed && fixed->is_table() && fixed->as_table()->contains(parameter);
+      sim.fail(inline_value ? fixed->as_table()->get(parameter) : sim.get("fixed_parameters_file"),
+               inline_value ? "fixed." + parameter : "fixed_parameters_file",
+               "the " + def.law + " law reads no parameter '" + parameter + "'" +
+                   did_you_mean(parameter, dem::law_parameter_names(def.law)));
+    }
+}
+
+// Every fitted parameter must be read by at least one experiment's simulator, where the
+// simulators say what they read.
+void check_parameters_are_read(const FitDefinition& def, const std::vector<Table>& tables) {
+  for (std::size_t i = 0; i < def.parameters.size(); ++i) {
+    std::vector<std::string> known;
+    bool read = false;
+    for (const Experiment& e : def.experiments) {
+      const std::vector<std::string> names = e.simulator->parameter_names();
+      if (names.empty() || std::find(names.begin(), names.end(), def.parameters[i].name) != names.end()) read = true;
+      known.insert(known.end(), names.begin(), names.end());
+    }
+    if (read) continue;
+    const std::string what = def.simulator == "command" ? "no experiment's input template has a placeholder {" +
+                                                               def.parameters[i].name + "}"
+                                                         : "the " + def.law + " simulator reads no parameter '" +
+                                                               def.parameters[i].name + "'";
+    tables[i].fail(tables[i].get("name"), "name", what + did_you_mean(def.parameters[i].name, known));
+  }
 }
 
 dem::ParameterMap read_fixed_json(const std::filesystem::path& path, const std::string& section,
@@ -291,6 +332,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
   CommandSpecification command;
   if (def.simulator == "law_replay") {
     def.law = sim.text("law");
+    check_fixed_law_parameters(def, sim);
   } else if (def.simulator == "command") {
     def.law = sim.text("law", "command");
     const std::string program = sim.text("program", "dtwire");
@@ -340,8 +382,10 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     throw InputError(name, parameters ? static_cast<int>(parameters->source().begin.line) : 0, 0,
                      "field 'parameter': expected at least one [[parameter]] table");
   std::size_t index = 0;
+  std::vector<Table> parameter_tables;
   for (const toml::node& node : *parameters->as_array()) {
     const Table p(*node.as_table(), "parameter[" + std::to_string(++index) + "]", name);
+    parameter_tables.push_back(p);
     p.only({"name", "unit", "initial", "lower", "upper", "scale", "reference"});
     ParameterDefinition d;
     d.name = p.text("name");
@@ -481,6 +525,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     }
     def.experiments.push_back(std::move(e));
   }
+  check_parameters_are_read(def, parameter_tables);
   return def;
 }
 

@@ -49,7 +49,7 @@ json provenance_json(const Provenance& p) {
   json inputs = json::object();
   for (const auto& [path, sha] : p.input_sha256) inputs[path] = sha;
   return {{"tool_version", p.tool_version}, {"git_hash", p.git_hash}, {"created_utc", p.created_utc},
-          {"command", p.command}, {"inputs", inputs}};
+          {"command", p.command}, {"run_id", p.run_id}, {"inputs", inputs}};
 }
 
 std::string number(double v, int precision = 4) {

@@ -1,11 +1,13 @@
 #include "dtwire/calibrate/law_replay.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/dem/driver.hpp"
+#include "dtwire/dem/law_schema.hpp"
 #include "dtwire/dem/paths.hpp"
 
 namespace dtwire::calibrate {
@@ -83,6 +85,14 @@ std::vector<std::pair<std::string, Dimension>> LawReplaySimulator::channels() co
           {"rotation", Dimension::Angle},
           {"force", Dimension::Force},
           {"moment", Dimension::Moment}};
+}
+
+std::vector<std::string> LawReplaySimulator::parameter_names() const {
+  std::vector<std::string> names = dem::law_parameter_names(law_);
+  for (const auto& [name, value] : fixed_)  // WirePM's backbone points, named by pattern
+    if (dem::is_law_parameter(law_, name) && std::find(names.begin(), names.end(), name) == names.end())
+      names.push_back(name);
+  return names;
 }
 
 }  // namespace dtwire::calibrate

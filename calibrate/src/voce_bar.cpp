@@ -71,4 +71,6 @@ std::vector<std::pair<std::string, Dimension>> VoceBarSimulator::channels() cons
   return {{"strain", Dimension::Dimensionless}, {"stress", Dimension::Stress}};
 }
 
+std::vector<std::string> VoceBarSimulator::parameter_names() const { return {"E_Pa", "sigma_y0_Pa", "Q_Pa", "b_1"}; }
+
 }  // namespace dtwire::calibrate

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "dtwire/core/error.hpp"
+
 namespace dtwire {
 namespace {
 std::filesystem::path temporary_name(const std::filesystem::path& target) {
@@ -40,6 +42,40 @@ void PendingFile::commit() {
   if (error)
     throw std::runtime_error(target_.string() + ": cannot move result into place: " +
                              error.message());
+  committed_ = true;
+}
+
+PendingFolder::PendingFolder(std::filesystem::path target, std::function<bool(const std::string&)> is_own_output)
+    : target_(std::move(target)) {
+  if (target_.filename().empty()) target_ = target_.parent_path();  // "out/" -> "out"
+  if (std::filesystem::exists(target_)) {
+    if (!std::filesystem::is_directory(target_))
+      throw InputError(target_.string(), "exists and is not a folder; expected an output folder");
+    for (const auto& entry : std::filesystem::directory_iterator(target_))
+      if (!is_own_output(entry.path().filename().string()))
+        throw InputError(target_.string(), "holds '" + entry.path().filename().string() +
+                                               "', which this command does not write; choose a new or empty "
+                                               "folder (results are never mixed with other files)");
+  }
+  const auto parent = target_.parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  temporary_ = temporary_name(target_);
+  std::filesystem::create_directory(temporary_);
+}
+
+PendingFolder::~PendingFolder() {
+  if (!committed_) {
+    std::error_code ignored;
+    std::filesystem::remove_all(temporary_, ignored);
+  }
+}
+
+void PendingFolder::commit() {
+  std::error_code error;
+  std::filesystem::remove_all(target_, error);
+  if (!error) std::filesystem::rename(temporary_, target_, error);
+  if (error)
+    throw std::runtime_error(target_.string() + ": cannot move the results into place: " + error.message());
   committed_ = true;
 }
 

@@ -3,10 +3,13 @@
 #include <openssl/evp.h>
 
 #include <array>
+#include <cstdio>
 #include <ctime>
 #include <fstream>
 #include <memory>
+#include <random>
 #include <stdexcept>
+#include <unistd.h>
 
 #include "dtwire/core/error.hpp"
 #include "dtwire/version.hpp"
@@ -68,9 +71,21 @@ void Provenance::add_input(const std::filesystem::path& path) {
   input_sha256.emplace_back(path.string(), sha256_file(path));
 }
 
+std::string new_run_id() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char time_text[32];
+  std::strftime(time_text, sizeof time_text, "%Y%m%dT%H%M%SZ", &utc);
+  std::random_device entropy;
+  char random_text[16];
+  std::snprintf(random_text, sizeof random_text, "%08x", static_cast<unsigned>(entropy()));
+  return std::string(time_text) + "-" + std::to_string(::getpid()) + "-" + random_text;
+}
+
 Provenance make_provenance(const std::string& command,
                            const std::vector<std::filesystem::path>& inputs) {
-  Provenance p{kVersion, kGitHash, utc_now_iso8601(), command, {}};
+  Provenance p{kVersion, kGitHash, utc_now_iso8601(), command, new_run_id(), {}};
   for (const auto& input : inputs) p.add_input(input);
   return p;
 }

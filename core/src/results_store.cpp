@@ -190,6 +190,7 @@ void write_results(const Results& results, const std::filesystem::path& path) {
     write_string_attribute(provenance, "git_hash", results.provenance.git_hash);
     write_string_attribute(provenance, "created_utc", results.provenance.created_utc);
     write_string_attribute(provenance, "command", results.provenance.command);
+    write_string_attribute(provenance, "run_id", results.provenance.run_id);
     Handle inputs = create_group(provenance, "inputs");
     for (const auto& [input, digest] : results.provenance.input_sha256)
       write_string_attribute(inputs, input, digest);
@@ -244,6 +245,7 @@ Results read_results(const std::filesystem::path& path) {
       if (name == "git_hash") results.provenance.git_hash = value;
       if (name == "created_utc") results.provenance.created_utc = value;
       if (name == "command") results.provenance.command = value;
+      if (name == "run_id") results.provenance.run_id = value;
     });
     Handle inputs(H5Gopen2(provenance, "inputs", H5P_DEFAULT), H5Gclose, "open inputs");
     for_each_attribute(inputs, [&](const std::string& name, hid_t attribute) {

@@ -97,6 +97,7 @@ LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std:
     r.fail(table.get("law"), prefix + "law", "'" + set.law + "' but the parameter file says '" + chosen.law + "'");
   set.parameters = chosen.map();
   try {
+    check_parameter_names(chosen, set.law, params_path);
     ParameterMap probe = set.parameters;
     if (set.law == "wirepm" && !probe.count("reference_length_m")) probe["reference_length_m"] = 0.05;
     make_contact_law(set.law, probe);  // validates names and values now, not in the middle of a run
@@ -245,6 +246,7 @@ void override_link_set(RunInput& input, const std::string& tag, const std::files
   set.parameters = chosen.map();
   set.files = {params};
   try {
+    check_parameter_names(chosen, set.law, params);
     make_contact_law(set.law, set.parameters);
   } catch (const std::invalid_argument& e) {
     throw InputError(option, e.what());

@@ -68,6 +68,11 @@ RunRecorder::RunRecorder(const RunInput& input, const HexMesh& mesh, const RunOp
       if (twist_at[node] >= 0) angle_pairs_.push_back({twist_at[node], static_cast<int>(l), node});
   }
   std::filesystem::create_directories(options_.out);
+  // An earlier run's results in this folder would sit beside this run's: remove them.
+  for (const char* stale : {"curve.csv", "link_force_histogram.csv", "pulling_angle_histogram.csv", "net.pvd",
+                            "results.h5", "summary.json"})
+    std::filesystem::remove(options_.out / stale);
+  std::filesystem::remove_all(options_.out / "frames");
   if (options_.write_frames) std::filesystem::create_directories(options_.out / "frames");
 }
 
@@ -142,6 +147,12 @@ void RunRecorder::frame(const Engine& engine, double time) {
 }
 
 void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
+  std::vector<std::filesystem::path> inputs{input_.file};
+  for (const auto& [tag, set] : input_.link_sets)
+    for (const auto& file : set.files)
+      if (std::find(inputs.begin(), inputs.end(), file) == inputs.end()) inputs.push_back(file);  // one entry per file
+  const Provenance provenance = make_provenance(options_.command_line, inputs);
+
   Curve history;
   const auto& names = history_columns();
   for (std::size_t c = 0; c < names.size(); ++c) history.add_channel(names[c].first, *find_unit(names[c].second), columns_[c]);
@@ -151,6 +162,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   history.set_metadata("tool", input_.tool);
   history.set_metadata("time_step_s", format_number(summary.time_step));
   history.set_metadata("sag_after_settling_mm", format_number(1000.0 * summary.sag));
+  history.set_metadata("run_id", provenance.run_id);
 
   // Figures: peak, displacement at the peak, the largest balance error against the work on the
   // mesh (rows after 5 % of the final work, so that round-off on a tiny work does not count).
@@ -175,8 +187,10 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   write_csv(history, options_.out / "curve.csv");
   const Snapshot at_end = snapshot(engine);
   if (peak_force_ < 0.0) at_peak_ = at_end;
-  const Curve forces = histogram("link_force", "N", 250.0, at_peak_.link_forces, at_end.link_forces);
-  const Curve angles = histogram("pulling_angle", "deg", 5.0, at_peak_.pulling_angles, at_end.pulling_angles);
+  Curve forces = histogram("link_force", "N", 250.0, at_peak_.link_forces, at_end.link_forces);
+  Curve angles = histogram("pulling_angle", "deg", 5.0, at_peak_.pulling_angles, at_end.pulling_angles);
+  forces.set_metadata("run_id", provenance.run_id);
+  angles.set_metadata("run_id", provenance.run_id);
   write_csv(forces, options_.out / "link_force_histogram.csv");
   write_csv(angles, options_.out / "pulling_angle_histogram.csv");
 
@@ -208,11 +222,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   parameter("broken_links", static_cast<double>(summary.broken_links), "1");
   results.fields.emplace_back("frames", frames_.empty() ? "none" : "net.pvd (frames/net_<k>.vtu)");
   results.fields.emplace_back("title", input_.title);
-  std::vector<std::filesystem::path> inputs{input_.file};
-  for (const auto& [tag, set] : input_.link_sets)
-    for (const auto& file : set.files)
-      if (std::find(inputs.begin(), inputs.end(), file) == inputs.end()) inputs.push_back(file);  // one entry per file
-  results.provenance = make_provenance(options_.command_line, inputs);
+  results.provenance = provenance;
   write_results(results, options_.out / "results.h5");
 
   // The headline figures for reports (the campaign's validation table), SI-named columns.
@@ -227,7 +237,8 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
       {"time_step_s", summary.time_step},
       {"steps", summary.steps},
       {"wall_seconds", summary.wall_seconds},
-      {"command", options_.command_line}};
+      {"command", options_.command_line},
+      {"run_id", provenance.run_id}};
   write_file_atomically(options_.out / "summary.json", [&](std::ostream& os) { os << headline.dump(2) << "\n"; });
 }
 

@@ -42,7 +42,7 @@ typedef struct {
 } dtwire_energy;
 
 /* Creates a bond of law `law_name` from `count` named parameters (names[i] = values[i]).
- * Returns NULL on error (unknown law, missing or invalid parameter). */
+ * Returns NULL on error (unknown law, a name the law does not read, missing or invalid parameter). */
 DTWIRE_CONTACT_API dtwire_bond* dtwire_bond_create(const char* law_name, const char* const* names,
                                                   const double* values, size_t count);
 /* Copies a bond with its whole state; NULL on error. */

@@ -8,9 +8,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "dtwire/core/closest_name.hpp"
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/units.hpp"
+#include "dtwire/dem/law_schema.hpp"
 
 namespace dtwire::dem {
 namespace {
@@ -173,6 +175,25 @@ ParameterSet select_wire_type(const std::vector<ParameterSet>& sets, const std::
   throw InputError(file.string(), (wire_type.empty() ? std::string("the file holds several wire types")
                                                      : "no wire type '" + wire_type + "'") +
                                       "; choose one of: " + known + " (--wire-type)");
+}
+
+void check_parameter_names(const ParameterSet& set, const std::string& law, const std::filesystem::path& file) {
+  const std::vector<std::string> unknown = unknown_law_parameters(law, set.map());
+  if (unknown.empty()) return;
+  const std::string& name = unknown.front();
+  // The line of the quoted name, so the user lands on the typo.
+  int line = 0;
+  std::ifstream in(file);
+  std::string text;
+  for (int number = 1; std::getline(in, text); ++number)
+    if (text.find('"' + name + '"') != std::string::npos) {
+      line = number;
+      break;
+    }
+  const std::string message = "wire type '" + set.wire_type + "': unknown parameter '" + name + "' for law " + law +
+                              did_you_mean(name, law_parameter_names(law));
+  if (line > 0) throw InputError(file.string(), line, 0, message);
+  throw InputError(file.string(), message);
 }
 
 Curve read_backbone_csv(const std::filesystem::path& file) {

@@ -41,7 +41,8 @@ std::vector<std::filesystem::path> export_parameter_tables(const std::vector<Par
     if (!set.law.empty()) document["law"] = set.law;
     document["provenance"] = {{"tool_version", provenance.tool_version},
                               {"git_hash", provenance.git_hash},
-                              {"created_utc", provenance.created_utc}};
+                              {"created_utc", provenance.created_utc},
+                              {"run_id", provenance.run_id}};
     for (const ParameterEntry& e : set.entries) {
       nlohmann::json item = {{"name", e.name}, {"value", e.value}, {"unit", e.unit}};
       if (e.sigma) item["sigma"] = *e.sigma;
@@ -53,6 +54,7 @@ std::vector<std::filesystem::path> export_parameter_tables(const std::vector<Par
     write_file_atomically(stem.string() + ".csv", [&](std::ostream& os) {
       os << "# wire_type: " << set.wire_type << "\n";
       if (!set.law.empty()) os << "# law: " << set.law << "\n";
+      os << "# run_id: " << provenance.run_id << "\n";
       os << "# units: SI (unit column; 1 = dimensionless)\nname,value,unit,sigma\n";
       for (const ParameterEntry& e : set.entries) {
         check_name(e.name, "parameter name");

@@ -159,7 +159,8 @@ class InterruptRecord {
   void (*previous_)(int) = SIG_DFL;
 };
 
-Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& options, const Parameters& p) {
+Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& options, const Parameters& p,
+                 const std::string& run_id) {
   std::vector<double> u, f, d, e, r, gauge;
   for (const auto& s : records) {
     u.push_back(s.displacement);
@@ -224,6 +225,7 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
                        *find_unit("mm"));
     }
   c.set_metadata("source", "dtwire run " + options.parameter_file.filename().string());
+  c.set_metadata("run_id", run_id);
   c.set_metadata("model", std::string("finite-strain J2 plasticity, ") +
                               (p.formulation.fbar ? "F-bar" : "plain displacement") + " Q" +
                               std::to_string(p.formulation.degree) + " hexahedra");
@@ -251,7 +253,9 @@ RunSummary run_experiment(const RunOptions& options) {
   if (root) log_file.open(out / "run.log");
   TeeBuffer tee(root ? log_file.rdbuf() : nullptr, root && options.echo ? std::cout.rdbuf() : nullptr);
   std::ostream log(&tee);
-  log << "dtwire " << kVersion << " (" << kGitHash << "): " << options.parameter_file.string() << "\n";
+  const std::string run_id = new_run_id();  // in the log, curve.csv and results.h5 alike
+  log << "dtwire " << kVersion << " (" << kGitHash << "): " << options.parameter_file.string() << ", run "
+      << run_id << "\n";
   log.flush();
   std::optional<InterruptRecord> interrupt;
   if (root) interrupt.emplace(out / "run.log", options, parameters);
@@ -280,7 +284,7 @@ RunSummary run_experiment(const RunOptions& options) {
     solver.run([&](const StepRecord& r) { records.push_back(r); });
   } catch (const ComputationError&) {
     if (root && records.size() >= kMinimumCurvePoints)
-      write_csv(make_curve(records, options, parameters), out / "curve.partial.csv");
+      write_csv(make_curve(records, options, parameters, run_id), out / "curve.partial.csv");
     throw;
   }
   const auto& st = solver.statistics();
@@ -305,7 +309,7 @@ RunSummary run_experiment(const RunOptions& options) {
   log.flush();
   if (!root) return summary;
 
-  const Curve curve = make_curve(records, options, parameters);
+  const Curve curve = make_curve(records, options, parameters, run_id);
   if (records.size() >= kMinimumCurvePoints) write_csv(curve, summary.curve_csv);
   else throw ComputationError("fewer than 3 load steps: no curve written");
   Results results;
@@ -329,6 +333,7 @@ RunSummary run_experiment(const RunOptions& options) {
   std::vector<std::filesystem::path> inputs{options.parameter_file};
   if (!parameters.geometry.mesh_file.empty()) inputs.push_back(parameters.geometry.mesh_file);
   results.provenance = make_provenance(options.command_line, inputs);
+  results.provenance.run_id = run_id;
   write_results(results, summary.results_h5);
   return summary;
 }

@@ -1,5 +1,6 @@
 #include "dtwire/gap/force_curve.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "dtwire/core/csv.hpp"
@@ -41,6 +42,27 @@ void validate_force_curve(const ForceCurve& curve) {
   for (std::size_t i = 0; i < curve.u.size(); ++i)
     if (!std::isfinite(curve.u[i]) || !std::isfinite(curve.f[i]))
       throw InputError(curve.source, "point " + std::to_string(i + 1) + " is not a finite number");
+}
+
+std::string row_order_warning(const ForceCurve& curve) {
+  if (curve.u.size() < 3) return "";
+  const auto [lowest, highest] = std::minmax_element(curve.u.begin(), curve.u.end());
+  const double large_step = 0.05 * (*highest - *lowest);
+  if (!(large_step > 0.0)) return "";
+  int previous_direction = 0;
+  std::size_t large_steps = 0, reversals = 0;
+  for (std::size_t i = 1; i < curve.u.size(); ++i) {
+    const double step = curve.u[i] - curve.u[i - 1];
+    if (std::abs(step) <= large_step) continue;
+    const int direction = step > 0.0 ? 1 : -1;
+    if (previous_direction != 0 && direction != previous_direction) ++reversals;
+    previous_direction = direction;
+    ++large_steps;
+  }
+  if (reversals < 5 || static_cast<double>(reversals) <= 0.4 * static_cast<double>(large_steps - 1)) return "";
+  return curve.source + ": the displacement reverses at " + std::to_string(reversals) + " of " +
+         std::to_string(large_steps) + " large steps: are the rows in the order of the test? (rows that are " +
+         "shuffled or sorted by force read as dozens of load cycles)";
 }
 
 ForceCurve load_force_curve(const std::filesystem::path& path, const CurveConversion& conversion) {

@@ -41,6 +41,12 @@ export_set "del s['EA_N']" ea_missing.json
 export_set "s['Nult_N'] = 100" nult_below_n0.json
 export_set "s['reference_length_m'] = 0" length_zero.json
 python3 -c "import json; print(json.dumps({'single_wire': json.load(open('$thesis'))['single_wire']}).replace('16000000.0', '1e999'))" > overflow.json
+python3 -c "import json; s = json.load(open('$thesis'))['single_wire']; s['slideb'] = s.pop('slide_b')
+print('{\n  \"single_wire\":'); print(json.dumps(s, indent=2)); print('}')" > slideb.json
+sed 's/^name = "m_f"$/name = "m_ff"/' "$fit" > m_ff.toml
+sed 's|^fixed_parameters_section = "single_wire"$|fixed_parameters_section = "single_wire"\nfixed = {slideb = 0}|' "$fit" > fixed_typo.toml
+sed -i 's|"\.\./data/|"'"$src"'/experiments/data/|' m_ff.toml fixed_typo.toml
+mkdir -p foreign && echo "my notes" > foreign/notes.txt
 
 pass=0 total=0
 # case <expected text in the output> <dtwire arguments...>
@@ -87,6 +93,13 @@ case_ "ea_missing.json: wire type 'single_wire' (law thesis): thesis: missing pa
 case_ "nult_below_n0.json: wire type 'single_wire' (law thesis): thesis: Nult_N must be >= N0_N" export --params nult_below_n0.json --out export
 case_ "length_zero.json: wire type 'single_wire': 'reference_length_m': expected a length > 0" export --params length_zero.json --out export
 case_ "overflow.json: not valid JSON" export --params overflow.json --out export
+case_ "slideb.json:22: wire type 'single_wire': unknown parameter 'slideb' for law thesis (did you mean 'slide_b'?)" export --params slideb.json --out export
+case_ "did you mean 'slide_b'" dem driver --law thesis --params slideb.json --out driver
+case_ "parameter[6].name': the thesis simulator reads no parameter 'm_ff' (did you mean 'm_f'?)" fit m_ff.toml --synthesize synthesized
+case_ "simulator.fixed.slideb': the thesis law reads no parameter 'slideb' (did you mean 'slide_b'?)" fit fixed_typo.toml --synthesize synthesized
+case_ "foreign: holds 'notes.txt', which this command does not write" export --params "$thesis" --out foreign
+[ -e "$work/synthesized" ] && { echo "FAIL: a refused fit left $work/synthesized"; total=$((total + 1)); }
+[ "$(cat foreign/notes.txt)" = "my notes" ] || { echo "FAIL: a refused export touched foreign/notes.txt"; total=$((total + 1)); }
 [ -e "$work/export" ] && { echo "FAIL: a refused export left $work/export"; total=$((total + 1)); }
 [ -e "$work/out/curve.csv" ] && { echo "FAIL: a refused run left $work/out/curve.csv"; total=$((total + 1)); }
 # An interrupted run into a folder of an earlier run: the earlier results are gone and run.log
@@ -99,6 +112,30 @@ if [ ! -e interrupted/curve.csv ] && [ ! -e interrupted/results.h5 ] && grep -q 
   pass=$((pass + 1))
 else
   echo "FAIL: SIGINT into a folder of an earlier run:"; ls interrupted; tail -2 interrupted/run.log
+fi
+# An export into the folder of an earlier export: only this export's sets remain, with one run id.
+total=$((total + 1))
+"$dtwire" export --params "$thesis" --out again > /dev/null &&
+  "$dtwire" export --params "$thesis" --wire-type single_wire --out again > /dev/null
+if [ -e again/single_wire_parameters.json ] && [ ! -e again/double_twist_parameters.json ] &&
+   [ "$(grep -h -o '"run_id": "[^"]*"' again/*.json | sort -u | wc -l)" = 1 ] &&
+   grep -q "# run_id: " again/single_wire_parameters.csv && ! ls -a . | grep -q '\.tmp\.'; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: export over an earlier export:"; ls -a again .
+fi
+# A laboratory curve with shuffled rows: diagnosed, but flagged on stderr and in the JSON.
+total=$((total + 1))
+python3 -c "import math, random
+rows = [(0.03 * i / 199, 3000 * math.sin(3 * i / 199)) for i in range(200)]
+open('sim.csv', 'w').write('displacement_m,force_N\n' + ''.join(f'{u},{0.9 * f}\n' for u, f in rows))
+random.seed(3); random.shuffle(rows)
+open('shuffled.csv', 'w').write('displacement_m,force_N\n' + ''.join(f'{u},{f}\n' for u, f in rows))"
+if "$dtwire" gap --lab shuffled.csv --sim sim.csv --mode tension --json gap.json --report gap.md 2> gap.err > /dev/null &&
+   grep -q "warning: shuffled.csv: the displacement reverses" gap.err && grep -q '"input_warnings"' gap.json; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: shuffled laboratory rows not flagged:"; cat gap.err | head -5
 fi
 echo "hostile inputs: $pass of $total cases refused as the input contract says"
 [ $pass -eq $total ]

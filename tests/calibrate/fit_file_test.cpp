@@ -242,5 +242,28 @@ TEST_F(TargetsTest, ChannelTheSimulatorLacksNamesLine) {
       << e.what();
 }
 
+// Issue 20: a fitted parameter no simulator reads used to be fitted (zero sensitivity) and
+// written with a zero sigma.
+TEST_F(TargetsTest, FittedParameterTheLawDoesNotReadNamesLineAndClosestName) {
+  const InputError e = error_of(replace_line(kReplay, 5, "name = \"m_ff\""), options_);
+  EXPECT_EQ(e.line(), 5);
+  EXPECT_NE(std::string(e.what()).find("parameter[1].name"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("did you mean 'm_f'"), std::string::npos) << e.what();
+}
+
+TEST_F(TargetsTest, FixedValueTheLawDoesNotReadNamesLine) {
+  const InputError e = error_of(replace_line(kReplay, 3, "law = \"thesis\"\n[simulator.fixed]\nslideb = 0"), options_);
+  EXPECT_EQ(e.line(), 5);
+  EXPECT_NE(std::string(e.what()).find("did you mean 'slide_b'"), std::string::npos) << e.what();
+  const InputError law = error_of(replace_line(kReplay, 3, "law = \"thesys\""), options_);
+  EXPECT_EQ(law.line(), 3);
+}
+
+TEST_F(FitFileTest, FittedParameterTheVoceBarDoesNotReadIsRefused) {
+  const InputError e = error_of(replace_line(kValid, 8, "name = \"E_GPa\""));
+  EXPECT_EQ(e.line(), 8);
+  EXPECT_NE(std::string(e.what()).find("did you mean 'E_Pa'"), std::string::npos) << e.what();
+}
+
 }  // namespace
 }  // namespace dtwire::calibrate

@@ -13,6 +13,7 @@
 
 #include "dtwire/calibrate/fit_file.hpp"
 #include "dtwire/calibrate/law_replay.hpp"
+#include "dtwire/calibrate/synthesize.hpp"
 
 namespace dtwire::calibrate {
 namespace {
@@ -90,6 +91,28 @@ TEST(SwFeFitPaths, FeKnotsFollowTheDriverPaths) {
     ++checked;
   }
   EXPECT_EQ(checked, 11u);
+}
+
+// Issue 20: the documented round trip `dtwire fit FILE --synthesize DIR` then `--targets DIR`
+// stopped at a mapped column (axial_force) that no compared channel wrote.
+TEST(ShippedFitFiles, SynthesizedTargetsReadBackThroughTheirMapping) {
+  const std::filesystem::path targets = std::filesystem::temp_directory_path() / "dtwire_synthesized_round_trip";
+  for (const auto& file : {kFolder / "macro_fit.toml"}) {  // the shipped file whose targets are {targets}/...
+    std::filesystem::remove_all(targets);
+    FitReadOptions synthesize;
+    synthesize.read_targets = false;
+    const FitDefinition def = read_fit_file(file, synthesize);
+    EXPECT_EQ(write_synthetic_targets(def, targets, 0.0, 1, 81).size(), def.experiments.size()) << file;
+    FitReadOptions read;
+    read.targets_directory = targets;
+    try {
+      const FitDefinition back = read_fit_file(file, read);
+      for (const Experiment& e : back.experiments) EXPECT_GE(e.target.size(), 3u) << file << ": " << e.name;
+    } catch (const std::exception& error) {
+      ADD_FAILURE() << file << ": " << error.what();
+    }
+  }
+  std::filesystem::remove_all(targets);
 }
 
 }  // namespace

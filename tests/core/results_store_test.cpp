@@ -58,6 +58,8 @@ TEST(ResultsStore, ProvenanceRecordsInputHashes) {
   ASSERT_EQ(back.provenance.input_sha256.size(), 1u);
   EXPECT_EQ(back.provenance.input_sha256[0].second, sha256_file(csv));
   EXPECT_EQ(back.provenance.input_sha256[0].second.size(), 64u);
+  EXPECT_EQ(back.provenance.run_id, results.provenance.run_id);
+  EXPECT_FALSE(back.provenance.run_id.empty());
   std::filesystem::remove(h5);
   std::filesystem::remove(csv);
 }

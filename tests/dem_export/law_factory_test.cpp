@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "dtwire/dem/contact_law.hpp"
+#include "dtwire/dem/law_schema.hpp"
+#include "dtwire_contact.h"
 #include "law_test_support.hpp"
 
 namespace dtwire::dem {
@@ -30,6 +32,63 @@ TEST(LawFactory, NamesTheMissingField) {
     EXPECT_NE(std::string(error.what()).find("m_g"), std::string::npos);
   }
   EXPECT_THROW(make_contact_law("nonexistent", {}), std::invalid_argument);
+}
+
+std::string refusal(const std::string& law, const ParameterMap& parameters) {
+  try {
+    make_contact_law(law, parameters);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+// Issue 20: a misspelled name used to be ignored, leaving the law's default in place.
+TEST(LawSchema, EveryLawRefusesANameItDoesNotRead) {
+  ParameterMap thesis = test::thesis_parameters("double_twist");
+  thesis["slideb"] = thesis.at("slide_b");
+  for (const char* law : {"thesis", "macro3d"}) {
+    const std::string message = refusal(law, thesis);
+    EXPECT_NE(message.find("unknown parameter 'slideb'"), std::string::npos) << law << ": " << message;
+    EXPECT_NE(message.find("slide_b"), std::string::npos) << "the names the law reads are listed";
+  }
+  const ParameterMap bond = {{"E_Pa", 2e11}, {"diameter_m", 2.7e-3}, {"length_m", 0.04}, {"tensile_strenght_Pa", 1e9}};
+  EXPECT_NE(refusal("parallel_bond", bond).find("'tensile_strenght_Pa'"), std::string::npos);
+  const ParameterMap wirepm = {{"reference_length_m", 0.06}, {"diameter_m", 2.7e-3},  {"backbone_0_strain_1", 0.01},
+                               {"backbone_0_stress_Pa", 1e9}, {"backbone_1_strain_1", 0.05}, {"backbone_1_stress_Pa", 1.2e9},
+                               {"lambda_eps_1", 0.5}};
+  EXPECT_NE(refusal("wirepm", wirepm).find("'lambda_eps_1'"), std::string::npos);
+}
+
+TEST(LawSchema, AcceptsEveryNameThePublishedSetsAndTheLawsRead) {
+  for (const char* wire : {"single_wire", "double_twist"}) {
+    const ParameterMap thesis = test::thesis_parameters(wire);  // includes reference_length_m, slide_a/b
+    EXPECT_TRUE(unknown_law_parameters("thesis", thesis).empty()) << wire;
+    EXPECT_TRUE(unknown_law_parameters("macro3d", thesis).empty()) << wire;
+  }
+  // macro3d's own SI names, and WirePM's backbone points by pattern (any index, not a look-alike).
+  EXPECT_TRUE(is_law_parameter("macro3d", "bending_stiffness_Nm_per_rad"));
+  EXPECT_TRUE(is_law_parameter("wirepm", "backbone_12_stress_Pa"));
+  EXPECT_FALSE(is_law_parameter("wirepm", "backbone_x_stress_Pa"));
+  EXPECT_FALSE(is_law_parameter("wirepm", "backbone_1_stress_MPa"));
+  EXPECT_FALSE(is_law_parameter("thesis", "backbone_1_stress_Pa"));
+  // Every name of the schema is one the law takes without complaint (no stale entry).
+  ParameterMap thesis = test::thesis_parameters("single_wire");
+  for (const std::string& name : law_parameter_names("thesis"))
+    if (!thesis.count(name)) thesis[name] = 1e-6;  // rk_tolerance is the only one the set lacks
+  EXPECT_NO_THROW(make_contact_law("thesis", thesis));
+  EXPECT_THROW(law_parameter_names("thesys"), std::invalid_argument);
+}
+
+TEST(LawSchema, TheCAbiRefusesTheSameNames) {
+  const char* names[] = {"E_Pa", "diameter_m", "length_m", "poison_1"};
+  const double values[] = {2e11, 2.7e-3, 0.04, 0.3};
+  EXPECT_EQ(dtwire_bond_create("parallel_bond", names, values, 4), nullptr);
+  EXPECT_NE(std::string(dtwire_contact_last_error()).find("unknown parameter 'poison_1'"), std::string::npos)
+      << dtwire_contact_last_error();
+  dtwire_bond* bond = dtwire_bond_create("parallel_bond", names, values, 3);
+  EXPECT_NE(bond, nullptr);
+  dtwire_bond_destroy(bond);
 }
 
 }  // namespace

@@ -2,7 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <random>
 
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
@@ -79,6 +82,50 @@ TEST(GapBadInput, ZeroForceIsRefused) {
 TEST(GapBadInput, UnknownEffectIsNamed) {
   EXPECT_THROW(find_effect("gravity"), std::invalid_argument);
   EXPECT_NO_THROW(find_effect("grip_slip"));
+}
+
+// Issue 20: a laboratory CSV with shuffled rows used to be read as dozens of load cycles.
+TEST(GapRowOrder, ShuffledOrSortedRowsAreFlaggedRealTestsAreNot) {
+  std::mt19937 random(7);
+  std::normal_distribution<double> noise(0.0, 1e-6);
+  ForceCurve monotone, cyclic, coarse_cyclic;
+  monotone.source = "monotone.csv";
+  for (int i = 0; i < 200; ++i) {
+    const double u = 0.03 * i / 199.0;  // a tension test with a softening end
+    monotone.u.push_back(u + noise(random));
+    monotone.f.push_back(3000.0 * std::sin(3.0 * u / 0.03));
+  }
+  for (int i = 0; i < 2000; ++i) {  // 20 cycles of 100 rows, with a noisy displacement
+    cyclic.u.push_back(0.005 * (1.0 - std::cos(2.0 * M_PI * i / 100.0)) + noise(random));
+    cyclic.f.push_back(1000.0 * cyclic.u.back() / 0.01);
+  }
+  for (int i = 0; i < 60; ++i) {  // 5 cycles sampled at 12 rows each
+    coarse_cyclic.u.push_back(0.005 * (1.0 - std::cos(2.0 * M_PI * i / 12.0)));
+    coarse_cyclic.f.push_back(coarse_cyclic.u.back() * 1e5);
+  }
+  EXPECT_EQ(row_order_warning(monotone), "");
+  EXPECT_EQ(row_order_warning(cyclic), "");
+  EXPECT_EQ(row_order_warning(coarse_cyclic), "");
+
+  ForceCurve shuffled = monotone;
+  std::vector<std::size_t> order(shuffled.u.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), random);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    shuffled.u[i] = monotone.u[order[i]];
+    shuffled.f[i] = monotone.f[order[i]];
+  }
+  const std::string warning = row_order_warning(shuffled);
+  EXPECT_NE(warning.find("monotone.csv"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("order of the test"), std::string::npos) << warning;
+
+  ForceCurve by_force = monotone;  // sorted by force: the softening branch interleaves
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return monotone.f[a] < monotone.f[b]; });
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    by_force.u[i] = monotone.u[order[i]];
+    by_force.f[i] = monotone.f[order[i]];
+  }
+  EXPECT_NE(row_order_warning(by_force), "");
 }
 
 }  // namespace

@@ -28,6 +28,8 @@ class CommandSimulator final : public Simulator {
   explicit CommandSimulator(CommandSpecification specification);
   Curve simulate(const ParameterValues& parameters) const override;
   std::string identity() const override;
+  // The {placeholders} of the input template.
+  std::vector<std::string> parameter_names() const override;
 
   // The input text for these values; throws ComputationError naming a placeholder without a
   // value.

@@ -32,6 +32,7 @@ class LawReplaySimulator final : public Simulator {
   Curve simulate(const ParameterValues& parameters) const override;
   std::string identity() const override;
   std::vector<std::pair<std::string, Dimension>> channels() const override;
+  std::vector<std::string> parameter_names() const override;
 
   const std::string& law() const { return law_; }
   const dem::ParameterMap& fixed() const { return fixed_; }

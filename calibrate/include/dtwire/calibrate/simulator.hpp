@@ -31,6 +31,10 @@ class Simulator {
   // The channels simulate() returns, with their dimensions, when known before a run (empty:
   // unknown, e.g. an external program), so that a fit definition is checked when it is read.
   virtual std::vector<std::pair<std::string, Dimension>> channels() const { return {}; }
+
+  // The parameter names simulate() reads, when known before a run (empty: unknown), so that a
+  // fitted parameter no simulator reads (a misspelling) is refused when the fit is read.
+  virtual std::vector<std::string> parameter_names() const { return {}; }
 };
 
 }  // namespace dtwire::calibrate

@@ -17,6 +17,7 @@ class VoceBarSimulator final : public Simulator {
   Curve simulate(const ParameterValues& parameters) const override;
   std::string identity() const override;
   std::vector<std::pair<std::string, Dimension>> channels() const override;
+  std::vector<std::string> parameter_names() const override;
 
  private:
   std::vector<double> waypoints_;

@@ -13,6 +13,7 @@ struct Provenance {
   std::string git_hash;
   std::string created_utc;  // ISO 8601
   std::string command;
+  std::string run_id;  // unique per run: every file one run writes carries the same id
   std::vector<std::pair<std::string, std::string>> input_sha256;  // path -> hex digest
 
   void add_input(const std::filesystem::path& path);  // throws InputError if unreadable
@@ -20,6 +21,9 @@ struct Provenance {
 
 Provenance make_provenance(const std::string& command,
                            const std::vector<std::filesystem::path>& inputs = {});
+
+// A new run id: UTC time, process id and random bits ("20261124T121500Z-4242-9f3a1c7e").
+std::string new_run_id();
 
 std::string sha256_file(const std::filesystem::path& path);
 std::string sha256_text(const std::string& text);

@@ -43,6 +43,10 @@ std::vector<ParameterSet> read_parameter_file(const std::filesystem::path& file)
 ParameterSet select_wire_type(const std::vector<ParameterSet>& sets, const std::string& wire_type,
                               const std::filesystem::path& file);
 
+// Refuses a name that `law` does not read (law_schema.hpp): InputError naming the file, the
+// line where the name first appears in it, the wire type and the closest name the law reads.
+void check_parameter_names(const ParameterSet& set, const std::string& law, const std::filesystem::path& file);
+
 // A backbone CSV: a dimensionless strain column and a stress column (any stress unit), e.g.
 // strain_1,stress_Pa. Throws InputError.
 Curve read_backbone_csv(const std::filesystem::path& file);

@@ -29,6 +29,12 @@ struct CurveConversion {
 // length and the area. Throws InputError naming the file and what was expected.
 ForceCurve load_force_curve(const std::filesystem::path& path, const CurveConversion& conversion);
 
+// "" if the rows look like one test in the order it ran; otherwise a warning naming the file:
+// a test reverses its displacement a few times per cycle, so rows whose large steps (> 5 % of
+// the displacement range) reverse direction most of the time (> 40 %, at least 5 times) are
+// more likely shuffled or sorted by another column than a test with that many cycles.
+std::string row_order_warning(const ForceCurve& curve);
+
 // Checks size (>= 3 points) and finiteness; throws InputError naming `curve.source`.
 void validate_force_curve(const ForceCurve& curve);
 
