@@ -148,7 +148,7 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
       << result.residual_count << " residuals; best of " << result.starts.size() << " start(s) (start "
       << result.best_start + 1 << "); " << result.statistics.simulations << " simulation runs ("
       << result.statistics.cache_hits << " cache hits, " << result.statistics.failures
-      << " failed), wall time " << number(result.wall_seconds, 3) << " s.\n\n";
+      << " failed), wall time " << number(result.wall_seconds, 3) << " s; run " << provenance.run_id << ".\n\n";
     s << "| parameter | value | sigma | unit | bounds | reference |\n|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < n; ++i) {
       const auto& p = result.parameters[i];

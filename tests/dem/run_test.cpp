@@ -9,6 +9,7 @@
 
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
+#include "dtwire/core/results_store.hpp"
 #include "dtwire/dem/run.hpp"
 
 namespace dtwire::dem {
@@ -95,7 +96,11 @@ TEST(DemRun, SmallPunchWritesItsFilesBalancesEnergyAndIsThreadIndependent) {
   options.out = path.parent_path() / "out_threads";
   options.threads = 2;
   const RunSummary threaded = run_simulation(read_run_input(short_path), options);
-  EXPECT_TRUE(serial.history == threaded.history);  // the same curve, bit for bit
+  Curve serial_history = serial.history, threaded_history = threaded.history;
+  EXPECT_NE(serial_history.metadata("run_id"), threaded_history.metadata("run_id"));  // two runs
+  serial_history.set_metadata("run_id", "");
+  threaded_history.set_metadata("run_id", "");
+  EXPECT_TRUE(serial_history == threaded_history);  // the same curve, bit for bit
   EXPECT_GT(serial.peak_force, 100.0);
   EXPECT_GT(one.peak_force, 100.0);
   EXPECT_LT(one.largest_balance_error, 0.02);  // issue: < 2 % of the work on the mesh
@@ -110,6 +115,14 @@ TEST(DemRun, SmallPunchWritesItsFilesBalancesEnergyAndIsThreadIndependent) {
   double total = 0.0;
   for (double c : angles.channel("count_at_end").values) total += c;
   EXPECT_GT(total, 0.0);
+  // One run id in every file of the run (issue 20).
+  const std::string id = curve.metadata("run_id");
+  EXPECT_FALSE(id.empty());
+  EXPECT_EQ(read_results(path.parent_path() / "out1" / "results.h5").provenance.run_id, id);
+  EXPECT_EQ(angles.metadata("run_id"), id);
+  std::ifstream summary(path.parent_path() / "out1" / "summary.json");
+  const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"run_id\": \"" + id + "\""), std::string::npos) << text;
 }
 
 // Cyclic punch: the platter reverses when the (interval-averaged) force reaches each level and

@@ -18,7 +18,7 @@ namespace dtwire::app {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kColumn = fs::path(DTWIRE_SOURCE_DIR) / "tests/gap/data/tiny_column.prm";
+const fs::path kColumn = fs::path(DTWIRE_SOURCE_DIR) / "experiments/gap_fe/column.prm";
 
 std::string text_of(const fs::path& path) {
   std::ifstream in(path);
@@ -130,8 +130,10 @@ TEST(GapModelFe, InjectedImperfectionRecoveredThroughDtwireRun) {
   const gap::SummaryDiagnosis d = gap::diagnose_summary(base, lab, options);
   EXPECT_GT(d.gap_before, 2.0);  // the base run misses by more than 2 sd
   ASSERT_EQ(d.cause, "geometry_imperfection") << d.reason;
-  // A value actually run, within 0.5 of s = 3 (14 % of the searched range 0.5-4).
-  EXPECT_NEAR(d.ranking.front().fitted.front().params.front(), injected, 0.5);
+  std::cout << "geometry_imperfection: injected " << injected << ", recovered "
+            << d.ranking.front().fitted.front().params.front() << ", " << *model.runs << " FE runs\n";
+  // A value actually run, within 15 % of s = 3 (issue 17).
+  EXPECT_NEAR(d.ranking.front().fitted.front().params.front(), injected, 0.15 * injected);
   EXPECT_LT(d.ranking.front().gap_after, d.noise_floor);
   EXPECT_LE(*model.runs, 2 + 4);  // base + injected + the search (cached repeats are free)
 }
@@ -185,6 +187,36 @@ TEST(GapModelFe, InjectedCoatingSlipRecoveredThroughDtwireRun) {
   EXPECT_NEAR(d.ranking.front().fitted.front().params.front(), injected, 0.02);
   EXPECT_LT(d.ranking.front().gap_after, d.noise_floor);
   EXPECT_LE(*model.runs, 2 + 4);
+}
+
+// residual_stress through `dtwire run` on the column: plasticity left by forming (a pre-strain
+// shift of the hardening law) raises the yield and the buckling load; the candidates are the
+// two model effects that both move the peak, so the diagnosis has to tell them apart.
+TEST(GapModelFe, InjectedResidualStressRecoveredThroughDtwireRun) {
+  const std::string exe = fe_executable();
+  if (exe.empty()) GTEST_SKIP() << "no dtwire with fem in this build (set DTWIRE_FE_EXECUTABLE)";
+  ::setenv("DTWIRE_FE_EXECUTABLE", exe.c_str(), 1);
+  const FeModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_residual");
+  const gap::ForceCurve base = model.run({});
+  const double injected = 0.7;
+  const gap::ForceCurve with = gap::oriented(model.run({{&gap::find_effect("residual_stress"), {injected}}}));
+  const double peak = gap::curve_feature(with, "peak_force_N");
+  const double residual = gap::curve_feature(with, "residual_force_N");
+  const std::vector<gap::SummaryFeature> lab = {{"peak_force_N", peak, 0.02 * peak},
+                                                {"residual_force_N", residual, 0.02 * residual}};
+  gap::SummaryOptions options;
+  options.effects = {"residual_stress", "geometry_imperfection"};
+  options.model = model.run;
+  options.model_runs = 8;
+  options.try_pairs = false;
+  const gap::SummaryDiagnosis d = gap::diagnose_summary(base, lab, options);
+  std::cout << "residual_stress: injected " << injected << "; gap " << d.gap_before << " -> "
+            << d.ranking.front().gap_after << " sd (floor " << d.noise_floor << "), cause " << d.cause << " at "
+            << d.ranking.front().fitted.front().params.front() << ", " << *model.runs << " FE runs\n";
+  EXPECT_GT(d.gap_before, 2.0);
+  ASSERT_EQ(d.cause, "residual_stress") << d.reason;
+  EXPECT_NEAR(d.ranking.front().fitted.front().params.front(), injected, 0.15 * injected);  // issue 17: 15 %
+  EXPECT_LT(d.ranking.front().gap_after, d.noise_floor);
 }
 
 }  // namespace
