@@ -39,6 +39,14 @@ std::string number(double value, int digits = 4) {
   return s.str();
 }
 
+// A fraction as a whole percentage ("100", never "1e+02").
+std::string percent(double fraction) {
+  if (!std::isfinite(fraction)) return "n/a";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(0) << 100.0 * fraction;
+  return s.str();
+}
+
 std::string number_of(const json& value, int digits = 4) {
   return value.is_number() ? number(value.get<double>(), digits) : std::string("n/a");
 }
@@ -184,7 +192,7 @@ std::string main_region(const json& where) {
   if (best->contains("feature")) details.push_back(text_of(*best, "feature"));
   else if (best->contains("from_mm"))
     details.push_back(number_of((*best)["from_mm"], 3) + "-" + number_of((*best)["to_mm"], 3) + " mm");
-  if (best->contains("share")) details.push_back(number(100 * best->value("share", 0.0), 2) + " % of the gap");
+  if (best->contains("share")) details.push_back(percent(best->value("share", 0.0)) + " % of the gap");
   std::string text = text_of(*best, "region");
   for (std::size_t i = 0; i < details.size(); ++i) text += (i == 0 ? " (" : ", ") + details[i];
   return details.empty() ? text : text + ")";
@@ -204,7 +212,7 @@ std::string gap_row(std::ostream& md, const StepFiles& s, const json& gap, const
     }
   const bool explained = cause != "none" && !cause.empty();
   md << "| " << link(label, s.step->name) << " | " << (cause.empty() ? "n/a" : "**" + cause + "**") << " | "
-     << (explained ? number(100 * shrink, 3) + " %" : "n/a") << " | " << main_region(gap.value("where", json::array()))
+     << (explained ? percent(shrink) + " %" : "n/a") << " | " << main_region(gap.value("where", json::array()))
      << " | " << number(before, 3) << " (" << number(floor, 3) << ") | " << text_of(gap, "cause_reason") << " |\n";
   // What is left of the gap after the cause (all of it if there is none) against the noise floor.
   const double left = before * (1.0 - shrink);
@@ -213,7 +221,7 @@ std::string gap_row(std::ostream& md, const StepFiles& s, const json& gap, const
                        (explained ? "after `" + cause + "` a gap of " + number(left, 3)
                                   : "an unexplained gap of " + number(left, 3)) +
                        " is left, above the noise floor " + number(floor, 3) + ".");
-  return label + ": " + (explained ? "`" + cause + "` (gap " + number(100 * shrink, 2) + " % smaller)"
+  return label + ": " + (explained ? "`" + cause + "` (gap " + percent(shrink) + " % smaller)"
                                    : before <= floor ? "within the noise" : "unexplained");
 }
 
