@@ -58,29 +58,28 @@ std::string sha256_text(const std::string& text) {
   return hash.hex();
 }
 
-std::string utc_now_iso8601() {
+namespace {
+std::string utc_now(const char* format) {
   const std::time_t now = std::time(nullptr);
   std::tm utc{};
   gmtime_r(&now, &utc);
   char buffer[32];
-  std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  std::strftime(buffer, sizeof buffer, format, &utc);
   return buffer;
 }
+}  // namespace
+
+std::string utc_now_iso8601() { return utc_now("%Y-%m-%dT%H:%M:%SZ"); }
 
 void Provenance::add_input(const std::filesystem::path& path) {
   input_sha256.emplace_back(path.string(), sha256_file(path));
 }
 
 std::string new_run_id() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char time_text[32];
-  std::strftime(time_text, sizeof time_text, "%Y%m%dT%H%M%SZ", &utc);
   std::random_device entropy;
   char random_text[16];
   std::snprintf(random_text, sizeof random_text, "%08x", static_cast<unsigned>(entropy()));
-  return std::string(time_text) + "-" + std::to_string(::getpid()) + "-" + random_text;
+  return utc_now("%Y%m%dT%H%M%SZ") + "-" + std::to_string(::getpid()) + "-" + random_text;
 }
 
 Provenance make_provenance(const std::string& command,
