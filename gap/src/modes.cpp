@@ -10,6 +10,7 @@
 #include "dtwire/gap/loading_mode.hpp"
 #include "dtwire/gap/model_search.hpp"
 #include "evidence.hpp"
+#include "parsimony.hpp"
 
 namespace dtwire::gap {
 namespace {
@@ -308,11 +309,13 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
           const std::vector<Start> starts = {{fits[order[a]].blocks[0], fits[order[b]].blocks[0]}};
           fits.push_back(fit_joint(cb.problems, pair, starts, 1, rng));
         }
+        fitted_effects.push_back(pair);
         ranking.push_back(rank_combined(cb, pair, fits.back(), mode_names, c.gap_before));
         ranking.back().search_points = points;
       }
     rescore();
     evidence::demote_weak_pairs(ranking, first_pair, single_gap);
+    parsimony::apply_joint(ranking, fits, fitted_effects, first_pair, cb.problems, cb.curves, rng);
   }
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });

@@ -29,4 +29,11 @@ double held_out_error(const std::vector<double>& residual, const std::vector<boo
 void apply(std::vector<RankedEffect>& ranking, const std::vector<EffectFit>& fits, std::size_t first_pair,
            const FitProblem& problem, std::mt19937& rng);
 
+// The same rule in the joint ranking of several loading modes: `fits[i]` is entry i's joint fit
+// of `effects[i]` over `problems` (one per mode), `curves` the laboratory curves in all; the
+// held-out blocks are cut in every curve of every mode.
+void apply_joint(std::vector<RankedEffect>& ranking, const std::vector<JointFit>& fits,
+                 const std::vector<std::vector<JointEffect>>& effects, std::size_t first_pair,
+                 const std::vector<FitProblem>& problems, double curves, std::mt19937& rng);
+
 }  // namespace dtwire::gap::parsimony

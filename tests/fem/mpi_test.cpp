@@ -75,7 +75,7 @@ TEST(Mpi, BondedGripsOnTwoRanksReproduceTheSerialCurve) {
   const std::string exe = DTWIRE_EXE;
   const std::string mesh = exe + " mesh sw --length 60 --grip-length 10 --level 0 -o " + (dir / "sw.msh").string() +
                            " > /dev/null 2>&1";
-  if (std::system(mesh.c_str()) != 0) GTEST_SKIP() << "dtwire mesh sw not available";
+  ASSERT_EQ(std::system(mesh.c_str()), 0) << "dtwire mesh sw failed: " << mesh;
   std::ofstream(dir / "grip.prm")
       << "subsection Geometry\n set Mesh file = sw.msh\n set Cross section = full\nend\n"
          "subsection Material\n set Young modulus (MPa) = 200000\n set Poisson ratio = 0.3\n"

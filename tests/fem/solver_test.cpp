@@ -232,7 +232,7 @@ TEST(MeshFile, GmshSingleWireElasticStiffness) {
   const auto dir = scratch_dir("msh");
   const std::string mesh_cmd = std::string(DTWIRE_EXE) + " mesh sw --length 60 --grip-length 0 --level 0 -o " +
                                (dir / "sw.msh").string() + " > /dev/null 2>&1";
-  if (std::system(mesh_cmd.c_str()) != 0) GTEST_SKIP() << "dtwire mesh sw not available";
+  ASSERT_EQ(std::system(mesh_cmd.c_str()), 0) << "dtwire mesh sw failed: " << mesh_cmd;
   const char* prm =
       "subsection Geometry\n set Mesh file = sw.msh\n set Cross section = full\nend\n"
       "subsection Material\n set Young modulus (MPa) = 200000\n set Poisson ratio = 0.3\n"
