@@ -5,7 +5,9 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
+#include "dtwire/core/closest_name.hpp"
 #include "dtwire/core/error.hpp"
 
 namespace dtwire::meshes {
@@ -56,9 +58,13 @@ void parse_parameter_text(const std::string& text, const std::string& source,
     const ParameterField* field = find_parameter_field(name);
     if (!field) {
       std::string known;
+      std::vector<std::string> names;
       for (const auto& f : parameter_fields())
-        if (dt ? f.double_twist : f.single_wire) known += (known.empty() ? "" : ", ") + f.name;
-      fail(name_start, "unknown parameter '" + written + "', expected one of: " + known);
+        if (dt ? f.double_twist : f.single_wire) {
+          known += (known.empty() ? "" : ", ") + f.name;
+          names.push_back(f.name);
+        }
+      fail(name_start, "unknown parameter '" + written + "'" + did_you_mean(name, names) + ", expected one of: " + known);
     }
     if (!(dt ? field->double_twist : field->single_wire))
       fail(name_start, "parameter '" + written + "' is not used by mesh " + (dt ? "dt" : "sw"));
@@ -82,6 +88,8 @@ void parse_parameter_text(const std::string& text, const std::string& source,
     seen[name] = where;
     locations[name] = where;
   }
+  // An empty file would mesh on the defaults without a word, like a file of typos.
+  if (seen.empty()) throw InputError(source, "no 'set <name> = <value>' line: an empty parameter file");
 }
 
 void read_parameter_file(const std::filesystem::path& path, MeshParameters& parameters,

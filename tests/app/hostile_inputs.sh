@@ -47,6 +47,8 @@ sed 's/^name = "m_f"$/name = "m_ff"/' "$fit" > m_ff.toml
 sed 's|^fixed_parameters_section = "single_wire"$|fixed_parameters_section = "single_wire"\nfixed = {slideb = 0}|' "$fit" > fixed_typo.toml
 sed -i 's|"\.\./data/|"'"$src"'/experiments/data/|' m_ff.toml fixed_typo.toml
 mkdir -p foreign && echo "my notes" > foreign/notes.txt
+: > empty_mesh.prm
+sed 's/^set twist-length/set twist-lenght/' "$src/experiments/default/dt_mesh.prm" > typo_mesh.prm
 
 pass=0 total=0
 # case <expected text in the output> <dtwire arguments...>
@@ -95,6 +97,9 @@ case_ "length_zero.json: wire type 'single_wire': 'reference_length_m': expected
 case_ "overflow.json: not valid JSON" export --params overflow.json --out export
 case_ "slideb.json:22: wire type 'single_wire': unknown parameter 'slideb' for law thesis (did you mean 'slide_b'?)" export --params slideb.json --out export
 case_ "did you mean 'slide_b'" dem driver --law thesis --params slideb.json --out driver
+case_ "slideb.json:22: wire type 'single_wire': unknown parameter 'slideb'" dem run "$src/experiments/dem/punch_macro.toml" --set-params sw=slideb.json -o dem_out -q
+case_ "empty_mesh.prm: no 'set <name> = <value>' line" mesh dt --prm empty_mesh.prm -o mesh.msh
+case_ "typo_mesh.prm:7:5: unknown parameter 'twist-lenght' (did you mean 'twist-length'?)" mesh dt --prm typo_mesh.prm -o mesh.msh
 case_ "parameter[6].name': the thesis simulator reads no parameter 'm_ff' (did you mean 'm_f'?)" fit m_ff.toml --synthesize synthesized
 case_ "simulator.fixed.slideb': the thesis law reads no parameter 'slideb' (did you mean 'slide_b'?)" fit fixed_typo.toml --synthesize synthesized
 case_ "foreign: holds 'notes.txt', which this command does not write" export --params "$thesis" --out foreign

@@ -117,4 +117,9 @@ TEST(ParameterFile, SyntaxErrorsNameLineAndColumn) {
   EXPECT_TRUE(contains(parse_error("set level = 1.5\n"), "whole number"));
   EXPECT_TRUE(contains(parse_error("set d = 2.7\nset d = 2.8\n"), "set twice"));
   EXPECT_TRUE(contains(parse_error("set twist-length = 40\n", WireKind::Single), "not used by mesh sw"));
+  EXPECT_TRUE(contains(parse_error("set twist-lenght = 40\n"), "(did you mean 'twist-length'?)"))
+      << parse_error("set twist-lenght = 40\n");
+  // An empty or comment-only file would mesh on the defaults without a word (issue 20).
+  EXPECT_TRUE(contains(parse_error(""), "dt.prm: no 'set <name> = <value>' line")) << parse_error("");
+  EXPECT_TRUE(contains(parse_error("# only a comment\n\n"), "no 'set <name> = <value>' line"));
 }
