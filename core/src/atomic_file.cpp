@@ -47,7 +47,12 @@ void PendingFile::commit() {
 
 PendingFolder::PendingFolder(std::filesystem::path target, std::function<bool(const std::string&)> is_own_output)
     : target_(std::move(target)) {
-  if (target_.filename().empty()) target_ = target_.parent_path();  // "out/" -> "out"
+  // "out/" -> "out"; "." and ".." by their absolute names, so that the folder is renamed, not
+  // the working directory's entry "."
+  target_ = target_.lexically_normal();
+  if (target_.filename().empty() || target_.filename() == "." || target_.filename() == "..")
+    target_ = std::filesystem::absolute(target_).lexically_normal();
+  if (target_.filename().empty()) target_ = target_.parent_path();
   if (std::filesystem::exists(target_)) {
     if (!std::filesystem::is_directory(target_))
       throw InputError(target_.string(), "exists and is not a folder; expected an output folder");

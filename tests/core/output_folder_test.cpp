@@ -52,6 +52,25 @@ TEST(PendingFolder, ReplacesAnEarlierRunsFolderOnlyOnCommit) {
   fs::remove_all(root);
 }
 
+// `--out .` or `--out results/` name the folder itself.
+TEST(PendingFolder, DotAndTrailingSeparatorNameTheFolderItself) {
+  const fs::path root = fresh("dtwire_pending_dot");
+  const fs::path previous = fs::current_path();
+  fs::current_path(root);
+  touch("old_set.csv");
+  {
+    PendingFolder folder(".", is_result);
+    EXPECT_EQ(folder.target(), root);
+    touch(folder.temporary() / "new_set.csv");
+    folder.commit();
+  }
+  fs::current_path(previous);
+  EXPECT_TRUE(fs::exists(root / "new_set.csv"));
+  EXPECT_FALSE(fs::exists(root / "old_set.csv"));
+  EXPECT_EQ(PendingFolder(root / "sub/", is_result).target(), root / "sub");
+  fs::remove_all(root);
+}
+
 TEST(PendingFolder, RefusesAFolderHoldingOtherFilesBeforeAnyWork) {
   const fs::path root = fresh("dtwire_pending_foreign");
   touch(root / "notes.txt");
