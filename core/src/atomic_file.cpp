@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <fstream>
 #include <stdexcept>
@@ -47,12 +48,16 @@ void PendingFile::commit() {
 
 PendingFolder::PendingFolder(std::filesystem::path target, std::function<bool(const std::string&)> is_own_output)
     : target_(std::move(target)) {
-  // "out/" -> "out"; "." and ".." by their absolute names, so that the folder is renamed, not
-  // the working directory's entry "."
-  target_ = target_.lexically_normal();
-  if (target_.filename().empty() || target_.filename() == "." || target_.filename() == "..")
-    target_ = std::filesystem::absolute(target_).lexically_normal();
+  target_ = target_.lexically_normal();  // "out/" -> "out/": the trailing separator goes below
   if (target_.filename().empty()) target_ = target_.parent_path();
+  // The folder is replaced as a whole: not the working directory or one that holds it (the
+  // caller's shell would be left in a removed folder).
+  const auto cwd = std::filesystem::current_path();
+  const auto resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(target_));
+  const auto mismatch = std::mismatch(resolved.begin(), resolved.end(), cwd.begin(), cwd.end());
+  if (mismatch.first == resolved.end())
+    throw InputError(target_.string(), "is the working directory or holds it; the results replace the whole "
+                                       "folder: give a folder below it (e.g. --out export)");
   if (std::filesystem::exists(target_)) {
     if (!std::filesystem::is_directory(target_))
       throw InputError(target_.string(), "exists and is not a folder; expected an output folder");

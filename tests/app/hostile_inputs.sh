@@ -103,6 +103,7 @@ case_ "typo_mesh.prm:7:5: unknown parameter 'twist-lenght' (did you mean 'twist-
 case_ "parameter[6].name': the thesis simulator reads no parameter 'm_ff' (did you mean 'm_f'?)" fit m_ff.toml --synthesize synthesized
 case_ "simulator.fixed.slideb': the thesis law reads no parameter 'slideb' (did you mean 'slide_b'?)" fit fixed_typo.toml --synthesize synthesized
 case_ "foreign: holds 'notes.txt', which this command does not write" export --params "$thesis" --out foreign
+case_ ".: is the working directory or holds it" export --params "$thesis" --out .
 [ -e "$work/synthesized" ] && { echo "FAIL: a refused fit left $work/synthesized"; total=$((total + 1)); }
 [ "$(cat foreign/notes.txt)" = "my notes" ] || { echo "FAIL: a refused export touched foreign/notes.txt"; total=$((total + 1)); }
 [ -e "$work/export" ] && { echo "FAIL: a refused export left $work/export"; total=$((total + 1)); }

@@ -52,22 +52,18 @@ TEST(PendingFolder, ReplacesAnEarlierRunsFolderOnlyOnCommit) {
   fs::remove_all(root);
 }
 
-// `--out .` or `--out results/` name the folder itself.
-TEST(PendingFolder, DotAndTrailingSeparatorNameTheFolderItself) {
+// `--out .` would replace the working directory as a whole: refused; a trailing separator
+// names the folder itself.
+TEST(PendingFolder, RefusesTheWorkingDirectoryAndTakesATrailingSeparator) {
   const fs::path root = fresh("dtwire_pending_dot");
   const fs::path previous = fs::current_path();
   fs::current_path(root);
   touch("old_set.csv");
-  {
-    PendingFolder folder(".", is_result);
-    EXPECT_EQ(folder.target(), root);
-    touch(folder.temporary() / "new_set.csv");
-    folder.commit();
-  }
+  EXPECT_THROW(PendingFolder(".", is_result), InputError);
+  EXPECT_THROW(PendingFolder("..", is_result), InputError);
+  EXPECT_EQ(PendingFolder("sub/", is_result).target(), fs::path("sub"));
   fs::current_path(previous);
-  EXPECT_TRUE(fs::exists(root / "new_set.csv"));
-  EXPECT_FALSE(fs::exists(root / "old_set.csv"));
-  EXPECT_EQ(PendingFolder(root / "sub/", is_result).target(), root / "sub");
+  EXPECT_TRUE(fs::exists(root / "old_set.csv"));
   fs::remove_all(root);
 }
 
