@@ -42,6 +42,7 @@
 #include "dtwire/core/error.hpp"
 #include "direct_solver.hpp"
 #include "contact/bonded_grip.hpp"
+#include "contact/packed_state.hpp"
 #include "contact/rigid_tool_contact.hpp"  // contact (issue 5)
 #include "contact/wire_wire_contact.hpp"
 #include "fbar_element.hpp"
@@ -220,6 +221,10 @@ struct WireSolver::Impl {
   std::filesystem::path checkpoint_file(unsigned step) const;
   void write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step);
   void read_checkpoint(unsigned step, SteppingState& state, PETScWrappers::MPI::Vector& last_step);
+  // The parts that keep state of their own between steps (contact tools, wire contact, bonded
+  // grips, the external-work sums) write and read it themselves, one list of doubles each.
+  std::vector<std::vector<double>> part_states() const;
+  void restore_part_states(const std::vector<std::vector<double>>& parts, const std::string& file);
   void make_rigid_body_modes();
   unsigned solve_krylov();  // GMRES + GAMG; returns the iterations, throws on failure
   // contact (issue 5): solve_step inside the augmented-Lagrange (Uzawa) loop.
@@ -906,12 +911,13 @@ std::filesystem::path WireSolver::Impl::checkpoint_file(unsigned step) const {
 }
 
 namespace {
-constexpr char kCheckpointMagic[16] = "dtwire-ckpt-2";
+constexpr char kCheckpointMagic[16] = "dtwire-ckpt-3";
 }  // namespace
 
 // Layout: magic, then one boost binary archive: the header (ranks, DoFs, cells, quadrature
 // points), the stepping state, the statistics, the step records (each serialises every field),
-// this rank's solution and last step values, and the committed material state of its points.
+// this rank's solution and last step values, the committed material state of its points, and
+// the state of each part (part_states).
 void WireSolver::Impl::write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step) {
   const auto file = checkpoint_file(state.step);
   std::filesystem::create_directories(file.parent_path());
@@ -933,7 +939,7 @@ void WireSolver::Impl::write_checkpoint(const SteppingState& state, const PETScW
     std::ofstream out(temporary, std::ios::binary);
     out.write(kCheckpointMagic, sizeof kCheckpointMagic);
     boost::archive::binary_oarchive archive(out);
-    archive << header << stepping << history << values;
+    archive << header << stepping << history << values << part_states();
     if (!out) throw ComputationError("cannot write checkpoint " + temporary);
   }
   std::filesystem::rename(temporary, file);
@@ -948,9 +954,10 @@ void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETS
   if (!in || std::string(magic) != kCheckpointMagic)
     throw InputError(file.string(), "not a dtwire checkpoint of this version (or missing)");
   std::vector<double> header, stepping, values;
+  std::vector<std::vector<double>> parts;
   try {
     boost::archive::binary_iarchive archive(in);
-    archive >> header >> stepping >> history >> values;
+    archive >> header >> stepping >> history >> values >> parts;
   } catch (const std::exception& e) {
     throw InputError(file.string(), std::string("unreadable checkpoint: ") + e.what());
   }
@@ -982,14 +989,65 @@ void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETS
     for (unsigned j = 0; j < 6; ++j) p.committed.backstress.access_raw_entry(j) = values[k++];
     p.trial = p.committed;
   }
+  restore_part_states(parts, file.string());
+}
+
+std::vector<std::vector<double>> WireSolver::Impl::part_states() const {
+  contact::StateWriter work;
+  work.put(end_work);
+  work.put(tool_work);
+  for (std::size_t k = 0; k < top_end_dofs.size(); ++k) {
+    work.put(previous_end_force[k]);
+    work.put(previous_end_displacement[k]);
+  }
+  work.put(previous_tool_force.size());
+  for (std::size_t k = 0; k < previous_tool_force.size(); ++k)
+    for (unsigned c = 0; c < 3; ++c) {
+      work.put(previous_tool_force[k][c]);
+      work.put(previous_tool_displacement[k][c]);
+    }
+  return {rigid_contact ? rigid_contact->saved_state() : std::vector<double>{},
+          wire_contact ? wire_contact->saved_state() : std::vector<double>{},
+          bonded_grip ? bonded_grip->saved_state() : std::vector<double>{}, work.take()};
+}
+
+void WireSolver::Impl::restore_part_states(const std::vector<std::vector<double>>& parts, const std::string& file) {
+  if (parts.size() != 4) throw InputError(file, "checkpoint without the state of the contact parts");
+  const auto mismatch = [&](const char* part) {
+    throw InputError(file, std::string("checkpoint of a run with ") + part + ", unlike this one");
+  };
+  try {
+    if (rigid_contact) rigid_contact->restore_state(parts[0]);
+    else if (!parts[0].empty()) mismatch("contact tools");
+    if (wire_contact) wire_contact->restore_state(parts[1]);
+    else if (!parts[1].empty()) mismatch("wire contact");
+    if (bonded_grip) bonded_grip->restore_state(parts[2]);
+    else if (!parts[2].empty()) mismatch("bonded grips");
+    contact::StateReader work(parts[3], "external work");
+    end_work = work.get();
+    tool_work = work.get();
+    for (std::size_t k = 0; k < top_end_dofs.size(); ++k) {
+      previous_end_force[k] = work.get();
+      previous_end_displacement[k] = work.get();
+    }
+    previous_tool_force.resize(work.get_count());
+    previous_tool_displacement.resize(previous_tool_force.size());
+    for (std::size_t k = 0; k < previous_tool_force.size(); ++k)
+      for (unsigned c = 0; c < 3; ++c) {
+        previous_tool_force[k][c] = work.get();
+        previous_tool_displacement[k][c] = work.get();
+      }
+    work.finish();
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file, std::string("checkpoint does not fit this run: ") + e.what());
+  }
+  if (wire_contact) make_matrix();  // the restored pattern holds every pair met so far
 }
 
 void WireSolver::set_checkpoints(const std::filesystem::path& directory, unsigned interval, int restart_step) {
   impl_->checkpoint_directory = directory;
   impl_->checkpoint_interval = interval;
   impl_->restart_step = restart_step;
-  if ((impl_->rigid_contact || impl_->wire_contact || impl_->bonded_grip) && (interval > 0 || restart_step >= 0))
-    throw InputError("checkpoints", "checkpoint/restart is not available with contact tools or bonded grips");
 }
 
 WireSolver::WireSolver(const Parameters& parameters, std::ostream& log, std::filesystem::path field_directory)

@@ -11,6 +11,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "packed_state.hpp"
+
 namespace dtwire::fem::contact {
 
 using namespace dealii;
@@ -136,6 +138,32 @@ void BondedGrip::assemble(const IndexSet& relevant, const std::vector<double>& r
     else constraints.distribute_local_to_global(local_rhs, face.dofs, rhs);
   }
   if (with_matrix) predictor_ = false;
+}
+
+std::vector<double> BondedGrip::saved_state() const {
+  StateWriter out;
+  for (const auto& p : points_) {
+    out.put(p.committed.slip_vector);
+    out.put(p.committed.slip);
+    out.put(p.committed_traction);
+    out.put(p.committed_anchor);
+  }
+  out.put(work_);
+  out.put(dissipation_);
+  return out.take();
+}
+
+void BondedGrip::restore_state(const std::vector<double>& values) {
+  StateReader in(values, "bonded grip");
+  for (auto& p : points_) {
+    p.committed.slip_vector = in.get_vector();
+    p.committed.slip = in.get();
+    p.committed_traction = p.traction = in.get_vector();
+    p.committed_anchor = p.anchor = in.get_vector();
+  }
+  work_ = in.get();
+  dissipation_ = in.get();
+  in.finish();
 }
 
 void BondedGrip::commit() {

@@ -65,6 +65,11 @@ class BondedGrip {
   // Totals over the ranks: areas times area_scale, energies times energy_scale.
   GripRecord record(double area_scale, double energy_scale) const;
 
+  // The committed state for checkpoints (packed_state.hpp): per point the bond's slip history,
+  // traction and anchor; the work and dissipation.
+  std::vector<double> saved_state() const;
+  void restore_state(const std::vector<double>& values);
+
   double stiffness() const { return law_.stiffness; }
   double top_area() const { return top_area_; }        // m^2, all ranks, modelled part
   double bottom_area() const { return bottom_area_; }  // m^2, all ranks, modelled part

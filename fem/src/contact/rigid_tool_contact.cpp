@@ -12,6 +12,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "packed_state.hpp"
+
 namespace dtwire::fem::contact {
 
 using namespace dealii;
@@ -179,6 +181,30 @@ void RigidToolContact::commit() {
       dissipation_ += pair.last.dissipation * points_[q].weight;
     }
   }
+}
+
+std::vector<double> RigidToolContact::saved_state() const {
+  StateWriter out;
+  for (const auto& p : points_) out.put(p.committed_position);
+  for (const auto& pair : pairs_) {
+    out.put(pair.committed.tangential_traction);
+    out.put(pair.committed.multiplier);
+    out.put(pair.committed.slip);
+  }
+  out.put(dissipation_);
+  return out.take();
+}
+
+void RigidToolContact::restore_state(const std::vector<double>& values) {
+  StateReader in(values, "rigid tool contact");
+  for (auto& p : points_) p.committed_position = p.position = in.get_vector();
+  for (auto& pair : pairs_) {
+    pair.committed.tangential_traction = in.get_vector();
+    pair.committed.multiplier = pair.multiplier = in.get();
+    pair.committed.slip = pair.slip = in.get();
+  }
+  dissipation_ = in.get();
+  in.finish();
 }
 
 void RigidToolContact::cell_fields(Vector<float>& pressure, Vector<float>& slip) const {

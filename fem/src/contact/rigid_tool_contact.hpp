@@ -45,6 +45,10 @@ class RigidToolContact {
 
   const ContactLaw& law() const { return law_; }
   unsigned augmentations() const { return augmentations_; }
+  // The committed state for checkpoints (packed_state.hpp): point positions, each pair's
+  // friction history, the dissipation.
+  std::vector<double> saved_state() const;
+  void restore_state(const std::vector<double>& values);
 
  private:
   struct Face {

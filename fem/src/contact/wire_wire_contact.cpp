@@ -15,6 +15,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "packed_state.hpp"
 #include "wire_contact_point.hpp"
 
 namespace dtwire::fem::contact {
@@ -360,6 +361,48 @@ void WireWireContact::commit() {
     p.committed_pressure = p.last.active ? p.last.pressure : 0.0;
   }
   committed_master_values_ = master_values_;
+}
+
+std::vector<double> WireWireContact::saved_state() const {
+  StateWriter out;
+  for (const auto& p : points_) {
+    out.put(p.committed.tangential_traction);
+    out.put(p.committed.multiplier);
+    out.put(p.committed.slip);
+    out.put(p.committed_pressure);
+    out.put(p.committed_position);
+    out.put(p.committed_master);
+  }
+  for (const auto& face : slaves_) {
+    out.put(face.pattern.size());
+    for (const unsigned m : face.pattern) out.put(m);
+  }
+  for (const double v : committed_master_values_) out.put(v);
+  out.put(dissipation_);
+  return out.take();
+}
+
+void WireWireContact::restore_state(const std::vector<double>& values) {
+  StateReader in(values, "wire contact");
+  for (auto& p : points_) {
+    p.committed.tangential_traction = in.get_vector();
+    p.committed.multiplier = in.get();
+    p.committed.slip = in.get();
+    p.committed_pressure = in.get();
+    p.committed_position = p.position = in.get_vector();
+    p.committed_master = p.master = static_cast<int>(in.get());
+  }
+  for (auto& face : slaves_) {
+    face.pattern.resize(in.get_count());
+    for (auto& m : face.pattern) {
+      m = in.get_count();
+      if (m >= masters_.size()) throw std::invalid_argument("the wire contact state names a master face this mesh lacks");
+    }
+  }
+  for (auto& v : committed_master_values_) v = in.get();
+  master_values_ = committed_master_values_;
+  dissipation_ = in.get();
+  in.finish();
 }
 
 WireContactRecord WireWireContact::record(double contact_scale) const {

@@ -55,6 +55,11 @@ class WireWireContact {
   WireContactRecord record(double contact_scale) const;
   void cell_fields(dealii::Vector<float>& pressure, dealii::Vector<float>& slip) const;
   unsigned augmentations() const { return augmentations_; }
+  // The committed state for checkpoints (packed_state.hpp): per point the friction history,
+  // pressure, position and master face; per slave face the matrix pattern; the master
+  // displacements; the dissipation. After restore_state the caller rebuilds the matrix.
+  std::vector<double> saved_state() const;
+  void restore_state(const std::vector<double>& values);
 
  private:
   struct MasterFace {  // gathered on every rank
