@@ -71,7 +71,8 @@ class WireSolver {
 
   // Checkpoints every `interval` converged steps (0: none) into directory/step_NNNNN/rank_R.bin;
   // restart_step >= 0 resumes from that checkpoint (same .prm, same number of ranks): the curve
-  // rows up to it are replayed through on_step. Not with contact tools.
+  // rows up to it are replayed through on_step. Every part with state of its own (contact tools,
+  // wire contact, bonded grips) is saved and restored with it.
   void set_checkpoints(const std::filesystem::path& directory, unsigned interval, int restart_step);
 
   const SolverStatistics& statistics() const;
