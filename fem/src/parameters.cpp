@@ -229,38 +229,45 @@ std::string deal_ii_message(const std::string& what) {
 }
 
 namespace {
-Parameters read_and_convert(const std::filesystem::path& file, const std::vector<std::string>& settings) {
-  const std::string name = file.string();
-  if (!std::filesystem::is_regular_file(file)) throw InputError(name, "cannot open the parameter file");
-  ParameterHandler prm;
-  declare(prm);
-  const EntryLines lines = check_prm_names(prm, name);
-  try {
-    prm.parse_input(name, "", false);  // undeclared names are errors, never skipped
-  } catch (const std::exception& e) {
-    const std::string message = deal_ii_message(e.what());
-    std::smatch m;
-    if (std::regex_search(message, m, std::regex("[Ll]ine <(\\d+)>")))
-      throw InputError(name, std::stoi(m[1]), 0, message);
-    throw InputError(name, message);
-  }
-  std::set<std::string> set_on_command_line;
-  for (const auto& setting : settings) {
-    apply_setting(prm, setting);
-    set_on_command_line.insert(setting.substr(0, setting.find('=')));
-  }
-  // A value outside its physical range, reported where it was given: --set, the file's line, or
-  // the file (a default). Called inside `section`.
-  const auto require = [&](bool ok, const std::string& section, const std::string& entry, const std::string& expected) {
+// The parsed file and where each entry came from, so that a bad value is reported where it was
+// given: --set, the file's line, or the file (a default).
+struct Source {
+  ParameterHandler& prm;
+  const std::filesystem::path& file;
+  const std::string& name;
+  const EntryLines& lines;
+  const std::set<std::string>& set_on_command_line;
+
+  // Called inside `section`.
+  void require(bool ok, const std::string& section, const std::string& entry, const std::string& expected) const {
     if (ok) return;
     const std::string path = section + "/" + entry;
     const std::string message = "'" + entry + "': expected " + expected + ", found '" + prm.get(entry) + "'";
     if (set_on_command_line.count(path)) throw InputError("--set", path + ": " + message);
     const auto line = lines.find(path);
     throw InputError(name, line == lines.end() ? 0 : line->second, 0, "subsection " + section + ": " + message);
-  };
+  }
+  std::array<double, 3> vector3(const std::string& entry) const {
+    std::istringstream in(prm.get(entry));
+    std::array<double, 3> v{};
+    for (auto& x : v)
+      if (!(in >> x) || !std::isfinite(x)) throw InputError(name, "'" + entry + "': expected three numbers");
+    std::string rest;
+    if (in >> rest) throw InputError(name, "'" + entry + "': expected three numbers");
+    return v;
+  }
+  std::array<double, 3> unit(const std::string& entry) const {
+    auto v = vector3(entry);
+    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(n > 0.0)) throw InputError(name, "'" + entry + "': expected a non-zero direction");
+    for (auto& x : v) x /= n;
+    return v;
+  }
+};
 
-  Parameters p;
+void read_geometry(Source& source, Parameters& p) {
+  ParameterHandler& prm = source.prm;
+  const std::string& name = source.name;
   prm.enter_subsection("Geometry");
   p.geometry.diameter = prm.get_double("Diameter (mm)") * 1e-3;
   p.geometry.length = prm.get_double("Length (mm)") * 1e-3;
@@ -273,27 +280,31 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
   p.geometry.mesh_distortion = prm.get_double("Mesh distortion");
   p.geometry.bow = prm.get_double("Bow imperfection (mm)") * 1e-3;
   if (!prm.get("Mesh file").empty()) {
-    p.geometry.mesh_file = file.parent_path() / prm.get("Mesh file");
+    p.geometry.mesh_file = source.file.parent_path() / prm.get("Mesh file");
     const std::string mesh = p.geometry.mesh_file.string();
-    require(std::filesystem::is_regular_file(p.geometry.mesh_file), "Geometry", "Mesh file",
+    source.require(std::filesystem::is_regular_file(p.geometry.mesh_file), "Geometry", "Mesh file",
             "a readable file (cannot open " + mesh + ")");
-    require(looks_like_gmsh(p.geometry.mesh_file), "Geometry", "Mesh file",
+    source.require(looks_like_gmsh(p.geometry.mesh_file), "Geometry", "Mesh file",
             "a gmsh .msh file starting with $MeshFormat or $NOD (" + mesh + " is empty or is not one)");
     if (p.geometry.quarter || p.geometry.imperfection != 0.0 || p.geometry.bow != 0.0 || p.geometry.mesh_distortion != 0.0)
       throw InputError(name, "'Mesh file' needs Cross section = full and no imperfection, bow or distortion");
   }
   const bool generated = p.geometry.mesh_file.empty();  // a mesh file brings its own sizes
-  require(!generated || p.geometry.diameter > 0.0, "Geometry", "Diameter (mm)", "a diameter > 0");
-  require(!generated || p.geometry.length > 0.0, "Geometry", "Length (mm)", "a length > 0");
+  source.require(!generated || p.geometry.diameter > 0.0, "Geometry", "Diameter (mm)", "a diameter > 0");
+  source.require(!generated || p.geometry.length > 0.0, "Geometry", "Length (mm)", "a length > 0");
   if (p.geometry.bow != 0.0 && p.geometry.quarter)
     throw InputError(name, "'Bow imperfection (mm)' needs Cross section = full");
   prm.leave_subsection();
+}
 
+void read_material(Source& source, Parameters& p) {
+  ParameterHandler& prm = source.prm;
+  const std::string& name = source.name;
   prm.enter_subsection("Material");
   p.material.young = prm.get_double("Young modulus (MPa)") * 1e6;
   p.material.poisson = prm.get_double("Poisson ratio");
-  require(p.material.young > 0.0, "Material", "Young modulus (MPa)", "a modulus > 0");
-  require(p.material.poisson > -1.0 && p.material.poisson < 0.5, "Material", "Poisson ratio",
+  source.require(p.material.young > 0.0, "Material", "Young modulus (MPa)", "a modulus > 0");
+  source.require(p.material.poisson > -1.0 && p.material.poisson < 0.5, "Material", "Poisson ratio",
           "a ratio in (-1, 0.5) exclusive (0.5: incompressible, no bulk modulus)");
   auto& h = p.material.hardening;
   h.law = parse_hardening_law(prm.get("Hardening law"));
@@ -321,12 +332,19 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
     throw InputError(name, std::string("subsection Material: ") + e.what());
   }
   prm.leave_subsection();
+}
 
+void read_formulation(Source& source, Parameters& p) {
+  ParameterHandler& prm = source.prm;
   prm.enter_subsection("Formulation");
   p.formulation.fbar = prm.get("Element") == "fbar";
   p.formulation.degree = prm.get_integer("Polynomial degree");
   prm.leave_subsection();
+}
 
+void read_boundary_conditions(Source& source, Parameters& p) {
+  ParameterHandler& prm = source.prm;
+  const std::string& name = source.name;
   prm.enter_subsection("Boundary conditions");
   p.load.bottom = end_condition(prm.get("Bottom end"));
   p.load.top = end_condition(prm.get("Top end"));
@@ -356,24 +374,8 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
   }
   p.load.bottom_ids = contact::parse_id_list(prm.get("Bottom boundary ids"), name, "Bottom boundary ids");
   p.load.top_ids = contact::parse_id_list(prm.get("Top boundary ids"), name, "Top boundary ids");
-  const auto vector3 = [&](const std::string& entry) {
-    std::istringstream in(prm.get(entry));
-    std::array<double, 3> v{};
-    for (auto& x : v)
-      if (!(in >> x) || !std::isfinite(x)) throw InputError(name, "'" + entry + "': expected three numbers");
-    std::string rest;
-    if (in >> rest) throw InputError(name, "'" + entry + "': expected three numbers");
-    return v;
-  };
-  const auto unit = [&](const std::string& entry) {
-    auto v = vector3(entry);
-    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (!(n > 0.0)) throw InputError(name, "'" + entry + "': expected a non-zero direction");
-    for (auto& x : v) x /= n;
-    return v;
-  };
   if (!prm.get("Pull direction").empty()) {
-    const auto d = unit("Pull direction");
+    const auto d = source.unit("Pull direction");
     p.load.pull_direction.assign(d.begin(), d.end());
   }
   if (!prm.get("Rotation path (deg)").empty()) {
@@ -389,10 +391,10 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
         throw InputError(name, "'Rotation path (deg)': pseudo-time " + std::to_string(knot.first) +
                                    " is not a knot of 'Load path (mm)'");
     }
-    p.load.rotation_axis = unit("Rotation axis");
+    p.load.rotation_axis = source.unit("Rotation axis");
   }
   if (!prm.get("Rotation centre (mm)").empty()) {
-    p.load.rotation_centre = vector3("Rotation centre (mm)");
+    p.load.rotation_centre = source.vector3("Rotation centre (mm)");
     for (auto& x : p.load.rotation_centre) x *= 1e-3;
     p.load.rotation_centre_given = true;
   }
@@ -415,7 +417,11 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
                              "displacement control (the bond replaces the clamps)");
   }
   prm.leave_subsection();
+}
 
+void read_load_stepping(Source& source, Parameters& p) {
+  ParameterHandler& prm = source.prm;
+  const std::string& name = source.name;
   prm.enter_subsection("Load stepping");
   p.stepping.initial_step = prm.get_double("Initial step");
   p.stepping.minimum_step = prm.get_double("Minimum step");
@@ -423,13 +429,16 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
   p.stepping.growth_factor = prm.get_double("Growth factor");
   p.stepping.cutback_factor = prm.get_double("Cutback factor");
   p.stepping.easy_iterations = prm.get_integer("Easy iterations");
-  require(p.stepping.minimum_step > 0.0, "Load stepping", "Minimum step", "a pseudo-time step > 0");
-  require(p.stepping.cutback_factor > 0.0 && p.stepping.cutback_factor < 1.0, "Load stepping", "Cutback factor",
+  source.require(p.stepping.minimum_step > 0.0, "Load stepping", "Minimum step", "a pseudo-time step > 0");
+  source.require(p.stepping.cutback_factor > 0.0 && p.stepping.cutback_factor < 1.0, "Load stepping", "Cutback factor",
           "a factor in (0, 1) exclusive");
   if (!(p.stepping.minimum_step <= p.stepping.initial_step && p.stepping.initial_step <= p.stepping.maximum_step))
     throw InputError(name, "Load stepping: expected Minimum step <= Initial step <= Maximum step");
   prm.leave_subsection();
+}
 
+void read_newton(Source& source, Parameters& p) {
+  ParameterHandler& prm = source.prm;
   prm.enter_subsection("Newton");
   p.newton.maximum_iterations = prm.get_integer("Maximum iterations");
   p.newton.relative_tolerance = prm.get_double("Relative tolerance");
@@ -437,10 +446,14 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
   p.newton.maximum_line_search_steps = prm.get_integer("Maximum line search steps");
   p.newton.krylov = prm.get("Linear solver") == "gmres-amg";
   p.newton.linear_tolerance = prm.get_double("Linear tolerance");
-  require(p.newton.relative_tolerance > 0.0, "Newton", "Relative tolerance", "a tolerance > 0");
+  source.require(p.newton.relative_tolerance > 0.0, "Newton", "Relative tolerance", "a tolerance > 0");
   p.newton.maximum_linear_iterations = prm.get_integer("Maximum linear iterations");
   prm.leave_subsection();
+}
 
+void read_output(Source& source, Parameters& p) {
+  ParameterHandler& prm = source.prm;
+  const std::string& name = source.name;
   prm.enter_subsection("Output");
   p.output.fields = prm.get_bool("Fields");
   p.output.field_interval = prm.get_integer("Field interval");
@@ -484,6 +497,38 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
       throw InputError(name, "'Curve displacement = extensometer' needs 'Extensometer (mm)'");
   }
   prm.leave_subsection();
+}
+
+Parameters read_and_convert(const std::filesystem::path& file, const std::vector<std::string>& settings) {
+  const std::string name = file.string();
+  if (!std::filesystem::is_regular_file(file)) throw InputError(name, "cannot open the parameter file");
+  ParameterHandler prm;
+  declare(prm);
+  const EntryLines lines = check_prm_names(prm, name);
+  try {
+    prm.parse_input(name, "", false);  // undeclared names are errors, never skipped
+  } catch (const std::exception& e) {
+    const std::string message = deal_ii_message(e.what());
+    std::smatch m;
+    if (std::regex_search(message, m, std::regex("[Ll]ine <(\\d+)>")))
+      throw InputError(name, std::stoi(m[1]), 0, message);
+    throw InputError(name, message);
+  }
+  std::set<std::string> set_on_command_line;
+  for (const auto& setting : settings) {
+    apply_setting(prm, setting);
+    set_on_command_line.insert(setting.substr(0, setting.find('=')));
+  }
+
+  Source source{prm, file, name, lines, set_on_command_line};
+  Parameters p;
+  read_geometry(source, p);
+  read_material(source, p);
+  read_formulation(source, p);
+  read_boundary_conditions(source, p);
+  read_load_stepping(source, p);
+  read_newton(source, p);
+  read_output(source, p);
   std::vector<double> knots;  // contact (issue 5)
   for (const auto& k : p.load.path) knots.push_back(k.first);
   p.contact = contact::parse_contact_parameters(prm, name, knots);
