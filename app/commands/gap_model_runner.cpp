@@ -14,6 +14,7 @@
 #include "dtwire/calibrate/command_simulator.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "dtwire/core/region_ids.hpp"
 #include "msh_area.hpp"
 
 namespace dtwire::app {
@@ -164,8 +165,10 @@ double grip_area(const std::map<std::string, std::string>& values, const std::fi
   const auto top = id_list(value("Top boundary ids", "2")), bottom = id_list(value("Bottom boundary ids", "1"));
   for (const auto& ids : {top, bottom})
     for (unsigned id : ids)
-      if (id % 10 != 4 && id % 10 != 5) {
-        reason = "the grips are not held by their lateral surfaces (Bottom / Top boundary ids 4, 5, 14, 15)";
+      if (!regions::is_grip_lateral_boundary(static_cast<int>(id))) {
+        reason = "the grips are not held by their lateral surfaces (Bottom / Top boundary ids " +
+                 std::to_string(regions::kWireAStartGrip) + ", " + std::to_string(regions::kWireAEndGrip) + ", " +
+                 std::to_string(regions::kWireBStartGrip) + ", " + std::to_string(regions::kWireBEndGrip) + ")";
         return 0.0;
       }
   const double area = msh_surface_area(directory / value("Mesh file", ""), top);

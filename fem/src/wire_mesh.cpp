@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/core/region_ids.hpp"
 
 namespace dtwire::fem {
 
@@ -30,7 +31,7 @@ void read_wire_mesh(GeometryParameters& g, dealii::Triangulation<3>& target) {
   std::ifstream file(g.mesh_file);
   in.read_msh(file);
   g.double_twist = false;
-  for (const auto& cell : wire.active_cell_iterators()) g.double_twist = g.double_twist || cell->material_id() >= 11;
+  for (const auto& cell : wire.active_cell_iterators()) g.double_twist = g.double_twist || cell->material_id() >= regions::kFirstWireBMaterial;
   double z_min = 0.0, z_max = 0.0, r_max = 0.0;
   for (const auto& v : wire.get_vertices()) {
     z_min = std::min(z_min, v[2]);

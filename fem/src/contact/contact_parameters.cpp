@@ -63,8 +63,10 @@ void declare_contact_parameters(dealii::ParameterHandler& prm) {
 
   prm.enter_subsection("Wire contact");
   prm.declare_entry("Enabled", "false", Patterns::Bool(), "frictional contact between the two wires of a DT mesh");
-  prm.declare_entry("Slave boundary ids", "3", Patterns::Anything(), "surface whose Gauss points are checked");
-  prm.declare_entry("Master boundary ids", "13", Patterns::Anything(), "surface of bilinear faces projected onto");
+  prm.declare_entry("Slave boundary ids", std::to_string(regions::kWireALateral), Patterns::Anything(),
+                    "surface whose Gauss points are checked (DT mesh: wire A's lateral surface)");
+  prm.declare_entry("Master boundary ids", std::to_string(regions::kWireBLateral), Patterns::Anything(),
+                    "surface of bilinear faces projected onto (DT mesh: wire B's lateral surface)");
   prm.declare_entry("Friction coefficient", "0.2", Patterns::Double(0.0), "Coulomb mu between the wires");
   prm.declare_entry("Normal penalty factor", "10", Patterns::Double(0.0), "epsilon_N = factor * E / h");
   prm.declare_entry("Tangential penalty factor", "10", Patterns::Double(0.0), "epsilon_T = factor * E / h");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "contact_kernel.hpp"
+#include "dtwire/core/region_ids.hpp"
 
 namespace dealii {
 class ParameterHandler;
@@ -44,7 +45,7 @@ struct ContactParameters {
 // Gauss points of the slave surface against the bilinear faces of the master surface.
 struct WireContactParameters {
   bool enabled = false;
-  std::vector<unsigned> slave_ids{3}, master_ids{13};  // DT mesh: lateral surfaces of wires A and B
+  std::vector<unsigned> slave_ids{regions::kWireALateral}, master_ids{regions::kWireBLateral};  // DT mesh
   double friction = 0.2;                // Coulomb mu between the wires
   double normal_penalty_factor = 10.0;  // epsilon_N = factor E / h
   double tangential_penalty_factor = 10.0;

@@ -1,30 +1,25 @@
 #pragma once
-// A hexahedral wire mesh with its region ids (docs/meshes.md lists them).
-//   volumes  (deal.II material_id): 10 w + 1 + part + 3 c
-//   surfaces (deal.II boundary_id): 10 w + 1 + surface
-// with w = 0 for wire A (the SW), 1 for wire B; part 0 free, 1 start grip, 2 end grip;
-// c = 1 for the coating; surface 0 start face, 1 end face, 2 lateral (contact candidate),
-// 3 start grip lateral, 4 end grip lateral. Internal faces carry no id (deal.II: 0).
+// A hexahedral wire mesh with its region ids (dtwire/core/region_ids.hpp; docs/meshes.md lists them).
 #include <array>
 #include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "dtwire/core/region_ids.hpp"
 #include "dtwire/meshes/vec3.hpp"
 
 namespace dtwire::meshes {
 
-enum class WirePart { Free = 0, StartGrip = 1, EndGrip = 2 };
-enum class WireSurface { StartFace = 0, EndFace = 1, Lateral = 2, StartGripLateral = 3, EndGripLateral = 4 };
+using regions::boundary_id;
+using regions::is_lateral_boundary;
+using regions::material_id;
+using regions::wire_of_id;
+using regions::WirePart;
+using regions::WireSurface;
 
-int material_id(int wire, WirePart part, bool coating);
-int boundary_id(int wire, WireSurface surface);
 std::string material_name(int wire, WirePart part, bool coating, bool double_twist);
 std::string boundary_name(int wire, WireSurface surface, bool double_twist);
-// The wire (0 or 1) and whether a region is part of its outer lateral surface.
-int wire_of_id(int id);
-bool is_lateral_boundary(int id);
 
 struct HexMesh {
   std::vector<Vec3> nodes;
