@@ -140,7 +140,8 @@ void WireSolver::Impl::restore_part_states(const std::vector<std::vector<double>
       previous_end_force[k] = work.get();
       previous_end_displacement[k] = work.get();
     }
-    previous_tool_force.resize(work.get_count());
+    const long tools = static_cast<long>(prm.contact.tools.size());
+    previous_tool_force.resize(static_cast<std::size_t>(work.get_whole(0, tools)));
     previous_tool_displacement.resize(previous_tool_force.size());
     for (std::size_t k = 0; k < previous_tool_force.size(); ++k)
       for (unsigned c = 0; c < 3; ++c) {

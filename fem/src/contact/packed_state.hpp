@@ -2,6 +2,7 @@
 // The committed state of a contact part as a flat list of doubles, for checkpoints: each part
 // writes and reads its own fields (so a checkpoint cannot drop one), and the doubles are stored
 // exactly, so that a resumed run repeats the uninterrupted one bit for bit.
+#include <cmath>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -30,14 +31,21 @@ class StateReader {
   StateReader(const std::vector<double>& values, std::string owner) : values_(values), owner_(std::move(owner)) {}
   double get() {
     if (next_ >= values_.size()) mismatch();
-    return values_[next_++];
+    const double v = values_[next_++];
+    if (!std::isfinite(v)) throw std::invalid_argument("the " + owner_ + " state holds a value that is not finite");
+    return v;
   }
   Vector3 get_vector() {
     Vector3 v;
     for (unsigned c = 0; c < 3; ++c) v[c] = get();
     return v;
   }
-  unsigned get_count() { return static_cast<unsigned>(get()); }
+  // A whole number in [lowest, highest] (a count or an index), checked: the file may be damaged.
+  long get_whole(long lowest, long highest) {
+    const double v = get();
+    if (!(v >= static_cast<double>(lowest) && v <= static_cast<double>(highest) && v == std::floor(v))) mismatch();
+    return static_cast<long>(v);
+  }
   void finish() const {
     if (next_ != values_.size()) mismatch();
   }

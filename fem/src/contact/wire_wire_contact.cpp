@@ -390,14 +390,12 @@ void WireWireContact::restore_state(const std::vector<double>& values) {
     p.committed.slip = in.get();
     p.committed_pressure = in.get();
     p.committed_position = p.position = in.get_vector();
-    p.committed_master = p.master = static_cast<int>(in.get());
+    p.committed_master = p.master = static_cast<int>(in.get_whole(-1, static_cast<long>(masters_.size()) - 1));
   }
+  const long masters = static_cast<long>(masters_.size());
   for (auto& face : slaves_) {
-    face.pattern.resize(in.get_count());
-    for (auto& m : face.pattern) {
-      m = in.get_count();
-      if (m >= masters_.size()) throw std::invalid_argument("the wire contact state names a master face this mesh lacks");
-    }
+    face.pattern.resize(static_cast<std::size_t>(in.get_whole(0, masters)));
+    for (auto& m : face.pattern) m = static_cast<unsigned>(in.get_whole(0, masters - 1));
   }
   for (auto& v : committed_master_values_) v = in.get();
   master_values_ = committed_master_values_;
