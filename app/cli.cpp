@@ -22,6 +22,7 @@ void build(CLI::App& root, CommandSet& commands) {
   root.footer("Run 'dtwire <command> --help' for a command's options.");
   add_mesh_command(root, commands);
   add_run_command(root, commands);
+  add_parameters_command(root, commands);
   add_fit_command(root, commands);
   add_export_command(root, commands);
   add_dem_command(root, commands);

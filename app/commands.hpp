@@ -9,6 +9,7 @@ class CommandSet;
 
 void add_mesh_command(CLI::App& root, CommandSet& commands);
 void add_run_command(CLI::App& root, CommandSet& commands);
+void add_parameters_command(CLI::App& root, CommandSet& commands);
 void add_fit_command(CLI::App& root, CommandSet& commands);
 void add_export_command(CLI::App& root, CommandSet& commands);
 void add_dem_command(CLI::App& root, CommandSet& commands);

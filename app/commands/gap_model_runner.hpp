@@ -1,20 +1,17 @@
 #pragma once
 // The FE runner of `dtwire gap --model M.prm`: re-runs the experiment through `dtwire run` as a
 // subprocess (calibrate's CommandSimulator) on a copy of the .prm with the model-only effects
-// switched on through its parameters. gap does not depend on fem; this lives in app/.
+// switched on through its parameters (one effect per file in app/gap_model/). gap does not depend
+// on fem; this lives in app/.
 #include <filesystem>
 #include <map>
 #include <string>
 
+#include "dtwire/core/prm_document.hpp"
 #include "dtwire/gap/effects.hpp"
+#include "gap_model/model_effect.hpp"
 
 namespace dtwire::app {
-
-// Plastic pre-strain of the `residual_stress` effect at twist_plasticity_1 = 1: the mean
-// bending strain of a 2.7 mm wire wound on its partner in the double twist (helix radius
-// 1.35 mm, 3 half turns over 40 mm: curvature 0.068 /mm, surface strain 0.092, section mean
-// of |y| 4R/(3 pi) -> 0.04).
-inline constexpr double kTwistingPlasticStrain = 0.04;
 
 struct FeModel {
   gap::ModelRunner run;  // cached by the edited .prm text; each new run prints one line
@@ -23,21 +20,21 @@ struct FeModel {
   std::filesystem::path work;                       // run directories (removed after success)
 };
 
-// Reads the .prm (InputError naming it when missing). Runs go to `work` (a fresh temp
+// Reads the .prm as a typed document and checks its names against the solver's declarations
+// (InputError naming file:line for an unknown entry or a value that is not a number). Runs go to `work` (a fresh temp
 // directory when empty); each run's directory is removed after success.
 FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work = {});
 
-// What `coating_slip` needs to turn its bond capacity (a fraction of the clamped model's peak
-// force) into the bond strength of the .prm: the bonded area of the top grips (m^2, from the mesh
-// file) and the clamped model's largest force magnitude (N).
-struct GripBond {
-  double top_area = 0.0;
-  double reference_force = 0.0;
-};
+// The .prm with the effects switched on (exposed for tests): `Fields` off, a relative mesh file
+// made absolute, then each effect's edits (app/gap_model/). `declared` holds the solver's
+// defaults. Throws ComputationError for an effect the .prm cannot express.
+PrmDocument edit_prm(const PrmDocument& model, const PrmDocument& declared,
+                     const std::vector<gap::AppliedEffect>& effects, const std::filesystem::path& prm_directory,
+                     const GripBond& grip = {});
 
-// The .prm text with the effects switched on (exposed for tests). Throws ComputationError for
-// an effect the .prm cannot express.
-std::string edit_prm(const std::string& text, const std::vector<gap::AppliedEffect>& effects,
-                     const std::filesystem::path& prm_directory, const GripBond& grip = {});
+// The entries `dtwire run` reads with their defaults: from `$DTWIRE_FE_EXECUTABLE parameters`
+// when set, else from the FE solver linked into this executable (InputError naming what is
+// missing when neither).
+PrmDocument solver_declarations();
 
 }  // namespace dtwire::app

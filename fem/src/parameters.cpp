@@ -540,6 +540,14 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
 }
 }  // namespace
 
+std::string parameter_listing(bool documented) {
+  ParameterHandler prm;
+  declare(prm);
+  std::ostringstream listing;
+  prm.print_parameters(listing, documented ? ParameterHandler::PRM : ParameterHandler::ShortPRM);
+  return listing.str();
+}
+
 Parameters read_parameters(const std::filesystem::path& file, const std::vector<std::string>& settings) {
   try {
     return read_and_convert(file, settings);

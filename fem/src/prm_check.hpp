@@ -7,10 +7,15 @@
 #include <map>
 #include <string>
 
+#include "dtwire/core/prm_document.hpp"
+
 namespace dtwire::fem {
 
 // "Section/Sub/Entry" -> line of its `set` in the file.
 using EntryLines = std::map<std::string, int>;
+
+// deal.II's listing of the declared subsections and entries, with their defaults.
+PrmDocument declared_parameters(const dealii::ParameterHandler& declared);
 
 // Throws InputError(file, line, ...) for an unknown subsection or entry, an unbalanced `end`, a
 // line that is none of set/subsection/end/include, or a file without any `set`.

@@ -75,7 +75,7 @@ case_ "poisson_half.prm:24: subsection Material: 'Poisson ratio': expected a rat
 case_ "young_zero.prm:23: subsection Material: 'Young modulus (MPa)': expected a modulus > 0" run young_zero.prm $out
 case_ "length_zero.prm:14: subsection Geometry: 'Length (mm)': expected a length > 0" run length_zero.prm $out
 case_ "diameter_zero.prm:13: subsection Geometry: 'Diameter (mm)'" run diameter_zero.prm $out
-case_ "unclosed.prm:2: subsection 'Geometry' is not closed" run unclosed.prm $out
+case_ "unclosed.prm:1: subsection 'Geometry' is not closed" run unclosed.prm $out  # the line that opens it
 case_ "no_set.prm:2: expected 'set Entry = value'" run no_set.prm $out
 case_ "stray_end.prm:1: 'end' without a subsection" run stray_end.prm $out
 case_ "mesh_garbage.prm:3: subsection Geometry: 'Mesh file'" run mesh_garbage.prm $out

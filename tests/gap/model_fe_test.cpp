@@ -27,30 +27,36 @@ std::string text_of(const fs::path& path) {
   return s.str();
 }
 
+// The text of `text` with the effects switched on, against the solver's own defaults.
+std::string edited_text(const std::string& text, const std::vector<gap::AppliedEffect>& effects,
+                        const fs::path& directory, const GripBond& grip = {}) {
+  return edit_prm(PrmDocument::parse(text, "test.prm"), solver_declarations(), effects, directory, grip).text();
+}
+
 TEST(GapModelPrm, EffectsEditTheirParameters) {
   const std::string text = text_of(kColumn);
-  const std::string bow = edit_prm(text, {{&gap::find_effect("geometry_imperfection"), {2.5}}}, kColumn.parent_path());
+  const std::string bow = edited_text(text, {{&gap::find_effect("geometry_imperfection"), {2.5}}}, kColumn.parent_path());
   EXPECT_NE(bow.find("set Bow imperfection (mm) = 0.5\n"), std::string::npos) << bow;  // 2.5 x 0.2
   EXPECT_NE(bow.find("set Yield stress (MPa) = 250\n"), std::string::npos);
   // Pre-strain 0.5 x 0.04 = 0.02 on the linear law: 250 + 1000 x 0.02 = 270 MPa.
-  const std::string pre = edit_prm(text, {{&gap::find_effect("residual_stress"), {0.5}}}, kColumn.parent_path());
+  const std::string pre = edited_text(text, {{&gap::find_effect("residual_stress"), {0.5}}}, kColumn.parent_path());
   EXPECT_NE(pre.find("set Yield stress (MPa) = 270\n"), std::string::npos) << pre;
   const std::string table = "subsection Material\n  set Hardening law = table\n"
                             "  set Hardening table = 0:250, 0.1:350, 0.2:400\nend\n";
-  const std::string shifted = edit_prm(table, {{&gap::find_effect("residual_stress"), {1.0}}}, ".");
+  const std::string shifted = edited_text(table, {{&gap::find_effect("residual_stress"), {1.0}}}, ".");
   // sigma'(e) = sigma(e + 0.04): 250 + 100 x 0.4 = 290 at 0.
   EXPECT_NE(shifted.find("set Hardening table = 0:290, 0.06:350, 0.16:400\n"), std::string::npos) << shifted;
-  EXPECT_NE(edit_prm(text, {}, ".").find("set Fields = false"), std::string::npos);
+  EXPECT_NE(edited_text(text, {}, ".").find("set Fields = false"), std::string::npos);
 }
 
 // The DT effects edit `subsection Wire contact` only (not the rigid tools' friction).
 TEST(GapModelPrm, DoubleTwistEffectsEditTheWireContact) {
   const std::string dt = "subsection Contact\n  set Friction coefficient = 0.3\nend\n"
                          "subsection Wire contact\n  set Enabled = true\n  set Friction coefficient = 0.2\nend\n";
-  const std::string mu = edit_prm(dt, {{&gap::find_effect("wire_friction"), {0.35}}}, ".");
+  const std::string mu = edited_text(dt, {{&gap::find_effect("wire_friction"), {0.35}}}, ".");
   EXPECT_NE(mu.find("subsection Contact\n  set Friction coefficient = 0.3\n"), std::string::npos) << mu;
   EXPECT_NE(mu.find("set Enabled = true\n  set Friction coefficient = 0.35\n"), std::string::npos) << mu;
-  const std::string gap = edit_prm(dt, {{&gap::find_effect("twist_tightening"), {0.12}}}, ".");
+  const std::string gap = edited_text(dt, {{&gap::find_effect("twist_tightening"), {0.12}}}, ".");
   EXPECT_NE(gap.find("  set Gap offset (mm) = 0.12\nend\n"), std::string::npos) << gap;
   // The bundled DT experiment supports both; the SW column supports neither.
   const FeModel model = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
@@ -65,7 +71,7 @@ TEST(GapModelPrm, DoubleTwistEffectsEditTheWireContact) {
 // without a failure locus cannot show it.
 TEST(GapModelPrm, ShearFailureEditsTheFailureLocus) {
   const std::string prm = "subsection Material\n  set Failure d1 = 0.05\n  set Failure d2 = 3.44\nend\n";
-  const std::string edited = edit_prm(prm, {{&gap::find_effect("shear_failure"), {0.55}}}, ".");
+  const std::string edited = edited_text(prm, {{&gap::find_effect("shear_failure"), {0.55}}}, ".");
   EXPECT_NE(edited.find("  set Failure shear ductility ratio = 0.55\nend\n"), std::string::npos) << edited;
   const FeModel dt = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
                                    fs::temp_directory_path() / "dtwire_gap_fe_test_s");
@@ -80,13 +86,13 @@ TEST(GapModelPrm, ShearFailureEditsTheFailureLocus) {
 TEST(GapModelPrm, CoatingSlipBondsTheGripsAtAFractionOfThePeakForce) {
   const std::string prm = "subsection Boundary conditions\n  set Bottom boundary ids = 4\n  set Top boundary ids = 5\nend\n";
   const GripBond grip{80e-6, 3200.0};  // 80 mm^2, 3.2 kN
-  const std::string half = edit_prm(prm, {{&gap::find_effect("coating_slip"), {0.5}}}, ".", grip);
+  const std::string half = edited_text(prm, {{&gap::find_effect("coating_slip"), {0.5}}}, ".", grip);
   EXPECT_NE(half.find("  set Grip interface = bonded\n  set Grip bond stiffness factor = 10\n"
                       "  set Grip bond strength (MPa) = 20\nend\n"),
             std::string::npos)
       << half;  // 0.5 x 3200 N / 80 mm^2
-  EXPECT_EQ(edit_prm(prm, {{&gap::find_effect("coating_slip"), {1.0}}}, ".", grip), edit_prm(prm, {}, ".", grip));
-  EXPECT_THROW(edit_prm(prm, {{&gap::find_effect("coating_slip"), {0.5}}}, "."), ComputationError);
+  EXPECT_EQ(edited_text(prm, {{&gap::find_effect("coating_slip"), {1.0}}}, ".", grip), edited_text(prm, {}, ".", grip));
+  EXPECT_THROW(edited_text(prm, {{&gap::find_effect("coating_slip"), {0.5}}}, "."), ComputationError);
   const FeModel dt = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
                                    fs::temp_directory_path() / "dtwire_gap_fe_test_g");
   EXPECT_EQ(dt.unsupported.count("coating_slip"), 0u);
@@ -99,6 +105,24 @@ TEST(GapModelPrm, UnsupportedEffectsAreNamedWithTheirReason) {
   EXPECT_EQ(model.unsupported.count("geometry_imperfection"), 0u);
   EXPECT_EQ(model.unsupported.count("residual_stress"), 0u);
   EXPECT_NE(model.unsupported.at("wire_friction").find("Wire contact"), std::string::npos);
+}
+
+// A model .prm is read as the solver reads it: an unknown entry or a value that is not a number
+// is an error naming the file and line (it used to be read as 0).
+TEST(GapModelPrm, BadModelTextIsAnErrorNamingFileAndLine) {
+  const fs::path dir = fs::temp_directory_path() / "dtwire_gap_fe_test_bad";
+  fs::create_directories(dir);
+  std::ofstream(dir / "typo.prm") << "subsection Geometry\n  set Bow imperfektion (mm) = 0.2\nend\n";
+  std::ofstream(dir / "text.prm") << "subsection Geometry\n  set Length (mm) = 60\n  set Bow imperfection (mm) = 0.2x\nend\n";
+  for (const auto& [file, line] : {std::pair<std::string, int>{"typo.prm", 2}, {"text.prm", 3}}) {
+    try {
+      make_fe_model(dir / file, dir / "work");
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), (dir / file).string());
+      EXPECT_EQ(e.line(), line) << e.what();
+    }
+  }
 }
 
 std::string fe_executable() {

@@ -36,4 +36,8 @@ RunSummary run_experiment(const RunOptions& options);
 // duration of the call, then run_experiment.
 RunSummary run_experiment_with_mpi(const RunOptions& options);
 
+// Every entry `dtwire run` reads, with its default, as a .prm listing (deal.II ShortPRM); with
+// `documented`, each entry's documentation and allowed values too (deal.II PRM).
+std::string parameter_listing(bool documented);
+
 }  // namespace dtwire::fem
