@@ -3,9 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -18,26 +16,13 @@
 #endif
 
 namespace dtwire::app {
-namespace {
-
-// stdout of `program parameters`, or an InputError naming the program.
-std::string listing_of(const std::string& program) {
-  const std::string command = "'" + program + "' parameters 2>/dev/null";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(::popen(command.c_str(), "r"), ::pclose);
-  if (!pipe) throw InputError(program, "cannot start it to read the FE parameters");
-  std::string text;
-  std::array<char, 4096> buffer{};
-  for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe.get())) > 0;) text.append(buffer.data(), n);
-  if (::pclose(pipe.release()) != 0 || text.empty())
-    throw InputError(program, "`" + program + " parameters` did not list the FE parameters (a dtwire built with fem?)");
-  return text;
-}
-
-}  // namespace
 
 PrmDocument solver_declarations() {
-  if (const char* program = std::getenv("DTWIRE_FE_EXECUTABLE"); program && *program)
-    return PrmDocument::parse(listing_of(program), std::string(program) + " parameters");
+  if (const char* program = std::getenv("DTWIRE_FE_EXECUTABLE"); program && *program) {
+    if (auto declared = calibrate::program_parameters(program)) return *declared;
+    throw InputError(program, "`" + std::string(program) +
+                                  " parameters` did not list the FE parameters (a dtwire built with fem?)");
+  }
 #ifdef DTWIRE_HAVE_FEM
   return PrmDocument::parse(fem::parameter_listing(false), "dtwire parameters");
 #else

@@ -1,6 +1,11 @@
 #include "dtwire/calibrate/command_simulator.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -26,6 +31,24 @@ std::string replace_all(std::string text, const std::string& from, const std::st
 }
 
 }  // namespace
+
+std::optional<PrmDocument> program_parameters(const std::filesystem::path& program) {
+  if (program.filename() != "dtwire") return std::nullopt;
+  static std::mutex mutex;
+  static std::map<std::filesystem::path, std::optional<PrmDocument>> asked;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (const auto hit = asked.find(program); hit != asked.end()) return hit->second;
+  const std::string command = shell_quote(program.string()) + " parameters 2>/dev/null";
+  std::string listing;
+  if (FILE* pipe = ::popen(command.c_str(), "r")) {
+    std::array<char, 4096> buffer{};
+    for (std::size_t n; (n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) listing.append(buffer.data(), n);
+    if (::pclose(pipe) != 0) listing.clear();
+  }
+  std::optional<PrmDocument> declared;
+  if (!listing.empty()) declared = PrmDocument::parse(listing, program.string() + " parameters");
+  return asked[program] = declared;
+}
 
 std::filesystem::path dtwire_executable() {
   std::error_code error;

@@ -19,89 +19,11 @@
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/core/units.hpp"
 #include "dtwire/dem/law_schema.hpp"
+#include "command_input.hpp"
+#include "toml_table.hpp"
 
 namespace dtwire::calibrate {
 namespace {
-
-// Reads fields of one TOML table and reports errors at the right place.
-class Table {
- public:
-  Table(const toml::table& table, std::string path, const std::string& file)
-      : table_(table), path_(std::move(path)), file_(file) {}
-
-  [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const {
-    const auto& where = node ? node->source() : table_.source();
-    throw InputError(file_, static_cast<int>(where.begin.line), static_cast<int>(where.begin.column),
-                     "field '" + field(key) + "': " + what);
-  }
-  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  const toml::node* get(const std::string& key) const { return table_.get(key); }
-  bool has(const std::string& key) const { return table_.contains(key); }
-
-  std::string text(const std::string& key, std::optional<std::string> fallback = std::nullopt) const {
-    const toml::node* node = get(key);
-    if (!node) {
-      if (fallback) return *fallback;
-      fail(nullptr, key, "missing (expected a string)");
-    }
-    if (!node->is_string()) fail(node, key, "expected a string");
-    return node->as_string()->get();
-  }
-  double number(const std::string& key, std::optional<double> fallback = std::nullopt) const {
-    const toml::node* node = get(key);
-    if (!node) {
-      if (fallback) return *fallback;
-      fail(nullptr, key, "missing (expected a number)");
-    }
-    return number_of(node, key);
-  }
-  double number_of(const toml::node* node, const std::string& key) const {
-    double value = 0;
-    if (node->is_integer()) value = static_cast<double>(node->as_integer()->get());
-    else if (node->is_floating_point()) value = node->as_floating_point()->get();
-    else fail(node, key, "expected a number");
-    if (!std::isfinite(value)) fail(node, key, "expected a finite number");
-    return value;
-  }
-  long long integer(const std::string& key, long long fallback, long long minimum) const {
-    const toml::node* node = get(key);
-    if (!node) return fallback;
-    if (!node->is_integer()) fail(node, key, "expected an integer");
-    const long long value = node->as_integer()->get();
-    if (value < minimum) fail(node, key, "expected an integer >= " + std::to_string(minimum));
-    return value;
-  }
-  bool boolean(const std::string& key, bool fallback) const {
-    const toml::node* node = get(key);
-    if (!node) return fallback;
-    if (!node->is_boolean()) fail(node, key, "expected true or false");
-    return node->as_boolean()->get();
-  }
-  std::vector<double> numbers(const std::string& key) const {
-    const toml::node* node = get(key);
-    if (!node || !node->is_array()) fail(node, key, "expected an array of numbers");
-    std::vector<double> out;
-    for (const toml::node& item : *node->as_array()) out.push_back(number_of(&item, key));
-    return out;
-  }
-  // Rejects keys outside `known` (typos must not be ignored silently).
-  void only(const std::set<std::string>& known, const std::string& prefix_allowed = "") const {
-    for (const auto& [key, node] : table_) {
-      const std::string name(key.str());
-      const bool prefixed = !prefix_allowed.empty() && name.rfind(prefix_allowed, 0) == 0;
-      if (!known.count(name) && !prefixed) {
-        std::string list;
-        for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-        fail(&node, name, "unknown field (expected one of: " + list + ")");
-      }
-    }
-  }
-
- private:
-  const toml::table& table_;
-  std::string path_;
-  std::string file_;
-};
 
 const toml::table& table_at(const toml::table& root, const std::string& key, const std::string& file) {
   const toml::node* node = root.get(key);
@@ -413,7 +335,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     const toml::table& raw = *node.as_table();
     const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
     x.only({"name", "target", "target_columns", "abscissa", "arc_length", "channels", "weight",
-            "branch_tolerance", "increments_per_leg", "input_template"},
+            "branch_tolerance", "increments_per_leg", "input_template", "input_prm", "prm_set"},
            "path_");
     Experiment e;
     e.name = x.text("name");
@@ -483,23 +405,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
       path.increments_per_leg = increments;
       e.simulator = std::make_shared<LawReplaySimulator>(def.law, def.fixed, path);
     } else if (def.simulator == "command") {
-      const auto template_file = resolve(x.text("input_template"));
-      std::ifstream in(template_file);
-      if (!in) x.fail(x.get("input_template"), "input_template", "cannot open " + template_file.string());
-      std::ostringstream text;
-      text << in.rdbuf();
-      CommandSpecification spec = command;
-      // {template_dir}: the template's own folder, for inputs next to it (e.g. a mesh file),
-      // since the instantiated copy runs in the work directory.
-      std::string template_text = text.str();
-      const std::string template_folder = std::filesystem::absolute(template_file).parent_path().string();
-      for (auto at = template_text.find("{template_dir}"); at != std::string::npos;
-           at = template_text.find("{template_dir}", at + template_folder.size()))
-        template_text.replace(at, 14, template_folder);
-      spec.input_template = template_text;
-      spec.input_name = template_file.stem().string();  // "sw_tension.prm.in" -> "sw_tension.prm"
-      if (spec.input_name.empty()) spec.input_name = "input";
-      def.inputs.push_back(template_file);
+      const CommandSpecification spec = command_experiment(x, command, resolve, def.inputs);
       auto simulator = std::make_shared<CommandSimulator>(spec);
       // Every placeholder must have a value (a parameter or a fixed value).
       ParameterValues probe;
@@ -507,7 +413,8 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
       try {
         simulator->instantiate(probe);
       } catch (const ComputationError& error) {
-        x.fail(x.get("input_template"), "input_template", template_file.string() + ": " + error.what());
+        const std::string key = x.has("input_prm") ? "input_prm" : "input_template";
+        x.fail(x.get(key), key, x.text(key) + ": " + error.what());
       }
       e.simulator = simulator;
     } else {

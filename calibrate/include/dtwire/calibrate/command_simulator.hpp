@@ -6,10 +6,12 @@
 // back. A non-zero exit status or a missing/bad result is a failed simulation
 // (ComputationError); that run's directory is kept for diagnosis, successful ones are removed.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "dtwire/calibrate/simulator.hpp"
+#include "dtwire/core/prm_document.hpp"
 
 namespace dtwire::calibrate {
 
@@ -42,5 +44,10 @@ class CommandSimulator final : public Simulator {
 // `dtwire` itself when running inside it (/proc/self/exe), else $DTWIRE_EXECUTABLE, else
 // "dtwire" from PATH.
 std::filesystem::path dtwire_executable();
+
+// The entries of an FE experiment .prm with their defaults, as `program parameters` lists them
+// (a dtwire built with the FE solver); nothing for another program or one that cannot list them.
+// Asked once per program.
+std::optional<PrmDocument> program_parameters(const std::filesystem::path& program);
 
 }  // namespace dtwire::calibrate
