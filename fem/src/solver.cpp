@@ -57,10 +57,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
     s.assemble(false, s.homogeneous);  // initial state (stress-free), fills the field records
     s.commit();
     record.neck_radius = s.neck_radius();
-    if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
-                                                                  s.force_multiplier() * s.length_multiplier());
-    if (s.wire_contact) record.wire_contact = s.wire_contact->record(s.force_multiplier() * s.length_multiplier());
-    if (s.bonded_grip) record.grip = s.bonded_grip->record(s.force_multiplier(), s.force_multiplier() * s.length_multiplier());
+    s.record_contact_parts(record, false);
     s.record_end(record);
     s.record_probes(record);
     on_step(record);
@@ -107,20 +104,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       record.neck_radius = s.neck_radius();
       record.iterations = iterations;
       s.record_damage(record);
-      if (s.rigid_contact) record.contact = s.rigid_contact->record(s.internal_force, s.force_multiplier(),  // issue 5
-                                                                    s.force_multiplier() * s.length_multiplier());
-      if (s.wire_contact) {
-        record.wire_contact = s.wire_contact->record(s.force_multiplier() * s.length_multiplier());
-        s.log << "  wire contact: " << record.wire_contact.active_points << " active points ("
-              << record.wire_contact.slipping_points << " slipping, " << record.wire_contact.frozen_points
-              << " frozen) of " << record.wire_contact.candidate_pairs << " candidate face pairs, normal force "
-              << record.wire_contact.normal_force << " N\n";
-      }
-      if (s.bonded_grip) {
-        record.grip = s.bonded_grip->record(s.force_multiplier(), s.force_multiplier() * s.length_multiplier());
-        s.log << "  bonded grips: " << record.grip.slipping_fraction * 100 << " % of the top grips' area slipping, "
-              << "largest slip " << record.grip.max_slip * 1e3 << " mm\n";
-      }
+      s.record_contact_parts(record, true);
       s.record_end(record);
       s.record_probes(record);
       s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "

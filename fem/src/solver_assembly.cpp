@@ -111,13 +111,9 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
   WorkStream::run(CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.begin_active()),
                   CellFilter(IteratorFilters::LocallyOwnedCell(), dof_handler.end()), worker, copier,
                   ScratchData(fe, quadrature), CopyData());
-  if (rigid_contact &&  // contact (issue 5): tool tractions on the contact boundary faces
-      !rigid_contact->assemble(relevant, relevant_values, with_matrix, constraints, matrix, rhs, internal_force))
-    failed = true;
-  if (wire_contact &&
-      !wire_contact->assemble(relevant_values, with_matrix, constraints, matrix, rhs, internal_force))
-    failed = true;
-  if (bonded_grip) bonded_grip->assemble(relevant, relevant_values, with_matrix, constraints, matrix, rhs);
+  const contact::AssemblyTarget target{relevant, relevant_values, with_matrix, constraints, matrix, rhs, internal_force};
+  for (const auto& part : contact_parts)
+    if (!part->assemble(target)) failed = true;
   if (force_dof != numbers::invalid_dof_index && owned.is_element(force_dof)) rhs(force_dof) += applied_force;
   if (with_matrix) matrix.compress(VectorOperation::add);
   rhs.compress(VectorOperation::add);
@@ -144,9 +140,7 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
 
 void WireSolver::Impl::commit() {
   for (auto& p : points) p.committed = p.trial;
-  if (rigid_contact) rigid_contact->commit();  // contact (issue 5)
-  if (wire_contact) wire_contact->commit();
-  if (bonded_grip) bonded_grip->commit();
+  for (const auto& part : contact_parts) part->commit();
 }
 
 }  // namespace dtwire::fem

@@ -1,6 +1,7 @@
 #include <boost/archive/binary_iarchive.hpp>
 #include <boost/archive/binary_oarchive.hpp>
 #include <boost/serialization/array.hpp>
+#include <boost/serialization/string.hpp>
 #include <boost/serialization/vector.hpp>
 
 #include <cstdio>
@@ -21,13 +22,13 @@ std::filesystem::path WireSolver::Impl::checkpoint_file(unsigned step) const {
 }
 
 namespace {
-constexpr char kCheckpointMagic[16] = "dtwire-ckpt-3";
+constexpr char kCheckpointMagic[16] = "dtwire-ckpt-4";
 }  // namespace
 
 // Layout: magic, then one boost binary archive: the header (ranks, DoFs, cells, quadrature
 // points), the stepping state, the statistics, the step records (each serialises every field),
-// this rank's solution and last step values, the committed material state of its points, and
-// the state of each part (part_states).
+// this rank's solution and last step values, the committed material state of its points, the
+// names of the contact parts and the state of each part (part_states).
 void WireSolver::Impl::write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step) {
   const auto file = checkpoint_file(state.step);
   std::filesystem::create_directories(file.parent_path());
@@ -49,7 +50,7 @@ void WireSolver::Impl::write_checkpoint(const SteppingState& state, const PETScW
     std::ofstream out(temporary, std::ios::binary);
     out.write(kCheckpointMagic, sizeof kCheckpointMagic);
     boost::archive::binary_oarchive archive(out);
-    archive << header << stepping << history << values << part_states();
+    archive << header << stepping << history << values << part_names() << part_states();
     if (!out) throw ComputationError("cannot write checkpoint " + temporary);
   }
   std::filesystem::rename(temporary, file);
@@ -64,10 +65,11 @@ void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETS
   if (!in || std::string(magic) != kCheckpointMagic)
     throw InputError(file.string(), "not a dtwire checkpoint of this version (or missing)");
   std::vector<double> header, stepping, values;
+  std::vector<std::string> names;
   std::vector<std::vector<double>> parts;
   try {
     boost::archive::binary_iarchive archive(in);
-    archive >> header >> stepping >> history >> values >> parts;
+    archive >> header >> stepping >> history >> values >> names >> parts;
   } catch (const std::exception& e) {
     throw InputError(file.string(), std::string("unreadable checkpoint: ") + e.what());
   }
@@ -99,10 +101,19 @@ void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETS
     for (unsigned j = 0; j < 6; ++j) p.committed.backstress.access_raw_entry(j) = values[k++];
     p.trial = p.committed;
   }
-  restore_part_states(parts, file.string());
+  restore_part_states(names, parts, file.string());
 }
 
+std::vector<std::string> WireSolver::Impl::part_names() const {
+  std::vector<std::string> names;
+  for (const auto& part : contact_parts) names.push_back(part->name());
+  return names;
+}
+
+// One list per contact part, then the external-work sums.
 std::vector<std::vector<double>> WireSolver::Impl::part_states() const {
+  std::vector<std::vector<double>> states;
+  for (const auto& part : contact_parts) states.push_back(part->saved_state());
   contact::StateWriter work;
   work.put(end_work);
   work.put(tool_work);
@@ -116,24 +127,24 @@ std::vector<std::vector<double>> WireSolver::Impl::part_states() const {
       work.put(previous_tool_force[k][c]);
       work.put(previous_tool_displacement[k][c]);
     }
-  return {rigid_contact ? rigid_contact->saved_state() : std::vector<double>{},
-          wire_contact ? wire_contact->saved_state() : std::vector<double>{},
-          bonded_grip ? bonded_grip->saved_state() : std::vector<double>{}, work.take()};
+  states.push_back(work.take());
+  return states;
 }
 
-void WireSolver::Impl::restore_part_states(const std::vector<std::vector<double>>& parts, const std::string& file) {
-  if (parts.size() != 4) throw InputError(file, "checkpoint without the state of the contact parts");
-  const auto mismatch = [&](const char* part) {
-    throw InputError(file, std::string("checkpoint of a run with ") + part + ", unlike this one");
-  };
+void WireSolver::Impl::restore_part_states(const std::vector<std::string>& names,
+                                           const std::vector<std::vector<double>>& parts, const std::string& file) {
+  if (names != part_names()) {
+    const auto list = [](const std::vector<std::string>& n) {
+      std::string text;
+      for (const auto& name : n) text += (text.empty() ? "" : ", ") + name;
+      return text.empty() ? std::string("no contact parts") : text;
+    };
+    throw InputError(file, "checkpoint of a run with " + list(names) + ", unlike this one (" + list(part_names()) + ")");
+  }
+  if (parts.size() != contact_parts.size() + 1) throw InputError(file, "checkpoint without the state of the contact parts");
   try {
-    if (rigid_contact) rigid_contact->restore_state(parts[0]);
-    else if (!parts[0].empty()) mismatch("contact tools");
-    if (wire_contact) wire_contact->restore_state(parts[1]);
-    else if (!parts[1].empty()) mismatch("wire contact");
-    if (bonded_grip) bonded_grip->restore_state(parts[2]);
-    else if (!parts[2].empty()) mismatch("bonded grips");
-    contact::StateReader work(parts[3], "external work");
+    for (std::size_t k = 0; k < contact_parts.size(); ++k) contact_parts[k]->restore_state(parts[k]);
+    contact::StateReader work(parts.back(), "external work");
     end_work = work.get();
     tool_work = work.get();
     for (std::size_t k = 0; k < top_end_dofs.size(); ++k) {

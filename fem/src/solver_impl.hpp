@@ -90,9 +90,13 @@ struct WireSolver::Impl {
   std::vector<double> relevant_values;  // plain copy of `ghosted`: PETSc element reads are not thread-safe
   std::vector<QuadraturePointRecord> points;
   double elastic_energy = 0.0, dissipation = 0.0;
-  std::unique_ptr<contact::RigidToolContact> rigid_contact;  // contact (issue 5): null without tools
-  std::unique_ptr<contact::WireWireContact> wire_contact;    // null unless enabled
-  std::unique_ptr<contact::BondedGrip> bonded_grip;          // Grip interface = bonded; null when clamped
+  // The parts acting on the wire's surface, in assembly order: rigid tools, wire contact, bonded
+  // grips (each only when the .prm has it). The typed pointers below reach into this list for
+  // what only one kind has (the wire contact's dofs, the grips' and tools' end work).
+  std::vector<std::unique_ptr<contact::ContactPart>> contact_parts;
+  contact::RigidToolContact* rigid_contact = nullptr;  // contact (issue 5): null without tools
+  contact::WireWireContact* wire_contact = nullptr;    // null unless enabled
+  contact::BondedGrip* bonded_grip = nullptr;          // Grip interface = bonded; null when clamped
   std::set<types::boundary_id> bottom_ids, top_ids;
   Tensor<1, 3> load_direction;  // unit: the load path's displacement acts along it
   Point<3> rotation_centre;
@@ -146,10 +150,13 @@ struct WireSolver::Impl {
   std::filesystem::path checkpoint_file(unsigned step) const;
   void write_checkpoint(const SteppingState& state, const PETScWrappers::MPI::Vector& last_step);
   void read_checkpoint(unsigned step, SteppingState& state, PETScWrappers::MPI::Vector& last_step);
-  // The parts that keep state of their own between steps (contact tools, wire contact, bonded
-  // grips, the external-work sums) write and read it themselves, one list of doubles each.
+  // The parts that keep state of their own between steps (each contact part, then the
+  // external-work sums) write and read it themselves, one list of doubles each, by name.
+  std::vector<std::string> part_names() const;
   std::vector<std::vector<double>> part_states() const;
-  void restore_part_states(const std::vector<std::vector<double>>& parts, const std::string& file);
+  void restore_part_states(const std::vector<std::string>& names, const std::vector<std::vector<double>>& parts,
+                           const std::string& file);
+  void record_contact_parts(StepRecord& record, bool log_step);
   void make_rigid_body_modes();
   unsigned solve_krylov();  // GMRES + GAMG; returns the iterations, throws on failure
   // contact (issue 5): solve_step inside the augmented-Lagrange (Uzawa) loop.

@@ -157,30 +157,34 @@ unsigned WireSolver::Impl::solve_krylov() {
 bool WireSolver::Impl::solve_contact_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                                           const PETScWrappers::MPI::Vector& start, unsigned& iterations,
                                           std::string& reason) {
-  if (rigid_contact) rigid_contact->begin_step(t_old, t_new);
-  if (bonded_grip)
-    bonded_grip->begin_step(contact::top_end_motion(prm.load, load_direction, rotation_centre, t_new), !extrapolation);
-  if (wire_contact) {
-    refresh_relevant_values();  // the committed state (after a cut-back too)
-    if (wire_contact->begin_step(relevant_values)) {
-      log << "    wire contact: new candidate pairs, matrix pattern rebuilt\n";
-      make_matrix();
-    }
+  refresh_relevant_values();  // the committed state (after a cut-back too)
+  contact::StepStart step;
+  step.t_old = t_old;
+  step.t_new = t_new;
+  step.relevant_values = &relevant_values;
+  step.top_motion = contact::top_end_motion(prm.load, load_direction, rotation_centre, t_new);
+  step.extrapolated = extrapolation != nullptr;
+  bool new_pairs = false;
+  for (const auto& part : contact_parts) new_pairs = part->begin_step(step) || new_pairs;
+  if (new_pairs) {
+    log << "    wire contact: new candidate pairs, matrix pattern rebuilt\n";
+    make_matrix();
   }
   if (!solve_step(t_old, t_new, extrapolation, iterations, reason)) return false;
-  if (!rigid_contact && !wire_contact) return true;
   PETScWrappers::MPI::Vector converged(owned, comm);
-  const auto augment = [&]() {  // both contacts update their multipliers (no short-circuit)
-    const bool rigid = rigid_contact && rigid_contact->augment();
-    const bool wires = wire_contact && wire_contact->augment();
-    return rigid || wires;
+  const auto augment = [&]() {  // every part updates its multipliers (no short-circuit)
+    bool again = false;
+    for (const auto& part : contact_parts) again = part->augment() || again;
+    return again;
   };
   while (augment()) {
     converged = solution;
     converged -= start;
     solution = start;
     unsigned more = 0;
-    log << "    augmentation " << (rigid_contact ? rigid_contact->augmentations() : wire_contact->augmentations()) << "\n";
+    unsigned augmentations = 0;
+    for (const auto& part : contact_parts) augmentations = std::max(augmentations, part->augmentations());
+    log << "    augmentation " << augmentations << "\n";
     if (!solve_step(t_old, t_new, &converged, more, reason)) return false;
     iterations += more;
   }

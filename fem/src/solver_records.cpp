@@ -184,18 +184,10 @@ void WireSolver::Impl::write_fields(unsigned step, double time) {
   out.add_data_vector(lode, "lode_parameter");
   if (prm.material.failure.enabled()) out.add_data_vector(damage, "failure_indicator");
   out.add_data_vector(rank, "mpi_rank");
-  Vector<float> contact_pressure(n_cells), contact_slip(n_cells);  // contact (issue 5)
-  if (rigid_contact) {
-    rigid_contact->cell_fields(contact_pressure, contact_slip);
-    out.add_data_vector(contact_pressure, "contact_pressure_Pa");
-    out.add_data_vector(contact_slip, "contact_slip_m");
-  }
-  Vector<float> wire_pressure(n_cells), wire_slip(n_cells);
-  if (wire_contact) {
-    wire_contact->cell_fields(wire_pressure, wire_slip);
-    out.add_data_vector(wire_pressure, "wire_contact_pressure_Pa");
-    out.add_data_vector(wire_slip, "wire_contact_slip_m");
-  }
+  std::vector<std::pair<std::string, Vector<float>>> contact_fields;  // kept alive until the patches are built
+  for (const auto& part : contact_parts)
+    for (auto& field : part->cell_fields(static_cast<unsigned>(n_cells))) contact_fields.push_back(std::move(field));
+  for (const auto& [name, values] : contact_fields) out.add_data_vector(values, name);
   out.build_patches();
   std::filesystem::create_directories(field_directory);
   const std::string pvtu = out.write_vtu_with_pvtu_record(field_directory.string() + "/", "fields", step, comm, 5);
@@ -205,6 +197,13 @@ void WireSolver::Impl::write_fields(unsigned step, double time) {
     std::ofstream pvd(field_directory / "fields.pvd");
     DataOutBase::write_pvd_record(pvd, pvd_records);
   }
+}
+
+// Each contact part's columns of the step record (whole specimen), with its log line for a
+// converged step.
+void WireSolver::Impl::record_contact_parts(StepRecord& record, bool log_step) {
+  const contact::RecordScales scales{internal_force, force_multiplier(), force_multiplier() * length_multiplier()};
+  for (const auto& part : contact_parts) part->record(scales, record, log_step && log.is_active() ? &log.get_stream() : nullptr);
 }
 
 }  // namespace dtwire::fem

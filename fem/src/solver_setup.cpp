@@ -82,8 +82,10 @@ void WireSolver::Impl::setup() {
   if (prm.wire_contact.enabled) {
     if (!prm.geometry.double_twist)
       throw InputError("Wire contact", "Enabled = true needs a double-twist mesh file (`dtwire mesh dt`)");
-    wire_contact = std::make_unique<contact::WireWireContact>(prm.wire_contact, prm.material.young,
-                                                              prm.geometry.diameter, dof_handler, comm);
+    auto wires = std::make_unique<contact::WireWireContact>(prm.wire_contact, prm.material.young,
+                                                            prm.geometry.diameter, dof_handler, comm);
+    wire_contact = wires.get();
+    contact_parts.push_back(std::move(wires));
     relevant.add_indices(wire_contact->needed_dofs());
   }
   make_constraints(homogeneous, 0.0, 0.0);
@@ -96,19 +98,26 @@ void WireSolver::Impl::setup() {
   if (wire_contact) {
     wire_contact->initialise(relevant, homogeneous, owned);
     refresh_relevant_values();
-    wire_contact->begin_step(relevant_values);
+    contact::StepStart start;
+    start.relevant_values = &relevant_values;
+    wire_contact->begin_step(start);
   }
   make_matrix();
 
   points.assign(triangulation.n_active_cells() * quadrature.size(), QuadraturePointRecord{});
   locate_probes();
   if (prm.newton.krylov) make_rigid_body_modes();
-  if (prm.contact.enabled())  // contact (issue 5)
-    rigid_contact = std::make_unique<contact::RigidToolContact>(prm.contact, prm.material.young, dof_handler,
-                                                                bottom_ids, top_ids, comm);
+  if (prm.contact.enabled()) {  // contact (issue 5); first in assembly order
+    auto tools = std::make_unique<contact::RigidToolContact>(prm.contact, prm.material.young, dof_handler, bottom_ids,
+                                                             top_ids, comm);
+    rigid_contact = tools.get();
+    contact_parts.insert(contact_parts.begin(), std::move(tools));
+  }
   if (prm.load.grip.bonded) {  // grip interface: the bond holds the grip surfaces
-    bonded_grip = std::make_unique<contact::BondedGrip>(prm.load.grip, prm.material.young, dof_handler, bottom_ids,
-                                                        top_ids, comm);
+    auto grips = std::make_unique<contact::BondedGrip>(prm.load.grip, prm.material.young, dof_handler, bottom_ids,
+                                                       top_ids, comm);
+    bonded_grip = grips.get();
+    contact_parts.push_back(std::move(grips));
     log << "bonded grips: top " << bonded_grip->top_area() * 1e6 << " mm^2 (strength " << prm.load.grip.strength * 1e-6
         << " MPa, capacity " << prm.load.grip.strength * bonded_grip->top_area() * force_multiplier()
         << " N for the whole specimen), bottom " << bonded_grip->bottom_area() * 1e6 << " mm^2 (elastic), penalty "
@@ -152,7 +161,7 @@ void WireSolver::Impl::locate_probes() {
 void WireSolver::Impl::make_matrix() {
   DynamicSparsityPattern dsp(relevant);
   DoFTools::make_sparsity_pattern(dof_handler, dsp, predictor, false);
-  if (wire_contact) wire_contact->add_sparsity(dsp, predictor);
+  for (const auto& part : contact_parts) part->add_sparsity(dsp, predictor);
   SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
   direct_solver.reset();
   matrix.reinit(owned, owned, dsp, comm);

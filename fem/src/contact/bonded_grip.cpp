@@ -92,14 +92,19 @@ BondedGrip::BondedGrip(const GripParameters& parameters, double young, const DoF
   top_law_.slides = true;
 }
 
-void BondedGrip::begin_step(const RigidMotion& top, bool stuck_predictor) {
-  top_ = top;
-  predictor_ = stuck_predictor;
+bool BondedGrip::begin_step(const StepStart& step) {
+  top_ = step.top_motion;
+  predictor_ = !step.extrapolated;
+  return false;
 }
 
-void BondedGrip::assemble(const IndexSet& relevant, const std::vector<double>& relevant_values, bool with_matrix,
-                          const AffineConstraints<double>& constraints, PETScWrappers::MPI::SparseMatrix& matrix,
-                          PETScWrappers::MPI::Vector& rhs) {
+bool BondedGrip::assemble(const AssemblyTarget& target) {
+  const IndexSet& relevant = target.relevant;
+  const std::vector<double>& relevant_values = target.relevant_values;
+  const bool with_matrix = target.with_matrix;
+  const AffineConstraints<double>& constraints = target.constraints;
+  PETScWrappers::MPI::SparseMatrix& matrix = target.matrix;
+  PETScWrappers::MPI::Vector& rhs = target.rhs;
   const unsigned n_dofs = component_.size();
   const RigidMotion fixed = identity_motion();
   std::vector<double> u(n_dofs);
@@ -138,6 +143,7 @@ void BondedGrip::assemble(const IndexSet& relevant, const std::vector<double>& r
     else constraints.distribute_local_to_global(local_rhs, face.dofs, rhs);
   }
   if (with_matrix) predictor_ = false;
+  return true;
 }
 
 std::vector<double> BondedGrip::saved_state() const {
@@ -184,7 +190,14 @@ void BondedGrip::top_resultants(const Vector3& centre, Vector3& force, Vector3& 
   }
 }
 
-GripRecord BondedGrip::record(double area_scale, double energy_scale) const {
+void BondedGrip::record(const RecordScales& scales, StepRecord& record, std::ostream* log) const {
+  record.grip = totals(scales.force, scales.energy);
+  if (log)
+    *log << "  bonded grips: " << record.grip.slipping_fraction * 100 << " % of the top grips' area slipping, "
+         << "largest slip " << record.grip.max_slip * 1e3 << " mm\n";
+}
+
+GripRecord BondedGrip::totals(double area_scale, double energy_scale) const {
   GripRecord r;
   r.enabled = true;
   double slipping = 0.0;

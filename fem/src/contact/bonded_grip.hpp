@@ -19,42 +19,31 @@
 
 #include "parameters.hpp"
 #include "bond_law.hpp"
+#include "contact_part.hpp"
 #include "contact_record.hpp"
+#include "rigid_motion.hpp"
 
 namespace dtwire::fem::contact {
 
-// A rigid motion X -> X + translation + (R - I)(X - centre).
-struct RigidMotion {
-  Matrix3 rotation;
-  Vector3 translation, centre;
-  Vector3 displacement(const Vector3& X) const { return translation + rotation * (X - centre) - (X - centre); }
-};
-RigidMotion identity_motion();
-
-// The top end's rigid motion at pseudo-time t: the load path along `direction` and the rotation
-// path about the rotation axis through `centre` (Rodrigues), as the clamped top end moves.
-RigidMotion top_end_motion(const LoadParameters& load, const Vector3& direction, const Vector3& centre, double t);
-
-class BondedGrip {
+class BondedGrip final : public ContactPart {
  public:
+  std::string name() const override { return "bonded grips"; }
   // Penalty k = stiffness_factor E / h, h the smallest grip face edge (all ranks).
   BondedGrip(const GripParameters& parameters, double young, const dealii::DoFHandler<3>& dof_handler,
              const std::set<dealii::types::boundary_id>& bottom_ids,
              const std::set<dealii::types::boundary_id>& top_ids, MPI_Comm comm);
 
-  // The top grips' motion at the end of the coming step. With `stuck_predictor` (a step started
-  // without an extrapolated increment: the solver's linearised predictor) the step's first
+  // Takes the top grips' motion at the end of the coming step. A step started without an
+  // extrapolated increment (the solver's linearised predictor) has a stuck predictor: its first
   // assembly treats the bond as stuck, so that the grip drags the wire along as the clamps'
   // predictor does; the return map starts from there. Started from the committed state instead,
   // the return map sees the whole grip increment as slip (the elastic range tau_b / k is far
   // below a step), whose tangent has no stiffness along the slip: after a load reversal Newton
   // swung the wire between forward and reversed slip (15 iterations and 6 cut-backs per reversal).
-  void begin_step(const RigidMotion& top, bool stuck_predictor);
+  bool begin_step(const StepStart& step) override;
   // Adds the bond's residual (-int N t dA) and tangent to the system.
-  void assemble(const dealii::IndexSet& relevant, const std::vector<double>& relevant_values, bool with_matrix,
-                const dealii::AffineConstraints<double>& constraints, dealii::PETScWrappers::MPI::SparseMatrix& matrix,
-                dealii::PETScWrappers::MPI::Vector& rhs);
-  void commit();
+  bool assemble(const AssemblyTarget& target) override;
+  void commit() override;
 
   // The pull of the top grips on the wire (this rank, modelled part, last assembly): the sum of
   // the bond tractions times their areas, and its moment about `centre` (current positions).
@@ -62,19 +51,20 @@ class BondedGrip {
   // Work of the top grips on the wire (this rank, modelled part): per point
   // (t_old + t_new) / 2 . (anchor_new - anchor_old), accumulated over the converged steps.
   double external_work() const { return work_; }
-  // Totals over the ranks: areas times area_scale, energies times energy_scale.
-  GripRecord record(double area_scale, double energy_scale) const;
+  // Totals over the ranks: areas times the force scale, energies times the energy scale.
+  void record(const RecordScales& scales, StepRecord& record, std::ostream* log) const override;
 
   // The committed state for checkpoints (packed_state.hpp): per point the bond's slip history,
   // traction and anchor; the work and dissipation.
-  std::vector<double> saved_state() const;
-  void restore_state(const std::vector<double>& values);
+  std::vector<double> saved_state() const override;
+  void restore_state(const std::vector<double>& values) override;
 
   double stiffness() const { return law_.stiffness; }
   double top_area() const { return top_area_; }        // m^2, all ranks, modelled part
   double bottom_area() const { return bottom_area_; }  // m^2, all ranks, modelled part
 
  private:
+  GripRecord totals(double area_scale, double energy_scale) const;
   struct Point {
     Vector3 reference, normal;  // X and the outward normal of the reference face
     double weight = 0.0;        // reference area

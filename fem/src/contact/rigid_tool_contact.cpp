@@ -82,10 +82,11 @@ RigidToolContact::RigidToolContact(const ContactParameters& parameters, double y
     bottom_dofs_[c] = DoFTools::extract_boundary_dofs(dof_handler, mask, bottom_ids);
     top_dofs_[c] = DoFTools::extract_boundary_dofs(dof_handler, mask, top_ids);
   }
-  begin_step(0.0, 0.0);
+  begin_step(StepStart{});
 }
 
-void RigidToolContact::begin_step(double t_old, double t_new) {
+bool RigidToolContact::begin_step(const StepStart& step) {
+  const double t_old = step.t_old, t_new = step.t_new;
   time_ = t_new;
   tools_.clear();
   tool_increment_.clear();
@@ -101,12 +102,17 @@ void RigidToolContact::begin_step(double t_old, double t_new) {
   }
   for (auto& pair : pairs_) pair.multiplier = pair.committed.multiplier;
   augmentations_ = 0;
+  return false;
 }
 
-bool RigidToolContact::assemble(const IndexSet& relevant, const std::vector<double>& relevant_values,
-                                bool with_matrix, const AffineConstraints<double>& constraints,
-                                PETScWrappers::MPI::SparseMatrix& matrix, PETScWrappers::MPI::Vector& rhs,
-                                PETScWrappers::MPI::Vector& internal_force) {
+bool RigidToolContact::assemble(const AssemblyTarget& target) {
+  const IndexSet& relevant = target.relevant;
+  const std::vector<double>& relevant_values = target.relevant_values;
+  const bool with_matrix = target.with_matrix;
+  const AffineConstraints<double>& constraints = target.constraints;
+  PETScWrappers::MPI::SparseMatrix& matrix = target.matrix;
+  PETScWrappers::MPI::Vector& rhs = target.rhs;
+  PETScWrappers::MPI::Vector& internal_force = target.internal_force;
   const unsigned n_dofs = component_.size();
   const unsigned n_tools = tools_.size();
   std::vector<double> u(n_dofs), force(n_dofs);
@@ -207,7 +213,8 @@ void RigidToolContact::restore_state(const std::vector<double>& values) {
   in.finish();
 }
 
-void RigidToolContact::cell_fields(Vector<float>& pressure, Vector<float>& slip) const {
+std::vector<std::pair<std::string, Vector<float>>> RigidToolContact::cell_fields(unsigned n_cells) const {
+  Vector<float> pressure(n_cells), slip(n_cells);
   const unsigned n_tools = tools_.size();
   for (const auto& face : faces_)
     for (unsigned q = face.first_point; q < face.first_point + face.n_points; ++q)
@@ -216,9 +223,14 @@ void RigidToolContact::cell_fields(Vector<float>& pressure, Vector<float>& slip)
         pressure[face.cell] = std::max(pressure[face.cell], static_cast<float>(pair.last.pressure));
         slip[face.cell] = std::max(slip[face.cell], static_cast<float>(pair.committed.slip));
       }
+  return {{"contact_pressure_Pa", pressure}, {"contact_slip_m", slip}};
 }
 
-ContactRecord RigidToolContact::record(const PETScWrappers::MPI::Vector& internal_force, double force_scale,
+void RigidToolContact::record(const RecordScales& scales, StepRecord& record, std::ostream*) const {
+  record.contact = totals(scales.internal_force, scales.force, scales.energy);
+}
+
+ContactRecord RigidToolContact::totals(const PETScWrappers::MPI::Vector& internal_force, double force_scale,
                                        double contact_scale) const {
   ContactRecord r;
   r.enabled = true;

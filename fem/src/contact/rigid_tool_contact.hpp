@@ -18,39 +18,39 @@
 #include <vector>
 
 #include "contact_kernel.hpp"
+#include "contact_part.hpp"
 #include "contact_parameters.hpp"
 #include "contact_record.hpp"
 
 namespace dtwire::fem::contact {
 
-class RigidToolContact {
+class RigidToolContact final : public ContactPart {
  public:
   // `young` and the smallest contact face size set the penalties (epsilon = factor E / h).
   RigidToolContact(const ContactParameters& parameters, double young, const dealii::DoFHandler<3>& dof_handler,
                    const std::set<dealii::types::boundary_id>& bottom_ids,
                    const std::set<dealii::types::boundary_id>& top_ids, MPI_Comm comm);
 
-  void begin_step(double t_old, double t_new);
+  std::string name() const override { return "contact tools"; }
+  bool begin_step(const StepStart& step) override;
   // Returns false if a point cannot be evaluated (on a cylinder axis).
-  bool assemble(const dealii::IndexSet& relevant, const std::vector<double>& relevant_values, bool with_matrix,
-                const dealii::AffineConstraints<double>& constraints, dealii::PETScWrappers::MPI::SparseMatrix& matrix,
-                dealii::PETScWrappers::MPI::Vector& rhs, dealii::PETScWrappers::MPI::Vector& internal_force);
-  bool augment();
-  void commit();
-  ContactRecord record(const dealii::PETScWrappers::MPI::Vector& internal_force, double force_scale,
-                       double contact_scale) const;
-  // Cell fields for the VTU output (indexed by active cell index; this rank's cells): largest
-  // contact pressure (Pa) and accumulated slip (m) over the cell's contact points.
-  void cell_fields(dealii::Vector<float>& pressure, dealii::Vector<float>& slip) const;
+  bool assemble(const AssemblyTarget& target) override;
+  bool augment() override;
+  void commit() override;
+  void record(const RecordScales& scales, StepRecord& record, std::ostream* log) const override;
+  // Largest contact pressure (Pa) and accumulated slip (m) over each cell's contact points.
+  std::vector<std::pair<std::string, dealii::Vector<float>>> cell_fields(unsigned n_cells) const override;
 
   const ContactLaw& law() const { return law_; }
-  unsigned augmentations() const { return augmentations_; }
+  unsigned augmentations() const override { return augmentations_; }
   // The committed state for checkpoints (packed_state.hpp): point positions, each pair's
   // friction history, the dissipation.
-  std::vector<double> saved_state() const;
-  void restore_state(const std::vector<double>& values);
+  std::vector<double> saved_state() const override;
+  void restore_state(const std::vector<double>& values) override;
 
  private:
+  ContactRecord totals(const dealii::PETScWrappers::MPI::Vector& internal_force, double force_scale,
+                       double contact_scale) const;
   struct Face {
     std::vector<dealii::types::global_dof_index> dofs;
     unsigned first_point = 0, n_points = 0;

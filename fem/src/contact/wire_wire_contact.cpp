@@ -10,6 +10,7 @@
 #include <boost/geometry/index/rtree.hpp>
 
 #include <algorithm>
+#include <ostream>
 #include <cmath>
 #include <iterator>
 #include <limits>
@@ -171,7 +172,8 @@ BilinearFace WireWireContact::current_face(const std::array<Vector3, 4>& referen
   return face;
 }
 
-bool WireWireContact::begin_step(const std::vector<double>& relevant_values) {
+bool WireWireContact::begin_step(const StepStart& step) {
+  const std::vector<double>& relevant_values = *step.relevant_values;
   std::vector<std::pair<RTreeBox, unsigned>> boxes;
   boxes.reserve(masters_.size());
   for (unsigned m = 0; m < masters_.size(); ++m) {
@@ -220,9 +222,13 @@ void WireWireContact::add_sparsity(DynamicSparsityPattern& pattern, const Affine
     }
 }
 
-bool WireWireContact::assemble(const std::vector<double>& relevant_values, bool with_matrix,
-                               const AffineConstraints<double>& constraints, PETScWrappers::MPI::SparseMatrix& matrix,
-                               PETScWrappers::MPI::Vector& rhs, PETScWrappers::MPI::Vector& internal_force) {
+bool WireWireContact::assemble(const AssemblyTarget& target) {
+  const std::vector<double>& relevant_values = target.relevant_values;
+  const bool with_matrix = target.with_matrix;
+  const AffineConstraints<double>& constraints = target.constraints;
+  PETScWrappers::MPI::SparseMatrix& matrix = target.matrix;
+  PETScWrappers::MPI::Vector& rhs = target.rhs;
+  PETScWrappers::MPI::Vector& internal_force = target.internal_force;
   std::vector<BilinearFace> master_geometry(masters_.size());
   for (unsigned m = 0; m < masters_.size(); ++m) {
     const auto& face = masters_[m];
@@ -403,7 +409,16 @@ void WireWireContact::restore_state(const std::vector<double>& values) {
   in.finish();
 }
 
-WireContactRecord WireWireContact::record(double contact_scale) const {
+void WireWireContact::record(const RecordScales& scales, StepRecord& record, std::ostream* log) const {
+  record.wire_contact = totals(scales.energy);
+  const WireContactRecord& r = record.wire_contact;
+  if (log)
+    *log << "  wire contact: " << r.active_points << " active points (" << r.slipping_points << " slipping, "
+         << r.frozen_points << " frozen) of " << r.candidate_pairs << " candidate face pairs, normal force "
+         << r.normal_force << " N\n";
+}
+
+WireContactRecord WireWireContact::totals(double contact_scale) const {
   WireContactRecord r;
   r.enabled = true;
   r.augmentations = augmentations_;
@@ -444,13 +459,15 @@ WireContactRecord WireWireContact::record(double contact_scale) const {
   return r;
 }
 
-void WireWireContact::cell_fields(Vector<float>& pressure, Vector<float>& slip) const {
+std::vector<std::pair<std::string, Vector<float>>> WireWireContact::cell_fields(unsigned n_cells) const {
+  Vector<float> pressure(n_cells), slip(n_cells);
   const unsigned n = parameters_.points_per_direction * parameters_.points_per_direction;
   for (const auto& face : slaves_)
     for (unsigned q = face.first_point; q < face.first_point + n; ++q) {
       pressure[face.cell] = std::max(pressure[face.cell], static_cast<float>(points_[q].last.pressure));
       slip[face.cell] = std::max(slip[face.cell], static_cast<float>(points_[q].committed.slip));
     }
+  return {{"wire_contact_pressure_Pa", pressure}, {"wire_contact_slip_m", slip}};
 }
 
 }  // namespace dtwire::fem::contact

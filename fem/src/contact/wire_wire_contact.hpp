@@ -27,12 +27,13 @@
 #include <vector>
 
 #include "bilinear_face.hpp"
+#include "contact_part.hpp"
 #include "contact_parameters.hpp"
 #include "contact_record.hpp"
 
 namespace dtwire::fem::contact {
 
-class WireWireContact {
+class WireWireContact final : public ContactPart {
  public:
   WireWireContact(const WireContactParameters& parameters, double young, double diameter,
                   const dealii::DoFHandler<3>& dof_handler, MPI_Comm comm);
@@ -43,25 +44,27 @@ class WireWireContact {
   void initialise(const dealii::IndexSet& relevant, const dealii::AffineConstraints<double>& constraints,
                   const dealii::IndexSet& owned);
   // Couplings of the current candidate pairs (slave face x master face).
-  void add_sparsity(dealii::DynamicSparsityPattern& pattern, const dealii::AffineConstraints<double>& constraints) const;
+  void add_sparsity(dealii::DynamicSparsityPattern& pattern,
+                    const dealii::AffineConstraints<double>& constraints) const override;
   // Before each step, with the committed displacement: new candidate pairs from the R-tree.
   // Returns true (on every rank) if a pair is new to the matrix pattern: rebuild it.
-  bool begin_step(const std::vector<double>& relevant_values);
-  bool assemble(const std::vector<double>& relevant_values, bool with_matrix,
-                const dealii::AffineConstraints<double>& constraints, dealii::PETScWrappers::MPI::SparseMatrix& matrix,
-                dealii::PETScWrappers::MPI::Vector& rhs, dealii::PETScWrappers::MPI::Vector& internal_force);
-  bool augment();
-  void commit();
-  WireContactRecord record(double contact_scale) const;
-  void cell_fields(dealii::Vector<float>& pressure, dealii::Vector<float>& slip) const;
-  unsigned augmentations() const { return augmentations_; }
+  std::string name() const override { return "wire contact"; }
+  bool begin_step(const StepStart& step) override;
+  bool assemble(const AssemblyTarget& target) override;
+  bool augment() override;
+  void commit() override;
+  void record(const RecordScales& scales, StepRecord& record, std::ostream* log) const override;
+  // Largest pressure (Pa) and accumulated slip (m) over each slave cell's points.
+  std::vector<std::pair<std::string, dealii::Vector<float>>> cell_fields(unsigned n_cells) const override;
+  unsigned augmentations() const override { return augmentations_; }
   // The committed state for checkpoints (packed_state.hpp): per point the friction history,
   // pressure, position and master face; per slave face the matrix pattern; the master
   // displacements; the dissipation. After restore_state the caller rebuilds the matrix.
-  std::vector<double> saved_state() const;
-  void restore_state(const std::vector<double>& values);
+  std::vector<double> saved_state() const override;
+  void restore_state(const std::vector<double>& values) override;
 
  private:
+  WireContactRecord totals(double contact_scale) const;
   struct MasterFace {  // gathered on every rank
     std::array<dealii::types::global_dof_index, 12> dofs;  // vertex v, component c at 3 v + c
     std::array<Vector3, 4> reference;
