@@ -99,21 +99,15 @@ bool BondedGrip::begin_step(const StepStart& step) {
 }
 
 bool BondedGrip::assemble(const AssemblyTarget& target) {
-  const IndexSet& relevant = target.relevant;
-  const std::vector<double>& relevant_values = target.relevant_values;
-  const bool with_matrix = target.with_matrix;
-  const AffineConstraints<double>& constraints = target.constraints;
-  PETScWrappers::MPI::SparseMatrix& matrix = target.matrix;
-  PETScWrappers::MPI::Vector& rhs = target.rhs;
   const unsigned n_dofs = component_.size();
   const RigidMotion fixed = identity_motion();
   std::vector<double> u(n_dofs);
   FullMatrix<double> K(n_dofs, n_dofs);
   Vector<double> local_rhs(n_dofs);
   for (const auto& face : faces_) {
-    for (unsigned i = 0; i < n_dofs; ++i) u[i] = relevant_values[relevant.index_within_set(face.dofs[i])];
+    for (unsigned i = 0; i < n_dofs; ++i) u[i] = target.relevant_values[target.relevant.index_within_set(face.dofs[i])];
     local_rhs = 0.0;
-    if (with_matrix) K = 0.0;
+    if (target.with_matrix) K = 0.0;
     for (unsigned q = face.first_point; q < face.first_point + face.n_points; ++q) {
       Point& p = points_[q];
       const RigidMotion& grip = p.top ? top_ : fixed;
@@ -134,15 +128,15 @@ bool BondedGrip::assemble(const AssemblyTarget& target) {
       for (unsigned i = 0; i < n_dofs; ++i) {
         if (p.shape[i] == 0.0) continue;
         local_rhs[i] += p.shape[i] * p.traction[component_[i]] * p.weight;
-        if (!with_matrix) continue;
+        if (!target.with_matrix) continue;
         for (unsigned j = 0; j < n_dofs; ++j)
           if (p.shape[j] != 0.0) K(i, j) -= p.shape[i] * p.shape[j] * stiffness[component_[i]][component_[j]] * p.weight;
       }
     }
-    if (with_matrix) constraints.distribute_local_to_global(K, local_rhs, face.dofs, matrix, rhs);
-    else constraints.distribute_local_to_global(local_rhs, face.dofs, rhs);
+    if (target.with_matrix) target.constraints.distribute_local_to_global(K, local_rhs, face.dofs, target.matrix, target.rhs);
+    else target.constraints.distribute_local_to_global(local_rhs, face.dofs, target.rhs);
   }
-  if (with_matrix) predictor_ = false;
+  if (target.with_matrix) predictor_ = false;
   return true;
 }
 

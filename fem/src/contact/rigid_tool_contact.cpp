@@ -106,23 +106,16 @@ bool RigidToolContact::begin_step(const StepStart& step) {
 }
 
 bool RigidToolContact::assemble(const AssemblyTarget& target) {
-  const IndexSet& relevant = target.relevant;
-  const std::vector<double>& relevant_values = target.relevant_values;
-  const bool with_matrix = target.with_matrix;
-  const AffineConstraints<double>& constraints = target.constraints;
-  PETScWrappers::MPI::SparseMatrix& matrix = target.matrix;
-  PETScWrappers::MPI::Vector& rhs = target.rhs;
-  PETScWrappers::MPI::Vector& internal_force = target.internal_force;
   const unsigned n_dofs = component_.size();
   const unsigned n_tools = tools_.size();
   std::vector<double> u(n_dofs), force(n_dofs);
   FullMatrix<double> K(n_dofs, n_dofs);
   Vector<double> local_rhs(n_dofs);
   for (const auto& face : faces_) {
-    for (unsigned i = 0; i < n_dofs; ++i) u[i] = relevant_values[relevant.index_within_set(face.dofs[i])];
+    for (unsigned i = 0; i < n_dofs; ++i) u[i] = target.relevant_values[target.relevant.index_within_set(face.dofs[i])];
     bool touched = false;
     std::fill(force.begin(), force.end(), 0.0);
-    if (with_matrix) K = 0.0;
+    if (target.with_matrix) K = 0.0;
     for (unsigned q = face.first_point; q < face.first_point + face.n_points; ++q) {
       Point& p = points_[q];
       p.position = p.reference;
@@ -144,7 +137,7 @@ bool RigidToolContact::assemble(const AssemblyTarget& target) {
         for (unsigned i = 0; i < n_dofs; ++i) {
           if (p.shape[i] == 0.0) continue;
           force[i] -= p.shape[i] * r.traction[component_[i]] * p.weight;
-          if (!with_matrix) continue;
+          if (!target.with_matrix) continue;
           for (unsigned j = 0; j < n_dofs; ++j)
             if (p.shape[j] != 0.0)
               K(i, j) -= p.shape[i] * p.shape[j] * r.stiffness[component_[i]][component_[j]] * p.weight;
@@ -153,9 +146,9 @@ bool RigidToolContact::assemble(const AssemblyTarget& target) {
     }
     if (!touched) continue;
     for (unsigned i = 0; i < n_dofs; ++i) local_rhs[i] = -force[i];
-    if (with_matrix) constraints.distribute_local_to_global(K, local_rhs, face.dofs, matrix, rhs);
-    else constraints.distribute_local_to_global(local_rhs, face.dofs, rhs);
-    internal_force.add(face.dofs, force);
+    if (target.with_matrix) target.constraints.distribute_local_to_global(K, local_rhs, face.dofs, target.matrix, target.rhs);
+    else target.constraints.distribute_local_to_global(local_rhs, face.dofs, target.rhs);
+    target.internal_force.add(face.dofs, force);
   }
   return true;
 }

@@ -223,24 +223,18 @@ void WireWireContact::add_sparsity(DynamicSparsityPattern& pattern, const Affine
 }
 
 bool WireWireContact::assemble(const AssemblyTarget& target) {
-  const std::vector<double>& relevant_values = target.relevant_values;
-  const bool with_matrix = target.with_matrix;
-  const AffineConstraints<double>& constraints = target.constraints;
-  PETScWrappers::MPI::SparseMatrix& matrix = target.matrix;
-  PETScWrappers::MPI::Vector& rhs = target.rhs;
-  PETScWrappers::MPI::Vector& internal_force = target.internal_force;
   std::vector<BilinearFace> master_geometry(masters_.size());
   for (unsigned m = 0; m < masters_.size(); ++m) {
     const auto& face = masters_[m];
-    master_geometry[m] = current_face(face.reference, face.value_index, face.normal_sign, relevant_values);
-    for (unsigned i = 0; i < 12; ++i) master_values_[12 * m + i] = relevant_values[face.value_index[i]];
+    master_geometry[m] = current_face(face.reference, face.value_index, face.normal_sign, target.relevant_values);
+    for (unsigned i = 0; i < 12; ++i) master_values_[12 * m + i] = target.relevant_values[face.value_index[i]];
   }
   std::vector<types::global_dof_index> dofs(24);
   std::vector<double> force(24);
   FullMatrix<double> K(24, 24);
   Vector<double> local_rhs(24);
   for (const auto& face : slaves_) {
-    const BilinearFace slave = current_face(face.reference, face.value_index, face.normal_sign, relevant_values);
+    const BilinearFace slave = current_face(face.reference, face.value_index, face.normal_sign, target.relevant_values);
     const unsigned n_points = parameters_.points_per_direction * parameters_.points_per_direction;
     for (unsigned q = face.first_point; q < face.first_point + n_points; ++q) {
       SlavePoint& p = points_[q];
@@ -271,11 +265,11 @@ bool WireWireContact::assemble(const AssemblyTarget& target) {
       if (!p.master_frozen)
         for (const unsigned m : face.candidates)
           if (static_cast<int>(m) != p.master) consider(m);
-      if (with_matrix && p.status >= 0 && best != p.master && best >= 0 && p.master >= 0) ++p.flips;
+      if (target.with_matrix && p.status >= 0 && best != p.master && best >= 0 && p.master >= 0) ++p.flips;
       p.master = best;
       if (best < 0) {
         p.last = ContactResponse{};
-        if (with_matrix) p.status = 0;
+        if (target.with_matrix) p.status = 0;
         continue;
       }
       p.master_xi = best_projection.xi;
@@ -285,7 +279,7 @@ bool WireWireContact::assemble(const AssemblyTarget& target) {
       in.slave_reference = face.reference;
       in.master_reference = master.reference;
       for (unsigned i = 0; i < 12; ++i) {
-        in.slave_displacement[i] = relevant_values[face.value_index[i]];
+        in.slave_displacement[i] = target.relevant_values[face.value_index[i]];
         in.master_displacement[i] = master_values_[12 * best + i];
         in.master_committed_displacement[i] = committed_master_values_[12 * best + i];
       }
@@ -300,10 +294,10 @@ bool WireWireContact::assemble(const AssemblyTarget& target) {
       in.history = p.committed;
       in.history.multiplier = p.multiplier;
       in.forced = p.frozen;
-      const WireContactPointOutput point = evaluate_wire_contact_point(in, law_, with_matrix);
+      const WireContactPointOutput point = evaluate_wire_contact_point(in, law_, target.with_matrix);
       p.last = point.response;
       const int status = !p.last.active ? 0 : p.last.slipping ? 2 : 1;
-      if (with_matrix) {
+      if (target.with_matrix) {
         if (p.status >= 0 && status != p.status && status != 0 && p.status != 0) ++p.flips;
         p.status = status;
         if (p.flips >= parameters_.flip_limit && !p.master_frozen && status != 0) {
@@ -320,20 +314,20 @@ bool WireWireContact::assemble(const AssemblyTarget& target) {
       for (unsigned i = 0; i < 24; ++i) {
         force[i] = point.force[i];
         local_rhs[i] = -force[i];
-        if (!with_matrix) continue;
+        if (!target.with_matrix) continue;
         for (unsigned j = 0; j < 24; ++j) K(i, j) = point.stiffness[i][j];
       }
       // Constrained dofs whose constraint this rank does not hold: drop their rows and columns
       // (the owner replaces the row by the constraint; the reaction keeps the force).
       for (unsigned i = 0; i < 24; ++i)
-        if (constrained_.is_element(dofs[i]) && !constraints.is_constrained(dofs[i])) {
+        if (constrained_.is_element(dofs[i]) && !target.constraints.is_constrained(dofs[i])) {
           local_rhs[i] = 0.0;
-          if (!with_matrix) continue;
+          if (!target.with_matrix) continue;
           for (unsigned j = 0; j < 24; ++j) K(i, j) = K(j, i) = 0.0;
         }
-      if (with_matrix) constraints.distribute_local_to_global(K, local_rhs, dofs, matrix, rhs);
-      else constraints.distribute_local_to_global(local_rhs, dofs, rhs);
-      internal_force.add(dofs, force);
+      if (target.with_matrix) target.constraints.distribute_local_to_global(K, local_rhs, dofs, target.matrix, target.rhs);
+      else target.constraints.distribute_local_to_global(local_rhs, dofs, target.rhs);
+      target.internal_force.add(dofs, force);
     }
   }
   return true;
