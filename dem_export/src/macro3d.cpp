@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "law_parameters.hpp"
+#include "macroelement_reading.hpp"
 
 namespace dtwire::dem {
 
@@ -40,29 +41,13 @@ ParameterMap macro3d_parameters_from_thesis(const ParameterMap& thesis) {
 }
 
 Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
-  using detail::nonnegative_parameter;
   using detail::optional_parameter;
   using detail::positive_parameter;
   const ParameterMap p = given.count("EA_N") ? macro3d_parameters_from_thesis(given) : given;
-  surface_.D = positive_parameter(p, law_name, "D_m");
-  surface_.N0 = positive_parameter(p, law_name, "N0_N");
-  surface_.Nult = positive_parameter(p, law_name, "Nult_N");
-  surface_.Nc = positive_parameter(p, law_name, "Nc_N");
-  surface_.m_f = positive_parameter(p, law_name, "m_f");
-  surface_.beta_f = positive_parameter(p, law_name, "beta_f");
-  surface_.k_F = nonnegative_parameter(p, law_name, "k_F_per_m");
-  surface_.k_M = nonnegative_parameter(p, law_name, "k_M_per_rad");
-  surface_.m_g = positive_parameter(p, law_name, "m_g");
-  surface_.alpha_g = nonnegative_parameter(p, law_name, "alpha_g");
-  surface_.beta_g = positive_parameter(p, law_name, "beta_g");
-  surface_.rotation_flow_scale =
-      detail::checked(law_name, "rotation_flow_scale", optional_parameter(p, "rotation_flow_scale", 1.0));
-  surface_.prepare();
-  if (surface_.Nult < surface_.N0) throw std::invalid_argument("macro3d: Nult_N must be >= N0_N");
-  damage_.W1 = nonnegative_parameter(p, law_name, "W1_J");
-  damage_.W2 = positive_parameter(p, law_name, "W2_J");
-  damage_.alpha_d = positive_parameter(p, law_name, "alpha_d");
-  if (damage_.W2 <= damage_.W1) throw std::invalid_argument("macro3d: W2_J must be > W1_J");
+  surface_ = detail::read_surface(p, law_name, "k_F_per_m", "k_M_per_rad",
+                                  detail::checked(law_name, "rotation_flow_scale",
+                                                  optional_parameter(p, "rotation_flow_scale", 1.0)));
+  damage_ = detail::read_damage(p, law_name);
   moment_work_weight_ = detail::checked(law_name, "damage_moment_work_weight",
                                         optional_parameter(p, "damage_moment_work_weight", 1.0));
   shear_strength_ = detail::checked(law_name, "shear_strength_N",

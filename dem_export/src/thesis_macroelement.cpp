@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "law_parameters.hpp"
+#include "macroelement_reading.hpp"
 
 namespace dtwire::dem {
 
@@ -14,27 +15,9 @@ const std::string law_name = "thesis";
 }  // namespace
 
 ThesisMacroElement::ThesisMacroElement(const ParameterMap& p) {
-  using detail::nonnegative_parameter;
   using detail::positive_parameter;
-  surface_.D = positive_parameter(p, law_name, "D_m");
-  surface_.N0 = positive_parameter(p, law_name, "N0_N");
-  surface_.Nult = positive_parameter(p, law_name, "Nult_N");
-  surface_.Nc = positive_parameter(p, law_name, "Nc_N");
-  surface_.m_f = positive_parameter(p, law_name, "m_f");
-  surface_.beta_f = positive_parameter(p, law_name, "beta_f");
-  surface_.k_F = nonnegative_parameter(p, law_name, "k_F");
-  surface_.k_M = nonnegative_parameter(p, law_name, "k_M");
-  surface_.m_g = positive_parameter(p, law_name, "m_g");
-  surface_.alpha_g = nonnegative_parameter(p, law_name, "alpha_g");
-  surface_.beta_g = positive_parameter(p, law_name, "beta_g");
-  surface_.rotation_flow_scale = 1.0;  // degrees throughout, as the plugin
-  surface_.prepare();
-  if (surface_.Nult < surface_.N0)
-    throw std::invalid_argument("thesis: Nult_N must be >= N0_N");
-  damage_.W1 = nonnegative_parameter(p, law_name, "W1_J");
-  damage_.W2 = positive_parameter(p, law_name, "W2_J");
-  damage_.alpha_d = positive_parameter(p, law_name, "alpha_d");
-  if (damage_.W2 <= damage_.W1) throw std::invalid_argument("thesis: W2_J must be > W1_J");
+  surface_ = detail::read_surface(p, law_name, "k_F", "k_M", 1.0);  // degrees throughout, as the plugin
+  damage_ = detail::read_damage(p, law_name);
   if (detail::optional_parameter(p, "slide_a", 0.0) != 0.0)
     throw std::invalid_argument(
         "thesis: slide_a != 0 (wire-sliding spring) is not implemented; both published "

@@ -58,6 +58,17 @@ std::vector<double> draw_params(const std::string& effect, const ForceCurve& sim
   return {};
 }
 
+// A trial of `base` with `effects` injected: the truth is their sorted names joined by '+'.
+SelfcheckTrial trial_of(const Base& base, const std::vector<std::string>& effects) {
+  SelfcheckTrial t;
+  t.base = base.name;
+  std::vector<std::string> sorted = effects;
+  std::sort(sorted.begin(), sorted.end());
+  t.truth = "none";
+  for (std::size_t i = 0; i < sorted.size(); ++i) t.truth = (i ? t.truth + "+" : "") + sorted[i];
+  return t;
+}
+
 SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effects,
                          std::mt19937& rng, unsigned seed) {
   const ForceCurve& sim = base.curve;
@@ -86,12 +97,7 @@ SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effec
   DiagnosisOptions options;
   options.seed = seed;
   const Diagnosis d = diagnose({lab}, sim, options);
-  SelfcheckTrial t;
-  t.base = base.name;
-  std::vector<std::string> sorted = effects;
-  std::sort(sorted.begin(), sorted.end());
-  t.truth = "none";
-  for (std::size_t i = 0; i < sorted.size(); ++i) t.truth = (i ? t.truth + "+" : "") + sorted[i];
+  SelfcheckTrial t = trial_of(base, effects);
   t.predicted = d.cause;
   t.gap_before = d.gap_before;
   t.noise_floor = d.noise_floor;
@@ -166,12 +172,7 @@ SelfcheckTrial run_independent_trial(const Base& base, const std::vector<std::st
   DiagnosisOptions options;
   options.seed = seed;
   const Diagnosis d = diagnose(labs, sim, options);
-  SelfcheckTrial t;
-  t.base = base.name;
-  std::vector<std::string> sorted = effects;
-  std::sort(sorted.begin(), sorted.end());
-  t.truth = "none";
-  for (std::size_t i = 0; i < sorted.size(); ++i) t.truth = (i ? t.truth + "+" : "") + sorted[i];
+  SelfcheckTrial t = trial_of(base, effects);
   for (std::size_t e = 0; e < effects.size(); ++e)
     t.shape += (e ? "+" : "") + independent::shape_name(effects[e], settings[e].shape);
   t.predicted = d.cause;
