@@ -1,11 +1,7 @@
 #include "dtwire/calibrate/fitter.hpp"
 
-#include <ceres/ceres.h>
-
-#include <Eigen/SVD>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <ostream>
@@ -18,104 +14,49 @@
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "dtwire/lsq/least_squares.hpp"
 
 namespace dtwire::calibrate {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// All residuals and the Jacobian at the last point Ceres asked for. Ceres evaluates the
-// residual blocks one after another at the same point (num_threads = 1), so one simulation
-// round serves them all; the parallelism is inside ProblemEvaluator.
-class SharedEvaluation {
- public:
-  explicit SharedEvaluation(ProblemEvaluator& evaluator) : evaluator_(evaluator) {}
-
-  bool evaluate(const double* z, bool need_jacobian) {
-    const std::size_t n = evaluator_.parameters().size();
-    const bool same = valid_ && std::memcmp(z, z_.data(), n * sizeof(double)) == 0;
-    if (same && (!need_jacobian || has_jacobian_)) return failure_.empty();
-    z_.assign(z, z + n);
-    valid_ = true;
-    has_jacobian_ = need_jacobian;
-    failure_.clear();
-    try {
-      if (need_jacobian)
-        evaluator_.residuals_and_jacobian(z_, residuals_, jacobian_);
-      else
-        residuals_ = evaluator_.residuals(z_);
-    } catch (const ComputationError& error) {
-      failure_ = error.what();
-    }
-    if (!failure_.empty() && last_failure_ != failure_) last_failure_ = failure_;
-    return failure_.empty();
+// The fit as the engine sees it: z = value / scale, the evaluator's residuals and Jacobian in
+// z, one residual group (own variance) per curve channel.
+lsq::Problem engine_problem(ProblemEvaluator& evaluator) {
+  lsq::Problem problem;
+  problem.parameter_count = evaluator.parameters().size();
+  problem.residual_count = evaluator.residual_count();
+  for (const auto& p : evaluator.parameters()) {
+    problem.lower.push_back(p.lower / p.effective_scale());
+    problem.upper.push_back(p.upper / p.effective_scale());
   }
-  double residual(std::size_t i) const { return residuals_[i]; }
-  const double* jacobian_row(std::size_t i) const {
-    return jacobian_.data() + i * evaluator_.parameters().size();
-  }
-  const std::string& last_failure() const { return last_failure_; }
-
- private:
-  ProblemEvaluator& evaluator_;
-  std::vector<double> z_, residuals_, jacobian_;
-  bool valid_ = false, has_jacobian_ = false;
-  std::string failure_, last_failure_;
-};
-
-// One residual as a Ceres residual block, so robust losses act point by point.
-class PointResidual final : public ceres::CostFunction {
- public:
-  PointResidual(SharedEvaluation& shared, std::size_t index, int parameter_count)
-      : shared_(shared), index_(index) {
-    set_num_residuals(1);
-    mutable_parameter_block_sizes()->push_back(parameter_count);
-  }
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const bool need_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
-    if (!shared_.evaluate(parameters[0], need_jacobian)) return false;  // Ceres rejects the step
-    residuals[0] = shared_.residual(index_);
-    if (need_jacobian) {
-      const double* row = shared_.jacobian_row(index_);
-      std::copy(row, row + parameter_block_sizes()[0], jacobians[0]);
-    }
-    return true;
-  }
-
- private:
-  SharedEvaluation& shared_;
-  std::size_t index_;
-};
-
-ceres::LossFunction* make_loss(const FitOptions& options) {
-  switch (options.loss) {
-    case LossKind::Huber: return new ceres::HuberLoss(options.loss_scale);
-    case LossKind::Cauchy: return new ceres::CauchyLoss(options.loss_scale);
-    case LossKind::Squared: break;
-  }
-  return nullptr;
+  problem.residuals = [&evaluator](const std::vector<double>& z, std::vector<double>& r) {
+    r = evaluator.residuals(z);
+  };
+  problem.residuals_and_jacobian = [&evaluator](const std::vector<double>& z, std::vector<double>& r,
+                                                std::vector<double>& J) { evaluator.residuals_and_jacobian(z, r, J); };
+  for (const auto& experiment : evaluator.experiments())
+    for (std::size_t c = 0; c < experiment.channels.size(); ++c) problem.residual_groups.push_back(experiment.target.size());
+  return problem;
 }
 
-// The Ceres problem on the parameter block z (scaled values), with bounds.
-struct CeresProblem {
-  CeresProblem(ProblemEvaluator& evaluator, const FitOptions& options, std::vector<double>& z)
-      : shared(evaluator) {
-    ceres::Problem::Options problem_options;
-    problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
-    problem = std::make_unique<ceres::Problem>(problem_options);
-    const int n = static_cast<int>(z.size());
-    for (std::size_t i = 0; i < evaluator.residual_count(); ++i)
-      problem->AddResidualBlock(new PointResidual(shared, i, n), make_loss(options), z.data());
-    for (int j = 0; j < n; ++j) {
-      const auto& p = evaluator.parameters()[static_cast<std::size_t>(j)];
-      problem->SetParameterLowerBound(z.data(), j, p.lower / p.effective_scale());
-      problem->SetParameterUpperBound(z.data(), j, p.upper / p.effective_scale());
-    }
-  }
-  SharedEvaluation shared;
-  std::unique_ptr<ceres::Problem> problem;
-};
+lsq::Options engine_options(const FitOptions& options) {
+  lsq::Options o;
+  o.max_iterations = options.max_iterations;
+  o.loss = options.loss == LossKind::Huber    ? lsq::Loss::Huber
+           : options.loss == LossKind::Cauchy ? lsq::Loss::Cauchy
+                                              : lsq::Loss::Squared;
+  o.loss_scale = options.loss_scale;
+  o.function_tolerance = options.function_tolerance;
+  o.parameter_tolerance = options.parameter_tolerance;
+  o.gradient_tolerance = options.gradient_tolerance;
+  // Jacobi scaling comes from a solve's first Jacobian only: a resumed solve would scale
+  // differently. The parameters are already scaled (z = value / scale).
+  o.jacobi_scaling = false;
+  o.initial_trust_region_radius = 1e4;
+  return o;
+}
 
 std::string join(const std::vector<double>& v) {
   std::ostringstream out;
@@ -126,36 +67,26 @@ std::string join(const std::vector<double>& v) {
 
 // ---- checkpoint ------------------------------------------------------------------------
 
-struct StartState {
-  std::vector<double> start_z;
-  std::vector<double> z;  // last accepted iterate
-  double radius = 0.0;    // trust region radius for the next iteration
-  int iterations = 0;
-  double cost = 0.0;
-  std::string state = "pending";
-  std::string message;
-};
-
-nlohmann::json to_json(const StartState& s) {
-  return {{"start_z", s.start_z}, {"z", s.z},         {"radius", s.radius},
-          {"iterations", s.iterations}, {"cost", s.cost}, {"state", s.state},
+nlohmann::json to_json(const lsq::Start& s) {
+  return {{"start_z", s.start}, {"z", s.x},         {"radius", s.radius},
+          {"iterations", s.iterations}, {"cost", s.cost}, {"state", lsq::to_string(s.state)},
           {"message", s.message}};
 }
 
-StartState from_json(const nlohmann::json& j) {
-  StartState s;
-  s.start_z = j.at("start_z").get<std::vector<double>>();
-  s.z = j.at("z").get<std::vector<double>>();
+lsq::Start from_json(const nlohmann::json& j) {
+  lsq::Start s;
+  s.start = j.at("start_z").get<std::vector<double>>();
+  s.x = j.at("z").get<std::vector<double>>();
   s.radius = j.at("radius").get<double>();
   s.iterations = j.at("iterations").get<int>();
   s.cost = j.at("cost").get<double>();
-  s.state = j.at("state").get<std::string>();
+  s.state = lsq::start_state_from_string(j.at("state").get<std::string>());
   s.message = j.at("message").get<std::string>();
   return s;
 }
 
 void write_checkpoint(const std::filesystem::path& path, const std::string& identity,
-                      const std::vector<StartState>& starts) {
+                      const std::vector<lsq::Start>& starts) {
   if (path.empty()) return;
   nlohmann::json j;
   j["format"] = "dtwire-fit-checkpoint-1";
@@ -165,7 +96,7 @@ void write_checkpoint(const std::filesystem::path& path, const std::string& iden
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(1) << "\n"; });
 }
 
-std::optional<std::vector<StartState>> read_checkpoint(const std::filesystem::path& path,
+std::optional<std::vector<lsq::Start>> read_checkpoint(const std::filesystem::path& path,
                                                        const std::string& identity) {
   if (path.empty() || !std::filesystem::exists(path)) return std::nullopt;
   std::ifstream in(path);
@@ -178,62 +109,13 @@ std::optional<std::vector<StartState>> read_checkpoint(const std::filesystem::pa
   if (j.value("fit_identity", "") != identity)
     throw InputError(path.string(),
                      "checkpoint belongs to a different fit definition; remove it or drop --resume");
-  std::vector<StartState> starts;
-  for (const auto& s : j.at("starts")) starts.push_back(from_json(s));
-  return starts;
-}
-
-// ---- one start -------------------------------------------------------------------------
-
-class CheckpointingCallback final : public ceres::IterationCallback {
- public:
-  CheckpointingCallback(const std::vector<double>& z, StartState& state, int done_before,
-                        std::function<void()> save, std::function<bool()> should_stop,
-                        std::function<void(const ceres::IterationSummary&)> report)
-      : z_(z), state_(state), done_before_(done_before), save_(std::move(save)),
-        should_stop_(std::move(should_stop)), report_(std::move(report)) {}
-
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
-    // Only accepted iterates are resumable states (an iteration that rejects its step leaves
-    // the iterate unchanged; a resumed run repeats it and takes the same decisions).
-    if (summary.iteration == 0 || summary.step_is_successful) {
-      state_.z = z_;
-      state_.radius = summary.trust_region_radius;
-      state_.iterations = done_before_ + summary.iteration;
-      state_.cost = summary.cost;
-    }
-    save_();
-    report_(summary);
-    return should_stop_() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  std::vector<lsq::Start> starts;
+  try {
+    for (const auto& s : j.at("starts")) starts.push_back(from_json(s));
+  } catch (const std::exception& error) {
+    throw InputError(path.string(), std::string("unreadable checkpoint: ") + error.what());
   }
-
- private:
-  const std::vector<double>& z_;
-  StartState& state_;
-  int done_before_;
-  std::function<void()> save_;
-  std::function<bool()> should_stop_;
-  std::function<void(const ceres::IterationSummary&)> report_;
-};
-
-constexpr double kInitialTrustRegionRadius = 1e4;
-
-ceres::Solver::Options solver_options(const FitOptions& options) {
-  ceres::Solver::Options o;
-  o.minimizer_type = ceres::TRUST_REGION;
-  o.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  o.linear_solver_type = ceres::DENSE_QR;
-  // Jacobi scaling is computed from the first Jacobian of a solve only; a resumed solve would
-  // scale differently. The parameters are already scaled (z = value / scale).
-  o.jacobi_scaling = false;
-  o.num_threads = 1;  // residual blocks share one evaluation; parallelism is per simulation
-  o.update_state_every_iteration = true;
-  o.function_tolerance = options.function_tolerance;
-  o.parameter_tolerance = options.parameter_tolerance;
-  o.gradient_tolerance = options.gradient_tolerance;
-  o.logging_type = ceres::SILENT;
-  o.minimizer_progress_to_stdout = false;
-  return o;
+  return starts;
 }
 
 }  // namespace
@@ -267,7 +149,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   const std::string identity = fit_identity(evaluator, options);
 
   // Start points: the initial values, then a Latin hypercube in the bounds.
-  std::vector<StartState> starts;
+  std::vector<lsq::Start> starts;
   if (options.resume) {
     if (auto restored = read_checkpoint(options.checkpoint, identity)) starts = *restored;
   }
@@ -278,167 +160,92 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
       lower.push_back(p.lower);
       upper.push_back(p.upper);
     }
-    starts.push_back(StartState{evaluator.to_scaled(initial), {}, 0.0, 0, 0.0, "pending", {}});
+    std::vector<std::vector<double>> points{evaluator.to_scaled(initial)};
     for (const auto& point :
          latin_hypercube(static_cast<std::size_t>(options.starts - 1), lower, upper, options.seed))
-      starts.push_back(StartState{evaluator.to_scaled(point), {}, 0.0, 0, 0.0, "pending", {}});
+      points.push_back(evaluator.to_scaled(point));
+    starts = lsq::starts_at(points);
   }
 
+  const lsq::Problem problem = engine_problem(evaluator);
+  lsq::Options engine = engine_options(options);
   int iterations_this_run = 0;
-  bool interrupted = false;
-  const auto save = [&] { write_checkpoint(options.checkpoint, identity, starts); };
-  const auto should_stop = [&] {
-    ++iterations_this_run;
-    interrupted = (options.stop_after_iterations >= 0 &&
-                   iterations_this_run > options.stop_after_iterations) ||
-                  (options.stop_requested && options.stop_requested->load());
-    return interrupted;
-  };
-
-  for (std::size_t s = 0; s < starts.size() && !interrupted; ++s) {
-    StartState& state = starts[s];
-    if (state.state == "done" || state.state == "failed") continue;
-    const bool continuing = state.state == "running";
-    std::vector<double> z = continuing ? state.z : state.start_z;
-    const int done_before = continuing ? state.iterations : 0;
-    state.state = "running";
-    if (done_before >= options.max_iterations) {
-      state.state = "done";
-      state.message = "maximum number of iterations reached";
-      save();
-      continue;
-    }
-    CeresProblem problem(evaluator, options, z);
-    ceres::Solver::Options solver = solver_options(options);
-    solver.max_num_iterations = options.max_iterations - done_before;
-    solver.initial_trust_region_radius = continuing ? state.radius : kInitialTrustRegionRadius;
-    const auto report = [&](const ceres::IterationSummary& it) {
-      if (!options.progress) return;
+  engine.after_iteration = [&](const lsq::Iteration& it, const std::vector<lsq::Start>& states) {
+    write_checkpoint(options.checkpoint, identity, states);
+    if (options.progress) {
       const auto stats = evaluator.statistics();
       const double elapsed = std::chrono::duration<double>(Clock::now() - started).count();
-      *options.progress << "fit start " << s + 1 << "/" << starts.size() << " iteration "
-                        << done_before + it.iteration << ": cost " << std::setprecision(6)
-                        << it.cost << (it.step_is_successful || it.iteration == 0 ? "" : " (step rejected)")
-                        << ", |gradient| " << it.gradient_max_norm << ", runs " << stats.simulations
-                        << " (cached " << stats.cache_hits << ", failed " << stats.failures << "), "
+      *options.progress << "fit start " << it.start + 1 << "/" << states.size() << " iteration "
+                        << it.iteration << ": cost " << std::setprecision(6) << it.cost
+                        << (it.step_accepted ? "" : " (step rejected)") << ", |gradient| "
+                        << it.gradient_max_norm << ", runs " << stats.simulations << " (cached "
+                        << stats.cache_hits << ", failed " << stats.failures << "), "
                         << std::setprecision(3) << elapsed << " s\n"
                         << std::flush;
-    };
-    CheckpointingCallback callback(z, state, done_before, save, should_stop, report);
-    solver.callbacks.push_back(&callback);
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver, problem.problem.get(), &summary);
-    if (interrupted) {
-      save();
-      break;
     }
-    if (summary.termination_type == ceres::CONVERGENCE ||
-        summary.termination_type == ceres::NO_CONVERGENCE) {
-      state.state = "done";
-      state.z = z;
-      state.cost = summary.final_cost;
-      state.iterations = done_before + static_cast<int>(summary.iterations.size()) - 1;
-      state.message = summary.message;
-    } else {
-      state.state = "failed";
-      state.message = summary.message + (problem.shared.last_failure().empty()
-                                             ? std::string()
-                                             : " (" + problem.shared.last_failure() + ")");
-    }
+    ++iterations_this_run;
+    return !((options.stop_after_iterations >= 0 && iterations_this_run > options.stop_after_iterations) ||
+             (options.stop_requested && options.stop_requested->load()));
+  };
+  engine.after_start = [&](std::size_t s, const std::vector<lsq::Start>& states) {
     if (options.progress)
-      *options.progress << "fit start " << s + 1 << "/" << starts.size() << " " << state.state
-                        << ": " << state.message << "\n";
-    save();
-  }
+      *options.progress << "fit start " << s + 1 << "/" << states.size() << " "
+                        << lsq::to_string(states[s].state) << ": " << states[s].message << "\n";
+    write_checkpoint(options.checkpoint, identity, states);
+  };
+  const lsq::Summary summary = lsq::solve(problem, engine, starts);
+  write_checkpoint(options.checkpoint, identity, summary.starts);
 
   FitResult result;
   result.parameters = parameters;
   result.residual_count = m;
-  for (const auto& st : starts)
-    result.starts.push_back({evaluator.from_scaled(st.start_z),
-                             st.z.empty() ? std::vector<double>{} : evaluator.from_scaled(st.z),
-                             st.cost, st.iterations, st.state, st.message});
+  for (const auto& st : summary.starts)
+    result.starts.push_back({evaluator.from_scaled(st.start),
+                             st.x.empty() ? std::vector<double>{} : evaluator.from_scaled(st.x),
+                             st.cost, st.iterations, lsq::to_string(st.state), st.message});
   result.statistics = evaluator.statistics();
-  if (interrupted) {
+  if (!summary.completed) {
     result.completed = false;
     result.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
     return result;
   }
-  std::optional<std::size_t> best;
-  for (std::size_t s = 0; s < starts.size(); ++s)
-    if (starts[s].state == "done" && (!best || starts[s].cost < starts[*best].cost)) best = s;
-  if (!best) {
+  if (!summary.best) {
     std::string messages;
-    for (const auto& st : starts) messages += " [" + st.message + "]";
+    for (const auto& st : summary.starts) messages += " [" + st.message + "]";
     throw ComputationError("fit failed from every start:" + messages);
   }
   result.completed = true;
-  result.best_start = *best;
-  std::vector<double> z = starts[*best].z;
-  result.values = evaluator.from_scaled(z);
-  result.cost = starts[*best].cost;
+  result.best_start = *summary.best;
+  result.values = evaluator.from_scaled(summary.x);
+  result.cost = summary.cost;
   result.residual_variance = 2.0 * result.cost / static_cast<double>(m - n);
 
-  // Jacobian and residuals at the optimum (z space; with a robust loss, as corrected by it).
-  CeresProblem problem(evaluator, options, z);
-  ceres::CRSMatrix crs;
-  std::vector<double> r;
-  double cost = 0;
-  problem.problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, &r, nullptr, &crs);
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int row = 0; row < crs.num_rows; ++row)
-    for (int k = crs.rows[static_cast<std::size_t>(row)]; k < crs.rows[static_cast<std::size_t>(row) + 1]; ++k)
-      J(row, crs.cols[static_cast<std::size_t>(k)]) = crs.values[static_cast<std::size_t>(k)];
-
-  // Covariance: C = (J^T J)^-1 from ceres::Covariance (dense SVD), scaled by the residual
-  // variance. Curves are weighted by the user, not necessarily by their noise, so the variance
-  // is estimated per curve channel g (s_g^2 = sum r_g^2 / its share of the m - n degrees of
-  // freedom) and combined as C (sum_g s_g^2 J_g^T J_g) C (the grouped sandwich estimator); with
-  // equal s_g this is the classical s^2 (J^T J)^-1.
-  ceres::Covariance::Options covariance_options;
-  covariance_options.algorithm_type = ceres::DENSE_SVD;
-  covariance_options.null_space_rank = -1;  // pseudo-inverse: drop directions below the threshold
-  covariance_options.min_reciprocal_condition_number = 1e-14;
-  covariance_options.num_threads = 1;
-  ceres::Covariance covariance(covariance_options);
-  std::vector<std::pair<const double*, const double*>> blocks{{z.data(), z.data()}};
-  if (covariance.Compute(blocks, problem.problem.get())) {
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> cz(n, n);
-    covariance.GetCovarianceBlock(z.data(), z.data(), cz.data());
-    const Eigen::MatrixXd C = cz;
-    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-    const double dof_share = static_cast<double>(m - n) / static_cast<double>(m);
-    Eigen::Index begin = 0;
-    for (const auto& experiment : evaluator.experiments())
-      for (std::size_t c = 0; c < experiment.channels.size(); ++c) {
-        const auto size = static_cast<Eigen::Index>(experiment.target.size());
-        double ss = 0;
-        for (Eigen::Index i = begin; i < begin + size; ++i) ss += r[static_cast<std::size_t>(i)] * r[static_cast<std::size_t>(i)];
-        const double variance = ss / (dof_share * static_cast<double>(size));
-        const auto Jg = J.middleRows(begin, size);
-        meat += variance * Jg.transpose() * Jg;
-        begin += size;
-      }
-    const Eigen::MatrixXd cov_z = C * meat * C;
+  // Covariance in z (the engine's grouped sandwich: each curve channel its own variance,
+  // since curves are weighted by the user, not necessarily by their noise), then in SI.
+  const lsq::Uncertainty u = lsq::uncertainty_at(problem, engine, summary.x);
+  if (u.covariance) {
     Eigen::MatrixXd cov(n, n), corr(n, n);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j)
-        cov(i, j) = cov_z(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
-                    parameters[i].effective_scale() * parameters[j].effective_scale();
-    for (std::size_t i = 0; i < n; ++i) result.sigma.push_back(std::sqrt(std::max(cov(i, i), 0.0)));
+        cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+            (*u.covariance)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
+            parameters[i].effective_scale() * parameters[j].effective_scale();
+    for (std::size_t i = 0; i < n; ++i) result.sigma.push_back(std::sqrt(std::max(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 0.0)));
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) {
         const double d = result.sigma[i] * result.sigma[j];
-        corr(i, j) = i == j ? 1.0 : (d > 0 ? cov(i, j) / d : 0.0);
+        const auto I = static_cast<Eigen::Index>(i), J = static_cast<Eigen::Index>(j);
+        corr(I, J) = i == j ? 1.0 : (d > 0 ? cov(I, J) / d : 0.0);
       }
     result.covariance = cov;
     result.correlation = corr;
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j)
-        if (std::abs(corr(i, j)) > 0.95)
+        if (std::abs(corr(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))) > 0.95)
           result.warnings.push_back("parameters '" + parameters[i].name + "' and '" +
                                     parameters[j].name + "' are strongly correlated (r = " +
-                                    std::to_string(corr(i, j)) + "): poorly identified separately");
+                                    std::to_string(corr(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))) +
+                                    "): poorly identified separately");
     for (std::size_t i = 0; i < n; ++i)
       if (result.sigma[i] > std::abs(result.values[i]))
         result.warnings.push_back("parameter '" + parameters[i].name +
@@ -448,25 +255,19 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   }
 
   // Identifiability: singular values of the Jacobian with unit-norm columns.
-  Eigen::MatrixXd jacobian = J;
-  for (Eigen::Index j = 0; j < jacobian.cols(); ++j) {
-    const double norm = jacobian.col(j).norm();
-    if (norm > 0) jacobian.col(j) /= norm;
-    else result.warnings.push_back("parameter '" + parameters[static_cast<std::size_t>(j)].name +
-                                   "' does not affect the residuals at the optimum");
-  }
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(jacobian, Eigen::ComputeThinV);
-  const Eigen::VectorXd sv = svd.singularValues();
-  for (Eigen::Index i = 0; i < sv.size(); ++i) result.singular_values.push_back(sv(i));
-  for (Eigen::Index i = 0; i < sv.size(); ++i) {
-    if (sv(0) > 0 && sv(i) / sv(0) < 1e-3) {
+  for (std::size_t j : u.insensitive)
+    result.warnings.push_back("parameter '" + parameters[j].name + "' does not affect the residuals at the optimum");
+  result.singular_values = u.singular_values;
+  const auto& sv = u.singular_values;
+  for (std::size_t i = 0; i < sv.size(); ++i) {
+    if (sv[0] > 0 && sv[i] / sv[0] < 1e-3) {
       std::ostringstream direction;
       direction << std::setprecision(3);
-      for (Eigen::Index j = 0; j < sv.size(); ++j)
-        direction << (j ? ", " : "") << parameters[static_cast<std::size_t>(j)].name << " "
-                  << svd.matrixV()(j, i);
+      for (std::size_t j = 0; j < sv.size(); ++j)
+        direction << (j ? ", " : "") << parameters[j].name << " "
+                  << u.singular_directions(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i));
       result.warnings.push_back("poorly identified direction (singular value ratio " +
-                                std::to_string(sv(i) / sv(0)) + "): " + direction.str());
+                                std::to_string(sv[i] / sv[0]) + "): " + direction.str());
     }
   }
   for (std::size_t i = 0; i < n; ++i) {

@@ -1,10 +1,11 @@
 #include "dtwire/gap/effect_fit.hpp"
 
-#include <ceres/ceres.h>
-
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
+
+#include "dtwire/lsq/least_squares.hpp"
 
 namespace dtwire::gap {
 namespace {
@@ -21,74 +22,58 @@ struct FlatObjective {
   }
 };
 
-// Scaled coordinates: x = (p - plausible_lower) / plausible width, so every unknown is O(1).
-double width_of(const ParameterSpec& s) {
-  const double w = s.plausible_upper - s.plausible_lower;
-  return w > 0 ? w : std::max(s.upper - s.lower, 1e-12);
-}
-
-struct Residuals {
-  const FlatObjective* objective;
-  std::vector<double> fixed;  // full flat vector; free entries overwritten
+// The engine's problem on the continuous parameters, the grid ones held at their values in
+// `held` (a start's or a grid trial's).
+struct ContinuousProblem {
+  const FlatObjective& objective;
+  std::vector<double> held;
   std::vector<std::size_t> free;
+  lsq::Problem problem;
 
-  bool operator()(double const* const* x, double* r) const {
-    std::vector<double> flat = fixed;
-    for (std::size_t j = 0; j < free.size(); ++j) {
-      const ParameterSpec& s = objective->specs[free[j]];
-      flat[free[j]] = s.plausible_lower + x[0][j] * width_of(s);
+  ContinuousProblem(const FlatObjective& o, std::vector<double> held_values) : objective(o), held(std::move(held_values)) {
+    for (std::size_t j = 0; j < objective.specs.size(); ++j)
+      if (objective.specs[j].grid.empty()) free.push_back(j);
+    problem.parameter_count = free.size();
+    problem.residual_count = objective.count;
+    problem.difference_step = 1e-4;  // curves are piecewise linear: a step above the kinks' scale
+    for (std::size_t j : free) {
+      problem.lower.push_back(objective.specs[j].to_scaled(objective.specs[j].lower));
+      problem.upper.push_back(objective.specs[j].to_scaled(objective.specs[j].upper));
     }
-    const std::vector<double> residual = objective->residuals(flat);
-    if (residual.size() != objective->count) return false;
-    std::copy(residual.begin(), residual.end(), r);
-    return true;
+    problem.residuals = [this](const std::vector<double>& x, std::vector<double>& r) { r = objective.residuals(flat_of(x)); };
+  }
+  std::vector<double> x_of(const std::vector<double>& flat) const {
+    std::vector<double> x;
+    for (std::size_t j : free) {
+      const ParameterSpec& s = objective.specs[j];
+      x.push_back(s.to_scaled(std::clamp(flat[j], s.lower, s.upper)));
+    }
+    return x;
+  }
+  std::vector<double> flat_of(const std::vector<double>& x) const {
+    std::vector<double> flat = held;
+    for (std::size_t j = 0; j < free.size(); ++j) flat[free[j]] = objective.specs[free[j]].from_scaled(x[j]);
+    return flat;
   }
 };
 
-// Ceres on the continuous parameters, grid ones held at their values in `flat`.
-std::vector<double> solve_continuous(const FlatObjective& objective, std::vector<double> flat) {
-  auto functor = std::make_unique<Residuals>();
-  functor->objective = &objective;
-  functor->fixed = flat;
-  for (std::size_t j = 0; j < objective.specs.size(); ++j)
-    if (objective.specs[j].grid.empty()) functor->free.push_back(j);
-  const std::size_t m = functor->free.size();
-  if (m == 0) return flat;
-  std::vector<double> x(m);
-  for (std::size_t j = 0; j < m; ++j) {
-    const ParameterSpec& s = objective.specs[functor->free[j]];
-    x[j] = (std::clamp(flat[functor->free[j]], s.lower, s.upper) - s.plausible_lower) / width_of(s);
-  }
-  const std::vector<std::size_t> free = functor->free;
-  ceres::NumericDiffOptions diff;
-  diff.relative_step_size = 1e-4;  // curves are piecewise linear: a step above the kinks' scale
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<Residuals, ceres::CENTRAL>(
-      functor.release(), ceres::TAKE_OWNERSHIP, diff);
-  cost->AddParameterBlock(static_cast<int>(m));
-  cost->SetNumResiduals(static_cast<int>(objective.count));
-  ceres::Problem ceres_problem;
-  ceres_problem.AddResidualBlock(cost, nullptr, x.data());
-  for (std::size_t j = 0; j < m; ++j) {
-    const ParameterSpec& s = objective.specs[free[j]];
-    ceres_problem.SetParameterLowerBound(x.data(), static_cast<int>(j),
-                                         (s.lower - s.plausible_lower) / width_of(s));
-    ceres_problem.SetParameterUpperBound(x.data(), static_cast<int>(j),
-                                         (s.upper - s.plausible_lower) / width_of(s));
-  }
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 60;
+lsq::Options solver_options() {
+  lsq::Options options;
+  options.max_iterations = 60;
   options.function_tolerance = 1e-9;
   options.parameter_tolerance = 1e-9;
-  options.logging_type = ceres::SILENT;
-  options.minimizer_progress_to_stdout = false;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &ceres_problem, &summary);
-  for (std::size_t j = 0; j < m; ++j) {
-    const ParameterSpec& s = objective.specs[free[j]];
-    flat[free[j]] = std::clamp(s.plausible_lower + x[j] * width_of(s), s.lower, s.upper);
-  }
-  return flat;
+  return options;
+}
+
+// The engine's multi-start solve of the continuous parameters from starts that share their
+// grid values; the best start's answer as a flat vector (the first start's if every one fails).
+std::vector<double> solve_continuous(const FlatObjective& objective, const std::vector<std::vector<double>>& starts) {
+  const ContinuousProblem continuous(objective, starts.front());
+  if (continuous.free.empty()) return starts.front();
+  std::vector<std::vector<double>> points;
+  for (const auto& start : starts) points.push_back(continuous.x_of(start));
+  const lsq::Summary summary = lsq::solve(continuous.problem, solver_options(), lsq::starts_at(points));
+  return summary.best ? continuous.flat_of(summary.x) : starts.front();
 }
 
 // Each grid value of each grid parameter in turn, the continuous parameters refitted for it.
@@ -100,7 +85,7 @@ std::vector<double> search_grid(const FlatObjective& objective, std::vector<doub
     for (double v : objective.specs[j].grid) {
       std::vector<double> trial = flat;
       trial[j] = v;
-      trial = solve_continuous(objective, trial);
+      trial = solve_continuous(objective, {trial});
       const double sse = objective.sse(trial);
       if (sse < best) {
         best = sse;
@@ -112,9 +97,9 @@ std::vector<double> search_grid(const FlatObjective& objective, std::vector<doub
   return flat;
 }
 
-// Every start solved; the best one is refined on the grid parameters. The starts given are
-// followed by the plausible centre, the effects switched off (`neutral`) and random plausible
-// values, so the fit can always fall back to the bare simulation.
+// The starts given, then the plausible centre, the effects switched off (`neutral`) and random
+// plausible values, so the fit can always fall back to the bare simulation; starts with the
+// same grid values are one multi-start solve. The best answer is refined on the grid.
 std::vector<double> minimise(const FlatObjective& objective, std::vector<std::vector<double>> starts,
                              const std::vector<double>& neutral, std::size_t random_starts,
                              std::mt19937& rng) {
@@ -127,14 +112,23 @@ std::vector<double> minimise(const FlatObjective& objective, std::vector<std::ve
   for (std::size_t k = 0; k < random_starts; ++k) {
     std::vector<double> flat;
     for (const ParameterSpec& s : objective.specs)
-      flat.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * width_of(s) : 0.0);
+      flat.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * s.width() : 0.0);
     starts.push_back(flat);
   }
-  std::vector<double> best;
-  double best_sse = INFINITY;
+  std::map<std::vector<double>, std::vector<std::vector<double>>> by_grid_values;
+  std::vector<std::vector<double>> order;  // grid-value sets in the order first met
   for (const auto& start : starts) {
     if (start.size() != objective.specs.size()) continue;
-    const std::vector<double> flat = solve_continuous(objective, start);
+    std::vector<double> grid_values;
+    for (std::size_t j = 0; j < start.size(); ++j)
+      if (!objective.specs[j].grid.empty()) grid_values.push_back(start[j]);
+    if (!by_grid_values.count(grid_values)) order.push_back(grid_values);
+    by_grid_values[grid_values].push_back(start);
+  }
+  std::vector<double> best = neutral;
+  double best_sse = INFINITY;
+  for (const auto& grid_values : order) {
+    const std::vector<double> flat = solve_continuous(objective, by_grid_values[grid_values]);
     const double sse = objective.sse(flat);
     if (sse < best_sse) {
       best_sse = sse;

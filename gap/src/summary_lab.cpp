@@ -1,7 +1,5 @@
 #include "dtwire/gap/summary_lab.hpp"
 
-#include <ceres/ceres.h>
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -13,6 +11,7 @@
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/gap/gap_report.hpp"
 #include "dtwire/gap/model_search.hpp"
+#include "dtwire/lsq/least_squares.hpp"
 #include "evidence.hpp"
 
 namespace dtwire::gap {
@@ -43,31 +42,9 @@ std::vector<double> features_of(const ForceCurve& c, const std::vector<SummaryFe
   return out;
 }
 
-// Scaled coordinate of a parameter: (p - plausible_lower) / plausible width.
-double width_of(const ParameterSpec& s) {
-  const double w = s.plausible_upper - s.plausible_lower;
-  return w > 0 ? w : std::max(s.upper - s.lower, 1e-12);
-}
-
-struct FeatureResiduals {
-  const ForceCurve* sim;
-  const CurveScale* scale;
-  const EffectSpec* effect;
-  const std::vector<SummaryFeature>* lab;
-  std::vector<ParameterSpec> specs;
-  bool operator()(double const* const* x, double* r) const {
-    std::vector<double> p;
-    for (std::size_t j = 0; j < specs.size(); ++j)
-      p.push_back(std::clamp(specs[j].plausible_lower + x[0][j] * width_of(specs[j]), specs[j].lower,
-                             specs[j].upper));
-    const auto f = features_of(apply_effects(*sim, {{effect, p}}, *scale), *lab);
-    for (std::size_t i = 0; i < f.size(); ++i) r[i] = (f[i] - (*lab)[i].mean) / (*lab)[i].sd;
-    return true;
-  }
-};
-
-// Curve-mode effect: bounded least squares on the feature z-scores (Ceres, numeric central
-// differences), from the plausible centre, the neutral value and two random starts.
+// Curve-mode effect: bounded least squares on the feature z-scores (the lsq engine, central
+// differences), from the plausible centre, the neutral value and two random starts; the
+// answer only if it beats the neutral value.
 std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& scale,
                                      const EffectSpec& effect, const std::vector<SummaryFeature>& lab,
                                      std::mt19937& rng) {
@@ -82,47 +59,38 @@ std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& sc
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int k = 0; k < 2; ++k) {
     std::vector<double> p;
-    for (const auto& s : specs) p.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * width_of(s) : 0.0);
+    for (const auto& s : specs) p.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * s.width() : 0.0);
     starts.push_back(p);
   }
-  std::vector<double> best = neutral;
-  double best_gap = summary_gap(lab, features_of(apply_effects(sim, {{&effect, neutral}}, scale), lab));
-  for (const auto& start : starts) {
-    auto* functor = new FeatureResiduals{&sim, &scale, &effect, &lab, specs};
-    std::vector<double> x;
-    for (std::size_t j = 0; j < specs.size(); ++j)
-      x.push_back((start[j] - specs[j].plausible_lower) / width_of(specs[j]));
-    ceres::NumericDiffOptions diff;
-    diff.relative_step_size = 1e-4;
-    auto* cost = new ceres::DynamicNumericDiffCostFunction<FeatureResiduals, ceres::CENTRAL>(
-        functor, ceres::TAKE_OWNERSHIP, diff);
-    cost->AddParameterBlock(static_cast<int>(x.size()));
-    cost->SetNumResiduals(static_cast<int>(lab.size()));
-    ceres::Problem problem;
-    problem.AddResidualBlock(cost, nullptr, x.data());
-    for (std::size_t j = 0; j < specs.size(); ++j) {
-      const double lo = (specs[j].lower - specs[j].plausible_lower) / width_of(specs[j]);
-      const double hi = (specs[j].upper - specs[j].plausible_lower) / width_of(specs[j]);
-      x[j] = std::clamp(x[j], lo, hi);
-      problem.SetParameterLowerBound(x.data(), static_cast<int>(j), lo);
-      problem.SetParameterUpperBound(x.data(), static_cast<int>(j), hi);
-    }
-    ceres::Solver::Options options;
-    options.linear_solver_type = ceres::DENSE_QR;
-    options.max_num_iterations = 50;
-    options.logging_type = ceres::SILENT;
-    ceres::Solver::Summary summary;
-    ceres::Solve(options, &problem, &summary);
+  const auto value_of = [&specs](const std::vector<double>& x) {
     std::vector<double> p;
-    for (std::size_t j = 0; j < specs.size(); ++j)
-      p.push_back(std::clamp(specs[j].plausible_lower + x[j] * width_of(specs[j]), specs[j].lower, specs[j].upper));
-    const double gap = summary_gap(lab, features_of(apply_effects(sim, {{&effect, p}}, scale), lab));
-    if (gap < best_gap) {
-      best_gap = gap;
-      best = p;
-    }
+    for (std::size_t j = 0; j < specs.size(); ++j) p.push_back(specs[j].from_scaled(x[j]));
+    return p;
+  };
+  lsq::Problem problem;
+  problem.parameter_count = specs.size();
+  problem.residual_count = lab.size();
+  problem.difference_step = 1e-4;
+  for (const auto& s : specs) {
+    problem.lower.push_back(s.to_scaled(s.lower));
+    problem.upper.push_back(s.to_scaled(s.upper));
   }
-  return best;
+  problem.residuals = [&](const std::vector<double>& x, std::vector<double>& r) {
+    const auto f = features_of(apply_effects(sim, {{&effect, value_of(x)}}, scale), lab);
+    r.resize(f.size());
+    for (std::size_t i = 0; i < f.size(); ++i) r[i] = (f[i] - lab[i].mean) / lab[i].sd;
+  };
+  std::vector<std::vector<double>> points;
+  for (const auto& start : starts) {
+    std::vector<double> x;
+    for (std::size_t j = 0; j < specs.size(); ++j) x.push_back(specs[j].to_scaled(start[j]));
+    points.push_back(x);
+  }
+  const lsq::Summary summary = lsq::solve(problem, lsq::Options{}, lsq::starts_at(points));
+  const double neutral_gap = summary_gap(lab, features_of(apply_effects(sim, {{&effect, neutral}}, scale), lab));
+  if (!summary.best) return neutral;
+  const std::vector<double> best = value_of(summary.x);
+  return summary_gap(lab, features_of(apply_effects(sim, {{&effect, best}}, scale), lab)) < neutral_gap ? best : neutral;
 }
 
 // Model-only effect (one parameter): FE runs at the ends of the plausible range (the neutral

@@ -1,8 +1,8 @@
 #pragma once
-// Bounded nonlinear least squares with Ceres (Levenberg-Marquardt) on the scaled parameters,
+// Bounded nonlinear least squares (the lsq engine: Ceres Levenberg-Marquardt) on the scaled parameters,
 // robust losses, multi-start from a Latin hypercube, a checkpoint after every iteration that a
 // later run resumes from (ending where an uninterrupted fit ends), and the covariance of the
-// estimate: (J^T J)^-1 from ceres::Covariance (dense SVD), scaled by the residual variance of
+// estimate: (J^T J)^-1 (dense SVD), scaled by the residual variance of
 // each curve channel (grouped sandwich; the classical s^2 (J^T J)^-1 when all are equal).
 #include <Eigen/Core>
 #include <atomic>

@@ -4,6 +4,7 @@
 // ranking). Effects that need the FE model re-run (`needs_model`) are declared here with their
 // FE-level parameters, so that the --model mode plugs in through a ModelRunner; in --sim mode
 // they are listed as not tested.
+#include <algorithm>
 #include <functional>
 #include <string>
 #include <vector>
@@ -26,6 +27,14 @@ struct ParameterSpec {
   double plausible_lower = 0.0, plausible_upper = 1.0;  // realistic range
   // Fitted by a search over `grid` (piecewise-constant effect on the curve, no gradient).
   std::vector<double> grid;
+
+  // The fits' coordinate x = (p - plausible_lower) / plausible width: every unknown O(1).
+  double width() const {
+    const double w = plausible_upper - plausible_lower;
+    return w > 0 ? w : std::max(upper - lower, 1e-12);
+  }
+  double to_scaled(double value) const { return (value - plausible_lower) / width(); }
+  double from_scaled(double x) const { return std::clamp(plausible_lower + x * width(), lower, upper); }
 };
 
 struct EffectSpec {
