@@ -40,7 +40,12 @@ struct ContinuousProblem {
       problem.lower.push_back(objective.specs[j].to_scaled(objective.specs[j].lower));
       problem.upper.push_back(objective.specs[j].to_scaled(objective.specs[j].upper));
     }
-    problem.residuals = [this](const std::vector<double>& x, std::vector<double>& r) { r = objective.residuals(flat_of(x)); };
+    problem.residuals = [this](const std::vector<double>& x, std::vector<double>& r) {
+      std::vector<double> flat = held;  // unclamped: the engine keeps x within the bounds
+      for (std::size_t j = 0; j < free.size(); ++j)
+        flat[free[j]] = objective.specs[free[j]].plausible_lower + x[j] * objective.specs[free[j]].width();
+      r = objective.residuals(flat);
+    };
   }
   std::vector<double> x_of(const std::vector<double>& flat) const {
     std::vector<double> x;
@@ -62,6 +67,7 @@ lsq::Options solver_options() {
   options.max_iterations = 60;
   options.function_tolerance = 1e-9;
   options.parameter_tolerance = 1e-9;
+  options.block_per_residual = false;
   return options;
 }
 

@@ -86,7 +86,9 @@ std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& sc
     for (std::size_t j = 0; j < specs.size(); ++j) x.push_back(specs[j].to_scaled(start[j]));
     points.push_back(x);
   }
-  const lsq::Summary summary = lsq::solve(problem, lsq::Options{}, lsq::starts_at(points));
+  lsq::Options options;
+  options.block_per_residual = false;
+  const lsq::Summary summary = lsq::solve(problem, options, lsq::starts_at(points));
   const double neutral_gap = summary_gap(lab, features_of(apply_effects(sim, {{&effect, neutral}}, scale), lab));
   if (!summary.best) return neutral;
   const std::vector<double> best = value_of(summary.x);

@@ -1,6 +1,7 @@
 #include "ceres_problem.hpp"
 
 #include <cstring>
+#include <stdexcept>
 
 #include "dtwire/core/error.hpp"
 
@@ -43,6 +44,26 @@ class PointResidual final : public ceres::CostFunction {
  private:
   SharedEvaluation& shared_;
   std::size_t index_;
+};
+
+// All residuals as one Ceres residual block.
+class WholeResidual final : public ceres::CostFunction {
+ public:
+  WholeResidual(SharedEvaluation& shared, int residual_count, int parameter_count) : shared_(shared) {
+    set_num_residuals(residual_count);
+    mutable_parameter_block_sizes()->push_back(parameter_count);
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const bool need_jacobian = jacobians != nullptr && jacobians[0] != nullptr;
+    if (!shared_.evaluate(parameters[0], need_jacobian)) return false;
+    const auto m = static_cast<std::size_t>(num_residuals());
+    for (std::size_t i = 0; i < m; ++i) residuals[i] = shared_.residual(i);
+    if (need_jacobian) std::copy(shared_.jacobian_row(0), shared_.jacobian_row(0) + m * parameter_block_sizes()[0], jacobians[0]);
+    return true;
+  }
+
+ private:
+  SharedEvaluation& shared_;
 };
 
 ceres::LossFunction* make_loss(const Options& options) {
@@ -115,8 +136,14 @@ CeresProblem::CeresProblem(const Problem& p, const Options& options, std::vector
   problem_options.loss_function_ownership = ceres::TAKE_OWNERSHIP;
   problem = std::make_unique<ceres::Problem>(problem_options);
   const int n = static_cast<int>(x.size());
-  for (std::size_t i = 0; i < p.residual_count; ++i)
-    problem->AddResidualBlock(new PointResidual(shared, i, n), make_loss(options), x.data());
+  if (options.block_per_residual) {
+    for (std::size_t i = 0; i < p.residual_count; ++i)
+      problem->AddResidualBlock(new PointResidual(shared, i, n), make_loss(options), x.data());
+  } else {
+    if (options.loss != Loss::Squared)
+      throw std::invalid_argument("least squares: a robust loss needs one residual block per residual");
+    problem->AddResidualBlock(new WholeResidual(shared, static_cast<int>(p.residual_count), n), nullptr, x.data());
+  }
   for (int j = 0; j < n; ++j) {
     if (!p.lower.empty()) problem->SetParameterLowerBound(x.data(), j, p.lower[static_cast<std::size_t>(j)]);
     if (!p.upper.empty()) problem->SetParameterUpperBound(x.data(), j, p.upper[static_cast<std::size_t>(j)]);

@@ -73,6 +73,16 @@ TEST(LeastSquares, LinearRegressionMatchesNormalEquationsAndClassicalCovariance)
     ASSERT_TRUE(u.covariance);
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 2; ++j) EXPECT_NEAR((*u.covariance)(i, j), classical(i, j), 1e-6 * classical.norm());
+    Options one_block = tight;  // all residuals in one Ceres block: the same answer
+    one_block.block_per_residual = false;
+    const Summary b = solve(p, one_block, starts_at({{0.0, 0.0}}));
+    EXPECT_NEAR(b.x[0], beta(0), 1e-8);
+    EXPECT_NEAR(b.x[1], beta(1), 1e-8);
+    const Uncertainty ub = uncertainty_at(p, one_block, b.x);
+    ASSERT_TRUE(ub.covariance);
+    EXPECT_NEAR((*ub.covariance)(1, 1), classical(1, 1), 1e-6 * classical.norm());
+    one_block.loss = Loss::Huber;  // a robust loss acts per residual: refused on one block
+    EXPECT_THROW(solve(p, one_block, starts_at({{0.0, 0.0}})), std::invalid_argument);
   }
 }
 

@@ -71,6 +71,9 @@ struct Options {
   double gradient_tolerance = 1e-10;
   bool jacobi_scaling = true;  // off for resumable solves: Ceres scales from a solve's first Jacobian
   double initial_trust_region_radius = 1e4;
+  // Ceres residual blocks: one per residual (a robust loss acts point by point) or all residuals
+  // in one (squared loss only; fewer blocks, and the summation order gap's fits were tuned with).
+  bool block_per_residual = true;
   // After every iteration, with every start's state (already updated: a checkpoint written
   // here resumes to the same end, bit for bit); return false to stop: the summary is then not
   // completed and its starts resume from their last accepted iterate (a run stopped again
