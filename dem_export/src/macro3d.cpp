@@ -54,6 +54,13 @@ Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
                                     optional_parameter(p, "shear_strength_N", 0.0), true);
   settings_.tolerance = detail::checked(law_name, "rk_tolerance", optional_parameter(p, "rk_tolerance", 1e-6));
   settings_.drift_correction = true;
+  // 1: backward-Euler closest-point return (first order in the increment, RK2(3) as fallback);
+  // 0: RK2(3) substepping to rk_tolerance throughout. Default 1, but 0 when rk_tolerance is
+  // given: a tolerance is a request for the error-controlled RK2(3) integration (the implicit
+  // return has no tolerance; its accuracy is set by the increment, first order).
+  const double implicit = optional_parameter(p, "implicit_return", p.count("rk_tolerance") ? 0.0 : 1.0);
+  if (implicit != 0.0 && implicit != 1.0) throw std::invalid_argument("macro3d: implicit_return must be 0 or 1");
+  settings_.implicit_return = implicit == 1.0;
   settings_.moment_error_weight = 1.0 / (surface_.D * std::sqrt(surface_.m_f));
 
   stiffness_.axial = positive_parameter(p, law_name, "axial_stiffness_N_per_m");

@@ -2,8 +2,9 @@
 // "macro3d": our three-dimensional extension of the thesis macro-element. All six generalised
 // forces (N, V_y, V_z, T, M_y, M_z), rotations in radians, the thesis yield surface evaluated
 // with the resultant moment M = sqrt(M_y^2 + M_z^2) (so a planar path gives the thesis law
-// exactly), RK2(3) substepping with a consistent drift correction back to f = 0 after every
-// substep, complete energy bookkeeping (external = elastic + plastic + damage to round-off) and a
+// exactly), a backward-Euler closest-point return per increment (macroelement_return.hpp; the
+// default) or RK2(3) substepping with a consistent drift correction back to f = 0 after every
+// substep (the thesis' integration; also the implicit return's fallback), complete energy bookkeeping (external = elastic + plastic + damage to round-off) and a
 // failure mode telling necking (tension-dominated dissipation) from shear (bending/shear).
 // Equations: docs/dem_laws.md.
 //
@@ -14,7 +15,8 @@
 //             torsion_stiffness_Nm_per_rad (default bending / (1 + 0.3)),
 //             rotation_flow_scale (default 1), damage_moment_work_weight (default 1),
 //             shear_strength_N (resultant shear force that breaks the bond; default none),
-//             rk_tolerance (default 1e-6)
+//             rk_tolerance (default 1e-6), implicit_return (1: backward-Euler return, 0: RK2(3);
+//             default 1, or 0 when rk_tolerance is given)
 // A map with the thesis keys (EA_N, EI_Nm2_per_deg_convention, k_F, k_M, ...) is converted with
 // macro3d_parameters_from_thesis first, so the published calibrations can be used directly.
 #include <array>

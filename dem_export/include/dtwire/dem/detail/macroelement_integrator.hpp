@@ -6,6 +6,10 @@
 // third-order solution is kept; Sloan 1987), optionally followed after every substep by a
 // consistent drift correction back to the yield surface (Sloan, Abbo & Sheng 2001).
 //
+// With `implicit_return` the plastic part is instead one backward-Euler closest-point return
+// (macroelement_return.hpp), halved up to three times when Newton does not converge, and the
+// RK2(3) substepping above integrates whatever is left after that.
+//
 // The state carries the surface forces (N, M_1, M_2), the signed plastic displacements
 // (u_p, w_p1, w_p2) and the hardening variables a_u = sum |du_p|, a_w = sum |dw_p|.
 #include <algorithm>
@@ -13,6 +17,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dtwire/dem/detail/macroelement_return.hpp"
 #include "dtwire/dem/detail/macroelement_surface.hpp"
 
 namespace dtwire::dem::detail {
@@ -23,6 +28,9 @@ struct PlasticState {
   double Ny = 0.0;         // yield strength of the current hardening state (cache)
   double f = -1.0;         // normalised yield function of this state, when f_known
   bool f_known = false;
+  // Implicit return only: (dlambda, N_trial - N, z - z_n) of the last plastic return per unit of
+  // its trial f, the warm start of the next return (consecutive DEM increments are alike).
+  std::array<double, 3> return_hint{};
 };
 
 struct IntegratorSettings {
@@ -33,6 +41,11 @@ struct IntegratorSettings {
   // needs ~100 substeps. 1 / (D sqrt(m_f)) (= N_y / M_Y) measures both on the surface's scale.
   double moment_error_weight = 1.0;
   int max_substeps = 100000;
+  // Backward-Euler closest-point return instead of the RK2(3) substepping (first order in the
+  // increment, unconditionally stable); RK2(3) remains the fallback.
+  bool implicit_return = false;
+  ReturnSettings return_settings;
+  int max_return_halvings = 3;  // pieces of 1/2, 1/4, 1/8 of the plastic part before the fallback
 };
 
 struct ElasticStiffness {
@@ -195,7 +208,7 @@ int integrate_increment(const SurfaceParameters& p, const ElasticStiffness& k,
     const double f1 = f_trial();
     if (f1 <= 0.0) return elastic_step();
     t_plastic = find_crossing(phi, 0.0, f_start, 1.0, f1);
-  } else {
+  } else if (!settings.implicit_return) {
     double loading = 0.0;
     first_rates = plastic_rates(p, k, state.y, dq, &loading);
     first_rates_known = loading > 0.0;
@@ -220,8 +233,39 @@ int integrate_increment(const SurfaceParameters& p, const ElasticStiffness& k,
                                    dq[2] * (1.0 - t_plastic)};
   const double tiny = 1e-13;
   double T = 0.0;
-  double dT = 1.0;
   int substeps = 0;
+  if (settings.implicit_return) {
+    // One closest-point return over the whole plastic part; pieces of 1/2, 1/4, ... when Newton
+    // fails (a piece whose trial stays inside is elastic). What no piece manages goes to RK2(3).
+    // From a state on the surface no loading test is made: a trial inside is elastic, one
+    // outside is returned (an unloading that reaches the far side of the elastic domain within
+    // one increment is returned as a whole, as in implicit finite-element codes).
+    double piece_size = 1.0;
+    int halvings = 0;
+    while (T < 1.0) {
+      const double T1 = std::min(1.0, T + piece_size);
+      const std::array<double, 3> piece{rest[0] * (T1 - T), rest[1] * (T1 - T), rest[2] * (T1 - T)};
+      const PlasticState before = state;
+      // A failed warm start is retried from the trial before the piece is halved.
+      const bool accepted = closest_point_return(p, k, settings.return_settings, before, piece, state) ||
+                            closest_point_return(p, k, settings.return_settings, before, piece, state, nullptr, false);
+      if (accepted) {
+        ++substeps;
+        const double t0 = t_plastic + (1.0 - t_plastic) * T;
+        const double t1 = T1 >= 1.0 ? 1.0 : t_plastic + (1.0 - t_plastic) * T1;
+        T = T1;
+        if (!on_substep(before, state, t0, t1)) return substeps;
+      } else if (halvings < settings.max_return_halvings) {
+        piece_size *= 0.5;
+        ++halvings;
+      } else {
+        break;
+      }
+    }
+    if (T >= 1.0) return substeps;
+    first_rates_known = false;
+  }
+  double dT = 1.0 - T;
   while (T < 1.0) {
     if (++substeps > settings.max_substeps)
       throw std::runtime_error("macro-element: too many plastic substeps in one increment");

@@ -1,0 +1,224 @@
+// Backward-Euler closest-point return of the macro-element (equations in
+// dtwire/dem/detail/macroelement_return.hpp; Simo & Hughes 1998, ch. 3).
+#include "dtwire/dem/detail/macroelement_return.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dtwire/dem/detail/macroelement_integrator.hpp"
+
+namespace dtwire::dem::detail {
+
+namespace {
+
+// value * exp(delta). Newton moves the arguments of the two exponentials (hardening, and h in
+// tension) by small amounts: there an 8th-order Taylor polynomial is exact to round-off
+// (|delta| < 1/16: remainder < 1.2e-16) and much cheaper than a libm call.
+inline double times_exp(double value, double delta) {
+  const double a = std::abs(delta);
+  if (a < 2e-4) return value * (1.0 + delta * (1.0 + delta * (1.0 / 2 + delta * (1.0 / 6))));  // rest < 7e-17
+  if (a >= 0.0625) return value * std::exp(delta);
+  // Estrin's scheme: the same polynomial with a shorter dependency chain than Horner's.
+  const double d2 = delta * delta, d4 = d2 * d2;
+  const double low = (1.0 + delta) + d2 * (1.0 / 2 + delta * (1.0 / 6));
+  const double high = (1.0 / 24 + delta * (1.0 / 120)) + d2 * (1.0 / 720 + delta * (1.0 / 5040));
+  return value * (low + d4 * (high + d4 * (1.0 / 40320)));
+}
+
+// Everything one Newton iteration needs at (N, m, N_y): yield function and its gradient, the
+// (compression-scaled) axial flow G and its derivatives. `h` = exp(-(N/(2 N_y))^2 / beta_f) in
+// tension (unused in compression).
+struct ReturnTerms {
+  double f, f_N, f_m, f_Ny;
+  double G, G_N, G_Ny;
+};
+
+ReturnTerms return_terms(const SurfaceParameters& p, double N, double m, double Ny, double inv_Ny, double h) {
+  ReturnTerms t{};
+  const double inv_Ny2 = inv_Ny * inv_Ny;
+  const double moment_scale = inv_Ny2 * p.inv_D2_mf;
+  const double moment_term = m * m * moment_scale;
+  t.f_m = 2.0 * m * moment_scale;
+  if (N < 0.0) {
+    // f = N^2/Nc^2 + (M/M_Y)^2 - 1, associated flow times kappa = N_y^2 m_f:
+    //   G = 2 N N_y^2 m_f / Nc^2,  moment flow 2/D^2 (times rotation_flow_scale).
+    t.f = N * N * p.inv_Nc2 + moment_term - 1.0;
+    t.f_N = 2.0 * N * p.inv_Nc2;
+    t.f_Ny = -2.0 * moment_term * inv_Ny;
+    t.G = 2.0 * N * Ny * Ny * p.m_f * p.inv_Nc2;
+    t.G_N = 2.0 * Ny * Ny * p.m_f * p.inv_Nc2;
+    t.G_Ny = 4.0 * N * Ny * p.m_f * p.inv_Nc2;
+    return t;
+  }
+  // f = (M/D)^2/(m_f N_y^2) + h (N^2/N_y^2 - 1),  h = exp(-x^2/beta_f),  x = N/(2 N_y)
+  const double x = 0.5 * N * inv_Ny;
+  const double r = N * N * inv_Ny2 - 1.0;
+  t.f = moment_term + h * r;
+  t.f_N = h * (2.0 * N * inv_Ny2 - r * x * inv_Ny * p.inv_beta_f);
+  t.f_Ny = -2.0 * moment_term * inv_Ny - 2.0 * h * N * N * inv_Ny2 * inv_Ny + h * r * x * N * inv_Ny2 * p.inv_beta_f;
+  // G = m_g h B,  B = 2N - T,  T = P s / (N_y beta_g),  P = N^2 - N_y^2,  s = x + 1/2 - alpha_g
+  // (the published flow, surface_gradients' flow_F).
+  const double s = x + (0.5 - p.alpha_g);
+  const double P = N * N - Ny * Ny;
+  const double T = P * s * inv_Ny * p.inv_beta_g;
+  const double B = 2.0 * N - T;
+  const double dh_dN = -h * x * inv_Ny * p.inv_beta_f;            // dx/dN = 1/(2 N_y)
+  const double dh_dNy = 2.0 * h * x * x * inv_Ny * p.inv_beta_f;  // dx/dN_y = -x/N_y
+  const double dB_dN = 2.0 - (2.0 * N * s + 0.5 * P * inv_Ny) * inv_Ny * p.inv_beta_g;
+  const double dT_dNy = (-2.0 * Ny * s - P * x * inv_Ny) * inv_Ny * p.inv_beta_g - T * inv_Ny;
+  t.G = p.m_g * h * B;
+  t.G_N = p.m_g * (dh_dN * B + h * dB_dN);
+  t.G_Ny = p.m_g * (dh_dNy * B - h * dT_dNy);
+  return t;
+}
+
+}  // namespace
+
+bool closest_point_return(const SurfaceParameters& p, const ElasticStiffness& k, const ReturnSettings& settings,
+                          const PlasticState& start, const std::array<double, 3>& dq, PlasticState& end,
+                          int* iterations, bool use_hint) {
+  const double N_trial = start.y[0] + k.axial * dq[0];
+  const double M1_trial = start.y[1] + k.moment * dq[1];
+  const double M2_trial = start.y[2] + k.moment * dq[2];
+  const double m_trial = std::sqrt(M1_trial * M1_trial + M2_trial * M2_trial);
+  const double c = p.rotation_flow_scale * 2.0 / (p.D * p.D);  // moment flow per unit M and multiplier
+  const double z_start = p.k_F * start.y[6] + p.k_M * start.y[7];
+
+  // Unknowns (N, z, dlambda), started at the elastic trial (dlambda = 0). N_y(z) = N_ult -
+  // (N_ult - N_y,n) e^-(z - z_n), so dN_y/dz = N_ult - N_y (0 once saturated, as hardening()).
+  double N = N_trial, z = z_start, lambda = 0.0;
+  double Ny = start.Ny;
+  double h = 0.0, h_exponent = 0.0;  // h = exp(h_exponent) in tension, once computed
+  bool h_known = false;
+  double residual = 0.0, previous_residual = 0.0, f_trial_value = 0.0;
+  bool converged = false, elastic = false;
+  const double inv_z_scale = 1.0 / std::max(1.0, z_start);  // R2 relative to z (z >= z_n >= 0)
+  // A hint from a return on the other side of N = 0 (the flow's kink) is not used.
+  const bool warm_start = use_hint && start.return_hint[0] > 0.0 && (N_trial < 0.0) == (start.y[0] < 0.0) &&
+                          std::isfinite(start.return_hint[0] + start.return_hint[1] + start.return_hint[2]);
+  int newton_steps = 0;  // Newton steps since the last start (trial or warm start)
+  int iteration = 0;
+  for (; iteration <= settings.max_iterations; ++iteration) {
+    const double dNy_dz = p.Nult - Ny;
+    const double inv_Ny = 1.0 / Ny;
+    const double inv_stretch = 1.0 / (1.0 + k.moment * c * lambda);  // M = M_trial / stretch
+    const double m = m_trial * inv_stretch;
+    const double dm_dlambda = -k.moment * c * m * inv_stretch;
+    if (N >= 0.0) {
+      const double x = 0.5 * N * inv_Ny;
+      const double exponent = -x * x * p.inv_beta_f;
+      h = h_known ? times_exp(h, exponent - h_exponent) : std::exp(exponent);
+      h_exponent = exponent;
+      h_known = true;
+    }
+    const ReturnTerms t = return_terms(p, N, m, Ny, inv_Ny, h);
+    const double sign_G = t.G < 0.0 ? -1.0 : 1.0;
+    const double hardening_rate = p.k_F * sign_G * t.G + p.k_M * c * m;  // dz/dlambda
+    const double R1 = N - N_trial + k.axial * lambda * t.G;
+    const double R2 = z - z_start - lambda * hardening_rate;
+    const double R3 = t.f;
+    if (iteration == 0) f_trial_value = R3;
+    if (iteration == 0 && R3 <= 0.0) {
+      // The trial is inside or on the surface: the increment is elastic (dlambda = 0).
+      elastic = true;
+      break;
+    }
+    previous_residual = residual;
+    residual = std::max({std::abs(R3), std::abs(R1) * inv_Ny, std::abs(R2) * inv_z_scale});
+    if (residual <= settings.residual_tolerance) {
+      converged = true;
+      break;
+    }
+    if (iteration == settings.max_iterations) break;
+    if (iteration == 0 && warm_start) {
+      // Warm start: the last return's solution scaled by this trial's f (first order in the
+      // change between consecutive increments); Newton goes on from there.
+      lambda = R3 * start.return_hint[0];
+      N = N_trial - R3 * start.return_hint[1];
+      z = z_start + R3 * start.return_hint[2];
+      Ny = p.Nult - times_exp(dNy_dz, -(z - z_start));
+      newton_steps = -1;  // the residual at the warm start is no Newton predecessor
+      continue;
+    }
+    // Jacobian d(R1, R2, R3) / d(N, z, dlambda); Cramer's rule keeps dN exactly 0 when row 1 is
+    // (a, 0, 0) with R1 = 0 (pure bending at N = 0 with alpha_g = 1/2 stays at N = 0).
+    const double J11 = 1.0 + k.axial * lambda * t.G_N;
+    const double J12 = k.axial * lambda * t.G_Ny * dNy_dz;
+    const double J13 = k.axial * t.G;
+    const double J21 = -lambda * p.k_F * sign_G * t.G_N;
+    const double J22 = 1.0 - lambda * p.k_F * sign_G * t.G_Ny * dNy_dz;
+    const double J23 = -hardening_rate - lambda * p.k_M * c * dm_dlambda;
+    const double J31 = t.f_N;
+    const double J32 = t.f_Ny * dNy_dz;
+    const double J33 = t.f_m * dm_dlambda;
+    const double C11 = J22 * J33 - J23 * J32, C12 = J23 * J31 - J21 * J33, C13 = J21 * J32 - J22 * J31;
+    const double det = J11 * C11 + J12 * C12 + J13 * C13;
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) break;
+    const double inv_det = 1.0 / det;
+    const double b1 = -R1, b2 = -R2, b3 = -R3;
+    double dN = (b1 * C11 + J12 * (J23 * b3 - b2 * J33) + J13 * (b2 * J32 - J22 * b3)) * inv_det;
+    double dz = (J11 * (b2 * J33 - J23 * b3) + b1 * C12 + J13 * (J21 * b3 - b2 * J31)) * inv_det;
+    double dlambda = (J11 * (J22 * b3 - b2 * J32) + J12 * (b2 * J31 - J21 * b3) + b1 * C13) * inv_det;
+    // The flow has a kink at N = 0 (slope ~m_g (2 + 1/(2 beta_g)) in tension, 2 N_y^2 m_f / Nc^2
+    // in compression): a step across it is shortened to end at N = 0, the next one starts from
+    // the tangent of the other side.
+    if (N != 0.0 && (N + dN < 0.0) != (N < 0.0)) {
+      const double shorten = -N / dN;
+      dz *= shorten;
+      dlambda *= shorten;
+      dN = -N;
+    }
+    // The predicted next residual of a quadratically converging iteration is C residual^2 with
+    // C = residual / previous^2: when it is below the tolerance the step is taken and accepted.
+    ++newton_steps;
+    const bool last = newton_steps > 0 && residual < previous_residual &&
+                      residual * residual * residual <= settings.residual_tolerance * previous_residual * previous_residual;
+    N += dN;
+    z += dz;
+    lambda += dlambda;
+    Ny = p.Nult - times_exp(dNy_dz, -dz);
+    if (!std::isfinite(N + z + lambda + Ny)) break;
+    if (last) {
+      converged = true;
+      ++iteration;
+      break;
+    }
+  }
+  if (iterations != nullptr) *iterations = iteration;
+  if (elastic) {
+    end = start;
+    end.y[0] = N_trial;
+    end.y[1] = M1_trial;
+    end.y[2] = M2_trial;
+    end.f = f_trial_value;
+    end.f_known = true;
+    return true;
+  }
+  if (!converged || lambda < 0.0) return false;
+
+  const double stretch = 1.0 + k.moment * c * lambda;
+  const double M1 = M1_trial / stretch, M2 = M2_trial / stretch;
+  // Plastic parts as the elastic complements: Q_1 - Q_0 = K (dq - dq_p) to round-off.
+  const double dup = (N_trial - N) / k.axial;
+  const double dw1 = (M1_trial - M1) / k.moment;
+  const double dw2 = (M2_trial - M2) / k.moment;
+  end = start;
+  end.y[0] = N;
+  end.y[1] = M1;
+  end.y[2] = M2;
+  end.y[3] += dup;
+  end.y[4] += dw1;
+  end.y[5] += dw2;
+  end.y[6] += std::abs(dup);
+  end.y[7] += std::sqrt(dw1 * dw1 + dw2 * dw2);
+  end.Ny = Ny;  // N_y(z) of the accepted iterate (z = k_F a_u + k_M a_w to the tolerance)
+  // On the surface to the tolerance (|f| <= residual_tolerance, measured or predicted): recorded
+  // as 0, which is all the next increment's on-surface test (|f| < 1e-9) needs.
+  end.f = 0.0;
+  end.f_known = true;
+  const double inv_f_trial = 1.0 / f_trial_value;
+  end.return_hint = {lambda * inv_f_trial, (N_trial - N) * inv_f_trial, (z - z_start) * inv_f_trial};
+  return true;
+}
+
+}  // namespace dtwire::dem::detail
