@@ -31,6 +31,9 @@ struct PlasticState {
   // Implicit return only: (dlambda, N_trial - N, z - z_n) of the last plastic return per unit of
   // its trial f, the warm start of the next return (consecutive DEM increments are alike).
   std::array<double, 3> return_hint{};
+  // Implicit return only: h = exp(h_exponent) of the tension surface at its last evaluation, from
+  // which the next return updates h by exp(difference) (a short series, not a libm call).
+  double h_cache = 1.0, h_exponent = 0.0;
 };
 
 struct IntegratorSettings {

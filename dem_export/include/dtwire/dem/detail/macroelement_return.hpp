@@ -37,13 +37,15 @@ struct ReturnSettings {
 // true when the elastic trial is inside or on the surface (then `end` is the trial, with its f)
 // or when Newton converged within max_iterations to a non-negative multiplier; false (and `end`
 // untouched) otherwise. Convergence: the largest of |f|, |R_N| / N_y and |R_z| / max(1, z_n) is
-// below residual_tolerance, or the quadratic rate observed over the last two iterations predicts
-// it below after the step just computed (which is then taken). The end state is on the surface to residual_tolerance; its
-// plastic displacements are the elastic complements (du_p = (N_trial - N) / k_a, ...), so that
-// Q_1 - Q_0 = K (dq - dq_p) holds to round-off, which the energy bookkeeping relies on.
+// below residual_tolerance, or the quadratic rate observed over the last two Newton iterations
+// predicts it below after the step just computed (which is then taken). The end state is on the
+// surface to residual_tolerance; its plastic displacements are the elastic complements
+// (du_p = (N_trial - N) / k_a, ...), so that Q_1 - Q_0 = K (dq - dq_p) holds to round-off, which
+// the energy bookkeeping relies on.
 // `iterations` (optional) receives the residual evaluations after the trial's. With `use_hint`
 // Newton starts from start.return_hint (the last return scaled by the trial f) instead of the
-// trial; the solution is the same to the tolerance.
+// trial; the solution is the same to the tolerance. start.h_cache / h_exponent carry the last
+// value of the surface's exponential, so that most returns call no libm exponential at all.
 bool closest_point_return(const SurfaceParameters& p, const ElasticStiffness& k, const ReturnSettings& settings,
                           const PlasticState& start, const std::array<double, 3>& dq, PlasticState& end,
                           int* iterations = nullptr, bool use_hint = true);
