@@ -80,6 +80,14 @@ ParameterMap thesis_single_wire() {
           {"alpha_d", 2.7}};
 }
 
+// macro3d with its RK2(3) substepping instead of the default implicit return (the reference
+// the implicit return is measured against; the integration before issue 18).
+ParameterMap thesis_single_wire_rk() {
+  ParameterMap p = thesis_single_wire();
+  p["implicit_return"] = 0.0;
+  return p;
+}
+
 ParameterMap parallel_bond_wire() {
   return {{"E_Pa", 2.0e11}, {"diameter_m", 2.7e-3}, {"length_m", 0.06},
           {"tensile_strength_Pa", 1.0e10}, {"shear_strength_Pa", 1.0e10}};  // strength checked, not reached
@@ -144,6 +152,9 @@ void contact_updates(benchmark::State& state, const std::string& law, const Para
                     path_name##_path())                                                                        \
       ->Unit(benchmark::kMillisecond);                                                                         \
   BENCHMARK_CAPTURE(contact_updates, path_name##_macro3d, std::string("macro3d"), thesis_single_wire(),       \
+                    path_name##_path())                                                                        \
+      ->Unit(benchmark::kMillisecond);                                                                         \
+  BENCHMARK_CAPTURE(contact_updates, path_name##_macro3d_rk, std::string("macro3d"), thesis_single_wire_rk(), \
                     path_name##_path())                                                                        \
       ->Unit(benchmark::kMillisecond);                                                                         \
   BENCHMARK_CAPTURE(contact_updates, path_name##_thesis, std::string("thesis"), thesis_single_wire(),         \
