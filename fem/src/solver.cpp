@@ -108,7 +108,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       s.record_end(record);
       s.record_probes(record);
       s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "
-            << record.neck_radius * 1e3 << " mm\n";
+            << record.neck_radius * 1e3 << " mm" << std::endl;  // flushed: progress of long runs
       on_step(record);
       s.history.push_back(record);
       if (interval > 0 && step % interval == 0) s.write_fields(step, t);
@@ -134,7 +134,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       retry = true;
       ++s.stats.cutbacks;
       const double reduced = dt_try * stepping.cutback_factor;
-      s.log << "  step failed (" << reason << "): cut back dt " << dt_try << " -> " << reduced << "\n";
+      s.log << "  step failed (" << reason << "): cut back dt " << dt_try << " -> " << reduced << std::endl;
       if (reduced < stepping.minimum_step) {
         s.log << "  dt below the minimum step " << stepping.minimum_step << ": giving up at t = " << t << "\n";
         throw ComputationError("load stepping failed at pseudo-time " + std::to_string(t) + " (" + reason +
