@@ -48,6 +48,23 @@ struct PathBuilder {
   }
 };
 
+// All six generalised displacements (axial, shear y, shear z, torsion, bending y, bending z).
+inline Vector6 full(double u, double vy, double vz, double tx, double ty, double tz) {
+  Vector6 q;
+  q << u, vy, vz, tx, ty, tz;
+  return q;
+}
+
+// Five legs through tension, compression, biaxial bending with reversals, shear and torsion.
+inline PathBuilder mixed_3d_legs(int steps_per_leg) {
+  return PathBuilder{}
+      .to(full(0.3e-3, 0.1e-3, 0.0, 0.02, 0.10, 0.05), steps_per_leg)
+      .to(full(0.1e-3, -0.1e-3, 0.05e-3, -0.03, -0.05, 0.20), steps_per_leg)
+      .to(full(-0.4e-3, 0.0, 0.1e-3, 0.0, 0.10, -0.10), steps_per_leg)
+      .to(full(0.8e-3, 0.2e-3, 0.0, 0.05, -0.20, -0.25), steps_per_leg)
+      .to(full(2.0e-3, 0.0, 0.0, 0.0, 0.30, 0.10), steps_per_leg);
+}
+
 // The thesis' driver loadings (a) axial pull, (b) compression, (c) spin, (d) pull + spin; the
 // free oscillation (e) is dynamic, see the oscillation test. Magnitudes for the 2.7 mm wire.
 inline std::vector<Vector6> axial_pull(double elongation, int steps) {

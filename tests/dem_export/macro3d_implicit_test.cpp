@@ -17,11 +17,7 @@
 namespace dtwire::dem {
 namespace {
 
-Vector6 full(double u, double vy, double vz, double tx, double ty, double tz) {
-  Vector6 q;
-  q << u, vy, vz, tx, ty, tz;
-  return q;
-}
+using test::full;
 
 ParameterMap implicit_law(ParameterMap p) {
   p["implicit_return"] = 1.0;
@@ -47,15 +43,7 @@ std::vector<Vector6> tension_to_rupture(int steps_per_mm) {
 std::vector<Vector6> bending_low_axial_force(int steps) {
   return test::PathBuilder{}.to(full(0, 0, 0, 0, 0.2, 0), steps / 5).to(full(0.5e-3, 0, 0, 0, 0.3, 0.1), steps).increments;
 }
-std::vector<Vector6> mixed(int steps_per_leg) {
-  return test::PathBuilder{}
-      .to(full(0.3e-3, 0.1e-3, 0.0, 0.02, 0.10, 0.05), steps_per_leg)
-      .to(full(0.1e-3, -0.1e-3, 0.05e-3, -0.03, -0.05, 0.20), steps_per_leg)
-      .to(full(-0.4e-3, 0.0, 0.1e-3, 0.0, 0.10, -0.10), steps_per_leg)
-      .to(full(0.8e-3, 0.2e-3, 0.0, 0.05, -0.20, -0.25), steps_per_leg)
-      .to(full(2.0e-3, 0.0, 0.0, 0.0, 0.30, 0.10), steps_per_leg)
-      .increments;
-}
+std::vector<Vector6> mixed(int steps_per_leg) { return test::mixed_3d_legs(steps_per_leg).increments; }
 
 struct Difference {
   double force = 0.0;         // largest |dN|, |dM| over the path / (N0, D sqrt(m_f) N0)

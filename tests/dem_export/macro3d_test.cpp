@@ -14,23 +14,12 @@ namespace {
 
 using test::pi;
 
-Vector6 full(double u, double vy, double vz, double tx, double ty, double tz) {
-  Vector6 q;
-  q << u, vy, vz, tx, ty, tz;
-  return q;
-}
+using test::full;
 
 // A three-dimensional path through tension, compression, biaxial bending with reversals, shear
 // and torsion, ending in a pull to rupture.
 std::vector<Vector6> mixed_3d_path(int steps_per_leg) {
-  return test::PathBuilder{}
-      .to(full(0.3e-3, 0.1e-3, 0.0, 0.02, 0.10, 0.05), steps_per_leg)
-      .to(full(0.1e-3, -0.1e-3, 0.05e-3, -0.03, -0.05, 0.20), steps_per_leg)
-      .to(full(-0.4e-3, 0.0, 0.1e-3, 0.0, 0.10, -0.10), steps_per_leg)
-      .to(full(0.8e-3, 0.2e-3, 0.0, 0.05, -0.20, -0.25), steps_per_leg)
-      .to(full(2.0e-3, 0.0, 0.0, 0.0, 0.30, 0.10), steps_per_leg)
-      .to(full(60.0e-3, 0.0, 0.0, 0.0, 0.0, 0.0), 20 * steps_per_leg)
-      .increments;
+  return test::mixed_3d_legs(steps_per_leg).to(full(60.0e-3, 0.0, 0.0, 0.0, 0.0, 0.0), 20 * steps_per_leg).increments;
 }
 
 struct Macro3dFixture : ::testing::Test {
