@@ -6,7 +6,6 @@
 // second and, on the plastic case, the ratio plastic / elastic (issue 18's goal: >= 0.8).
 // Run: bench_fem_dt_assembly [--benchmark_filter=...]; under mpirun for 2 ranks.
 #include <benchmark/benchmark.h>
-#include <deal.II/base/mpi.h>
 
 #include <string>
 
@@ -43,10 +42,4 @@ void dt_plastic(benchmark::State& state) {
 BENCHMARK(dt_elastic)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(dt_plastic)->Iterations(1)->Unit(benchmark::kSecond);
 
-int main(int argc, char** argv) {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return run_fem_benchmarks(argc, argv); }

@@ -5,7 +5,6 @@
 // estimate and the curve difference between successive levels up to the maximum.
 // Run: bench_fem_necking [--benchmark_filter=...]; under mpirun for 2 ranks.
 #include <benchmark/benchmark.h>
-#include <deal.II/base/mpi.h>
 #include <sys/resource.h>
 
 #include <cmath>
@@ -79,10 +78,4 @@ BENCHMARK_CAPTURE(necking, displacement_level1, "displacement", 1)->Iterations(1
 BENCHMARK_CAPTURE(necking, displacement_level2, "displacement", 2)->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK(sw_tension)->Iterations(1)->Unit(benchmark::kSecond);
 
-int main(int argc, char** argv) {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return run_fem_benchmarks(argc, argv); }

@@ -3,7 +3,6 @@
 // steps, Newton iterations per step, assembly and solve time per iteration, total time, peak
 // memory and the peak force. 1 vs 2 ranks: run it under `mpirun -np 2`.
 #include <benchmark/benchmark.h>
-#include <deal.II/base/mpi.h>
 #include <sys/resource.h>
 
 #include <fstream>
@@ -39,10 +38,4 @@ BENCHMARK_CAPTURE(sw_tension, level2_direct, 2, "direct")->Iterations(1)->Unit(b
 BENCHMARK_CAPTURE(sw_tension, level1_gmres_amg, 1, "gmres-amg")->Iterations(1)->Unit(benchmark::kSecond);
 BENCHMARK_CAPTURE(sw_tension, level2_gmres_amg, 2, "gmres-amg")->Iterations(1)->Unit(benchmark::kSecond);
 
-int main(int argc, char** argv) {
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
+int main(int argc, char** argv) { return run_fem_benchmarks(argc, argv); }

@@ -3,6 +3,7 @@
 // figures (DoFs, steps, Newton iterations, assembly and solve time per iteration, assembly
 // throughput, total time, peak memory, peak force) as Google Benchmark counters.
 #include <benchmark/benchmark.h>
+#include <deal.II/base/mpi.h>
 #include <sys/resource.h>
 
 #include <filesystem>
@@ -56,4 +57,13 @@ inline dtwire::fem::RunSummary run_fem_case(benchmark::State& state, const std::
   getrusage(RUSAGE_SELF, &usage);
   state.counters["peak_rss_MB"] = static_cast<double>(usage.ru_maxrss) / 1024.0;
   return s;
+}
+
+// main() of an FE benchmark: MPI and PETSc live for the whole run (under mpirun for 2 ranks).
+inline int run_fem_benchmarks(int argc, char** argv) {
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
 }
