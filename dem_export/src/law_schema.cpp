@@ -20,7 +20,8 @@ const char* const kThesis[] = {"D_m", "EA_N", "EI_Nm2_per_deg_convention", "N0_N
 const char* const kMacro3dOwn[] = {"k_F_per_m", "k_M_per_rad", "axial_stiffness_N_per_m",
                                    "bending_stiffness_Nm_per_rad", "shear_stiffness_N_per_m",
                                    "torsion_stiffness_Nm_per_rad", "rotation_flow_scale",
-                                   "damage_moment_work_weight", "shear_strength_N", "implicit_return"};
+                                   "damage_moment_work_weight", "shear_strength_N", "implicit_return",
+                                   "bending_axial_coupling", "moment_hardening_ratio"};
 
 const char* const kParallelBond[] = {"E_Pa", "poisson_1", "G_Pa", "diameter_m", "length_m",
                                      "tensile_strength_Pa", "shear_strength_Pa"};

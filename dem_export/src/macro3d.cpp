@@ -47,6 +47,19 @@ Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
   surface_ = detail::read_surface(p, law_name, "k_F_per_m", "k_M_per_rad",
                                   detail::checked(law_name, "rotation_flow_scale",
                                                   optional_parameter(p, "rotation_flow_scale", 1.0)));
+  if (p.count("moment_hardening_ratio")) {
+    // Moment capacity D sqrt(m_f) N_yM, N_yM = N0 + eta (r_M N0 - N0) = N0 (1 - sigma) + sigma N_y.
+    const double ratio = detail::checked(law_name, "moment_hardening_ratio", p.at("moment_hardening_ratio"));
+    if (!(ratio >= 1.0)) throw std::invalid_argument("macro3d: moment_hardening_ratio must be >= 1");
+    const double span = surface_.Nult - surface_.N0;
+    if (span > 0.0) {
+      surface_.moment_split = true;
+      surface_.moment_sigma = (ratio - 1.0) * surface_.N0 / span;
+      surface_.moment_offset = surface_.N0 * (1.0 - surface_.moment_sigma);
+    } else if (ratio != 1.0) {
+      throw std::invalid_argument("macro3d: moment_hardening_ratio must be 1 when Nult_N = N0_N (no hardening)");
+    }
+  }
   damage_ = detail::read_damage(p, law_name);
   moment_work_weight_ = detail::checked(law_name, "damage_moment_work_weight",
                                         optional_parameter(p, "damage_moment_work_weight", 1.0));
@@ -72,6 +85,24 @@ Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
       law_name, "torsion_stiffness_Nm_per_rad",
       optional_parameter(p, "torsion_stiffness_Nm_per_rad", stiffness_.moment / (1.0 + poisson_ratio)));
   compliance_ = {1.0 / stiffness_.axial, 1.0 / stiffness_.moment, 1.0 / shear_stiffness_, 1.0 / torsion_stiffness_};
+  const double kappa = detail::checked(law_name, "bending_axial_coupling",
+                                       optional_parameter(p, "bending_axial_coupling", 0.0), true);
+  if (kappa > 0.0) {
+    // The bond's length (macro3d_parameters_from_thesis drops it from p: read the given map).
+    const auto length = given.find("reference_length_m");
+    if (length == given.end() || !(length->second > 0.0) || !std::isfinite(length->second))
+      throw std::invalid_argument("macro3d: bending_axial_coupling > 0 needs the bond's reference_length_m > 0");
+    coupling_ = kappa * length->second / 24.0;
+    // Compression softens bending (k_m + 2 c N): the elastic tangent loses definiteness at the
+    // bond's first-order buckling load N_b = k_m / (2 c) (12 EI/L^2 for k_m = EI/L, kappa = 1).
+    // The compression branch of the surface bounds admissible states by N >= -Nc, so Nc is
+    // capped at 0.9 N_b: k_m + 2 c N >= k_m / 10 in every admissible state.
+    buckling_force_ = stiffness_.moment / (2.0 * coupling_);
+    if (surface_.Nc > 0.9 * buckling_force_) {
+      surface_.Nc = 0.9 * buckling_force_;
+      surface_.prepare();
+    }
+  }
   plastic_.Ny = surface_.N0;
 }
 
@@ -81,8 +112,20 @@ double Macro3dLaw::effective_energy(const detail::PlasticState& s, double shear_
                 (shear_y * shear_y + shear_z * shear_z) * compliance_[2] + torque * torque * compliance_[3]);
 }
 
-void Macro3dLaw::update(const Vector6& increment) {
+void Macro3dLaw::update(const Vector6& given_increment) {
   if (broken_) return;
+  // Bending-axial coupling: the law works in the conjugate pair (s, w) with the stretch
+  // s = u + c |w|^2 (w the total rotation), where the elasticity is linear and uncoupled
+  // (N = k_a (s - u_p), M_s = k_m (w - w_p)): the axial increment becomes ds = du + c d|w|^2.
+  Vector6 stretched;
+  if (coupling_ > 0.0) {
+    stretched = given_increment;
+    const double wy = rotation_[0], wz = rotation_[1];
+    const double dwy = given_increment[4], dwz = given_increment[5];
+    stretched[0] += coupling_ * ((2.0 * wy + dwy) * dwy + (2.0 * wz + dwz) * dwz);
+    rotation_[0] = wy + dwy, rotation_[1] = wz + dwz;
+  }
+  const Vector6& increment = coupling_ > 0.0 ? stretched : given_increment;
   // Elastic fast path, kept small so that it stays cheap: the trial state is certainly inside.
   const double N1 = plastic_.y[0] + stiffness_.axial * increment[0];
   const double My1 = plastic_.y[1] + stiffness_.moment * increment[4];
@@ -167,6 +210,10 @@ void Macro3dLaw::break_bond(FailureMode mode) {
 Vector6 Macro3dLaw::forces() const {
   Vector6 q;
   q << plastic_.y[0], shear_y_, shear_z_, torque_, plastic_.y[1], plastic_.y[2];
+  if (coupling_ > 0.0) {  // end moment M = M_s + 2 c N w
+    q[4] += 2.0 * coupling_ * plastic_.y[0] * rotation_[0];
+    q[5] += 2.0 * coupling_ * plastic_.y[0] * rotation_[1];
+  }
   return damage_factor_ * q;
 }
 

@@ -40,11 +40,14 @@ struct DerivativeTerms {
 inline ResidualTerms residual_terms(const SurfaceParameters& p, double N, double m, double Ny, double inv_Ny,
                                     double h) {
   const double inv_Ny2 = inv_Ny * inv_Ny;
-  const double moment_term = m * m * inv_Ny2 * p.inv_D2_mf;
+  // N_yM = N_y unless the moment hardens apart (moment_yield): then the moment terms use N_yM.
+  const double NyM = p.moment_split ? moment_yield(p, Ny) : Ny;
+  const double inv_NyM = p.moment_split ? 1.0 / NyM : inv_Ny;
+  const double moment_term = m * m * (inv_NyM * inv_NyM) * p.inv_D2_mf;
   if (N < 0.0) {
-    // f = N^2/Nc^2 + (M/M_Y)^2 - 1, associated flow times kappa = N_y^2 m_f:
-    //   G = 2 N N_y^2 m_f / Nc^2,  moment flow 2/D^2 (times rotation_flow_scale).
-    return {N * N * p.inv_Nc2 + moment_term - 1.0, 2.0 * N * Ny * Ny * p.m_f * p.inv_Nc2};
+    // f = N^2/Nc^2 + (M/M_Y)^2 - 1, associated flow times kappa = N_yM^2 m_f:
+    //   G = 2 N N_yM^2 m_f / Nc^2,  moment flow 2/D^2 (times rotation_flow_scale).
+    return {N * N * p.inv_Nc2 + moment_term - 1.0, 2.0 * N * NyM * NyM * p.m_f * p.inv_Nc2};
   }
   // f = (M/D)^2/(m_f N_y^2) + h (N^2/N_y^2 - 1),  h = exp(-x^2/beta_f),  x = N/(2 N_y)
   // G = m_g h B,  B = 2N - T,  T = P s / (N_y beta_g),  P = N^2 - N_y^2,  s = x + 1/2 - alpha_g
@@ -58,20 +61,24 @@ inline DerivativeTerms derivative_terms(const SurfaceParameters& p, double N, do
                                         double h) {
   DerivativeTerms t{};
   const double inv_Ny2 = inv_Ny * inv_Ny;
-  const double moment_scale = inv_Ny2 * p.inv_D2_mf;
+  const double NyM = p.moment_split ? moment_yield(p, Ny) : Ny;
+  const double inv_NyM = p.moment_split ? 1.0 / NyM : inv_Ny;
+  const double sigma = p.moment_sigma;  // d N_yM / d N_y (1 unless moment_split)
+  const double moment_scale = (inv_NyM * inv_NyM) * p.inv_D2_mf;
   const double moment_term = m * m * moment_scale;
   t.f_m = 2.0 * m * moment_scale;
   if (N < 0.0) {
     t.f_N = 2.0 * N * p.inv_Nc2;
-    t.f_Ny = -2.0 * moment_term * inv_Ny;
-    t.G_N = 2.0 * Ny * Ny * p.m_f * p.inv_Nc2;
-    t.G_Ny = 4.0 * N * Ny * p.m_f * p.inv_Nc2;
+    t.f_Ny = -2.0 * moment_term * inv_NyM * sigma;
+    t.G_N = 2.0 * NyM * NyM * p.m_f * p.inv_Nc2;
+    t.G_Ny = 4.0 * N * NyM * sigma * p.m_f * p.inv_Nc2;
     return t;
   }
   const double x = 0.5 * N * inv_Ny;
   const double r = N * N * inv_Ny2 - 1.0;
   t.f_N = h * (2.0 * N * inv_Ny2 - r * x * inv_Ny * p.inv_beta_f);
-  t.f_Ny = -2.0 * moment_term * inv_Ny - 2.0 * h * N * N * inv_Ny2 * inv_Ny + h * r * x * N * inv_Ny2 * p.inv_beta_f;
+  t.f_Ny = -2.0 * moment_term * inv_NyM * sigma - 2.0 * h * N * N * inv_Ny2 * inv_Ny +
+           h * r * x * N * inv_Ny2 * p.inv_beta_f;
   const double s = x + (0.5 - p.alpha_g);
   const double P = N * N - Ny * Ny;
   const double T = P * s * inv_Ny * p.inv_beta_g;
@@ -122,7 +129,8 @@ bool closest_point_return(const SurfaceParameters& p, const ElasticStiffness& k,
       h = times_exp(h, exponent - h_exponent);
       h_exponent = exponent;
     }
-    const double moment_term = m_trial * m_trial * inv_Ny * inv_Ny * p.inv_D2_mf;
+    const double inv_NyM = p.moment_split ? 1.0 / moment_yield(p, Ny) : inv_Ny;
+    const double moment_term = m_trial * m_trial * inv_NyM * inv_NyM * p.inv_D2_mf;
     f_trial_value = N_trial < 0.0 ? N_trial * N_trial * p.inv_Nc2 + moment_term - 1.0
                                   : moment_term + h * (N_trial * N_trial * inv_Ny * inv_Ny - 1.0);
   }

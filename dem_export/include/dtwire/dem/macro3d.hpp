@@ -16,10 +16,21 @@
 //             rotation_flow_scale (default 1), damage_moment_work_weight (default 1),
 //             shear_strength_N (resultant shear force that breaks the bond; default none),
 //             rk_tolerance (default 1e-6), implicit_return (1: backward-Euler return, 0: RK2(3);
-//             default 1, or 0 when rk_tolerance is given)
+//             default 1, or 0 when rk_tolerance is given),
+//             bending_axial_coupling kappa (default 0: off): N-dependent bending stiffness,
+//               psi = 1/2 k_a (u - u_p + c |w|^2)^2 + 1/2 k_m |w - w_p|^2, c = kappa L / 24 with L
+//               the bond's reference_length_m (required then; u the chord elongation, w the total
+//               rotation), so N = k_a (u - u_p + c |w|^2), M = k_m (w - w_p) + 2 c N w: at kappa = 1
+//               M = (k_m + N L/12) w elastically (first-order beam column). The yield surface
+//               and flow act on (N, M_s), M_s = k_m (w - w_p) = M - 2 c N w (the conjugate of w_p);
+//               Nc is capped at 0.9 k_m / (2 c), so that the bending tangent k_m + 2 c N >= k_m / 10
+//               in every admissible state,
+//             moment_hardening_ratio r_M (default Nult/N0: the thesis' tie): the moment capacity
+//               hardens from D sqrt(m_f) N0 to r_M D sqrt(m_f) N0 (same hardening variable)
 // A map with the thesis keys (EA_N, EI_Nm2_per_deg_convention, k_F, k_M, ...) is converted with
 // macro3d_parameters_from_thesis first, so the published calibrations can be used directly.
 #include <array>
+#include <cmath>
 
 #include "dtwire/dem/contact_law.hpp"
 #include "dtwire/dem/detail/macroelement_damage.hpp"
@@ -53,6 +64,14 @@ class Macro3dLaw final : public ContactLaw {
   double axial_plastic_work() const { return axial_plastic_work_; }    // [J]
   double moment_plastic_work() const { return moment_plastic_work_; }  // [J]
   int last_substeps() const { return last_substeps_; }
+  // Coupling c = kappa L / 24 [m/rad^2] (0: off); the bond's first-order buckling load
+  // k_m / (2 c) [N] (infinite when off) and the compressive strength in use, min(Nc, 0.9 of it).
+  double coupling_length() const { return coupling_; }
+  double buckling_force() const { return buckling_force_; }
+  double compressive_strength() const { return surface_.Nc; }
+  // Moment conjugate to the plastic rotation, M_s = M - 2 c N w = k_m (w - w_p) (undamaged;
+  // the end moment M when the coupling is off), (M_sy, M_sz) [N m]: the yield surface's moment.
+  std::array<double, 2> section_moment() const { return {plastic_.y[1], plastic_.y[2]}; }
 
  private:
   double effective_energy(const detail::PlasticState& s, double shear_y, double shear_z,
@@ -70,6 +89,9 @@ class Macro3dLaw final : public ContactLaw {
   double moment_work_weight_ = 1.0;       // weight of the moment work in the damage variable
   double shear_strength_ = 0.0;           // [N], 0: none
   std::array<double, 4> compliance_{};    // 1 / (axial, bending, shear, torsion stiffness)
+  double coupling_ = 0.0;                 // c = kappa L / 24 [m/rad^2], 0: off
+  double buckling_force_ = HUGE_VAL;      // k_m / (2 c) [N]
+  std::array<double, 2> rotation_{};      // total bending rotation (w_y, w_z) [rad] (coupling only)
 
   detail::PlasticState plastic_;          // N, M_y, M_z, u_p, theta_py, theta_pz, a_u, a_w
   double shear_y_ = 0.0, shear_z_ = 0.0, torque_ = 0.0;

@@ -26,6 +26,13 @@ struct SurfaceParameters {
   // Plastic rotation per unit of the potential's moment gradient: 1 in the thesis (degrees);
   // pi/180 in macro3d (radians) when the parameters come from the degree-based calibration.
   double rotation_flow_scale = 1.0;
+  // macro3d's optional moment hardening apart from the axial one (moment_hardening_ratio r_M):
+  // the moment capacity hardens from D sqrt(m_f) N0 to r_M D sqrt(m_f) N0 with the same eta(z),
+  // i.e. the surface's moment terms use N_yM = N0 + eta (r_M N0 - N0) = N0 (1 - sigma) + sigma N_y,
+  // sigma = (r_M - 1) N0 / (Nult - N0). Off (the thesis' N_yM = N_y) unless moment_split.
+  bool moment_split = false;
+  double moment_sigma = 1.0;    // d N_yM / d N_y
+  double moment_offset = 0.0;   // N0 (1 - sigma)
 
   // Derived constants (call prepare() after setting the parameters): no divisions per update.
   double inv_D2_mf = 0.0, inv_beta_f = 0.0, inv_Nc2 = 0.0, inv_beta_g = 0.0;
@@ -47,6 +54,11 @@ struct Hardening {
   double dNy_daw;
 };
 
+// N_yM, the axial-force scale of the moment terms (= N_y unless moment_split).
+inline double moment_yield(const SurfaceParameters& p, double Ny) {
+  return p.moment_split ? p.moment_offset + p.moment_sigma * Ny : Ny;
+}
+
 inline Hardening hardening(const SurfaceParameters& p, double a_u, double a_w) {
   const double exponent = p.k_F * a_u + p.k_M * a_w;
   // Saturated: exp(-40) (N_ult - N_0) is below the round-off of N_y; spare the exponential.
@@ -62,7 +74,8 @@ inline Hardening hardening(const SurfaceParameters& p, double a_u, double a_w) {
 //   compression:       f = (M_Y/D) (F^2/Nc^2 + (M/M_Y)^2 - 1),  M_Y = D sqrt(m_f) N_y
 inline double yield_function(const SurfaceParameters& p, double F, double M_squared, double Ny) {
   const double inv_Ny2 = 1.0 / (Ny * Ny);
-  const double moment_term = M_squared * inv_Ny2 * p.inv_D2_mf;
+  const double NyM = moment_yield(p, Ny);
+  const double moment_term = M_squared * (1.0 / (NyM * NyM)) * p.inv_D2_mf;
   if (F < 0.0) return F * F * p.inv_Nc2 + moment_term - 1.0;
   const double r = F * F * inv_Ny2;
   return moment_term + std::exp(-0.25 * r * p.inv_beta_f) * (r - 1.0);
@@ -72,7 +85,8 @@ inline double yield_function(const SurfaceParameters& p, double F, double M_squa
 // 0 <= F < N_y, h >= max(1 - z, h_min) with z = (F / (2 N_y))^2 / beta_f, and (r - 1) < 0.
 inline bool certainly_inside(const SurfaceParameters& p, double F, double M_squared, double Ny) {
   const double inv_Ny2 = 1.0 / (Ny * Ny);
-  const double moment_term = M_squared * inv_Ny2 * p.inv_D2_mf;
+  const double NyM = moment_yield(p, Ny);
+  const double moment_term = M_squared * (1.0 / (NyM * NyM)) * p.inv_D2_mf;
   const double r = F * F * inv_Ny2;
   if (F < 0.0) return F * F * p.inv_Nc2 + moment_term < 1.0;
   if (r >= 1.0) return false;
@@ -95,14 +109,16 @@ inline SurfaceGradients surface_gradients(const SurfaceParameters& p, double F, 
   SurfaceGradients g{};
   const double inv_Ny = 1.0 / Ny;
   const double inv_Ny2 = inv_Ny * inv_Ny;
-  const double moment_scale = inv_Ny2 * p.inv_D2_mf;
+  const double inv_NyM = p.moment_split ? 1.0 / moment_yield(p, Ny) : inv_Ny;
+  const double moment_scale = inv_NyM * inv_NyM * p.inv_D2_mf;
+  const double dNyM_dNy = p.moment_sigma;  // 1 unless moment_split
   if (F < 0.0) {
     // Compression: associated flow (in the calibration's angle unit).
     const double inv_Nc2 = p.inv_Nc2;
     g.f = F * F * inv_Nc2 + M_squared * moment_scale - 1.0;
     g.df_dF = 2.0 * F * inv_Nc2;
     g.df_dM = 2.0 * moment_scale;
-    g.df_dNy = -2.0 * M_squared * moment_scale * inv_Ny;
+    g.df_dNy = -2.0 * M_squared * moment_scale * inv_NyM * dNyM_dNy;
     g.flow_F = g.df_dF;
     g.flow_M = p.rotation_flow_scale * g.df_dM;
     return g;
@@ -113,7 +129,7 @@ inline SurfaceGradients surface_gradients(const SurfaceParameters& p, double F, 
   g.f = M_squared * moment_scale + h * r;
   g.df_dF = h * (2.0 * F * inv_Ny2 - r * x * inv_Ny * p.inv_beta_f);
   g.df_dM = 2.0 * moment_scale;
-  g.df_dNy = -2.0 * M_squared * moment_scale * inv_Ny - 2.0 * h * F * F * inv_Ny2 * inv_Ny +
+  g.df_dNy = -2.0 * M_squared * moment_scale * inv_NyM * dNyM_dNy - 2.0 * h * F * F * inv_Ny2 * inv_Ny +
              h * r * x * F * inv_Ny2 * p.inv_beta_f;
   // Non-associated flow exactly as the published implementation evaluates it: the derivative of
   // m_g h_g (F^2 - N_y^2) with the exponential prefactor h taken from the yield surface (beta_f,
