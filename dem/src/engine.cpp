@@ -222,6 +222,13 @@ void Engine::set_time_step(double dt) {
   dt_ = dt;
 }
 
+void Engine::set_guided_velocity(std::size_t i, const Vector3& velocity) {
+  NetNode& node = s_->nodes.at(i);
+  if (node.fixity != NodeFixity::Guided)
+    throw std::invalid_argument("node " + std::to_string(i) + " is not guided: its velocity is not prescribed");
+  node.guided_velocity = velocity;
+}
+
 void Engine::step() {
   State& s = *s_;
   const double dt = dt_;
@@ -459,6 +466,7 @@ const NetNode& Engine::node(std::size_t i) const { return s_->nodes.at(i); }
 Vector3 Engine::position(std::size_t i) const { return s_->x.at(i); }
 Vector3 Engine::velocity(std::size_t i) const { return s_->v.at(i); }
 Vector3 Engine::unbalanced_force(std::size_t i) const { return s_->force.at(i); }
+Vector3 Engine::unbalanced_moment(std::size_t i) const { return s_->moment.at(i); }
 const EngineLink& Engine::link(std::size_t i) const { return s_->links.at(i); }
 Vector3 Engine::link_direction(std::size_t i) const {
   const NetLink& link = s_->links.at(i).link;

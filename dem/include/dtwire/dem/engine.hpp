@@ -85,6 +85,11 @@ class Engine {
   double time_step() const { return dt_; }
   void set_time_step(double dt);  // throws if above critical (unless allowed)
 
+  // Changes the prescribed velocity of guided node i from the next step on (e.g. grips moved
+  // by a load increment, then held while the net relaxes). Throws std::invalid_argument if the
+  // node is not guided.
+  void set_guided_velocity(std::size_t i, const Vector3& velocity);
+
   void step();
   // Dynamic relaxation: steps with kinematic tools held until the largest unbalanced force on a
   // free node is below `tolerance` x the mean link force magnitude (at most max_steps).
@@ -99,6 +104,7 @@ class Engine {
   Vector3 position(std::size_t i) const;
   Vector3 velocity(std::size_t i) const;  // v_{n-1/2}
   Vector3 unbalanced_force(std::size_t i) const;  // last step, without damping
+  Vector3 unbalanced_moment(std::size_t i) const;  // last step, without damping
   const EngineLink& link(std::size_t i) const;
   Vector3 link_direction(std::size_t i) const;  // unit, a -> b
   double link_length(std::size_t i) const;
