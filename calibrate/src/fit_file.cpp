@@ -6,11 +6,13 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <toml++/toml.h>
 
 #include <nlohmann/json.hpp>
 
 #include "dtwire/calibrate/command_simulator.hpp"
+#include "dtwire/calibrate/dem_specimen.hpp"
 #include "dtwire/calibrate/law_replay.hpp"
 #include "dtwire/calibrate/voce_bar.hpp"
 #include "dtwire/core/closest_name.hpp"
@@ -85,16 +87,17 @@ void check_parameters_are_read(const FitDefinition& def, const std::vector<Table
       known.insert(known.end(), names.begin(), names.end());
     }
     if (read) continue;
-    const std::string what = def.simulator == "command" ? "no experiment's input template has a placeholder {" +
-                                                               def.parameters[i].name + "}"
-                                                         : "the " + def.law + " simulator reads no parameter '" +
-                                                               def.parameters[i].name + "'";
+    const std::string what =
+        def.simulator == "command"        ? "no experiment's input template has a placeholder {" + def.parameters[i].name + "}"
+        : def.simulator == "dem_specimen" ? "the dem_specimen simulator (law " + def.law + ") reads no parameter '" +
+                                                def.parameters[i].name + "' (names are sw.<law parameter> or dt.<law parameter>)"
+                                          : "the " + def.law + " simulator reads no parameter '" + def.parameters[i].name + "'";
     tables[i].fail(tables[i].get("name"), "name", what + did_you_mean(def.parameters[i].name, known));
   }
 }
 
 dem::ParameterMap read_fixed_json(const std::filesystem::path& path, const std::string& section,
-                                  const Table& t) {
+                                  const Table& t, const std::string& section_key = "fixed_parameters_section") {
   std::ifstream in(path);
   if (!in) t.fail(t.get("fixed_parameters_file"), "fixed_parameters_file", "cannot open " + path.string());
   nlohmann::json root;
@@ -106,8 +109,7 @@ dem::ParameterMap read_fixed_json(const std::filesystem::path& path, const std::
   const nlohmann::json* object = &root;
   if (!section.empty()) {
     if (!root.contains(section) || !root[section].is_object())
-      t.fail(t.get("fixed_parameters_section"), "fixed_parameters_section",
-             "no object '" + section + "' in " + path.string());
+      t.fail(t.get(section_key), section_key, "no object '" + section + "' in " + path.string());
     object = &root[section];
   }
   dem::ParameterMap out;
@@ -199,6 +201,69 @@ void check_simulated_channels(const Experiment& e, const std::vector<Compared>& 
   }
 }
 
+// dem_specimen: the law must be thesis or macro3d, every fixed name sw.<name> or dt.<name> with
+// <name> in the law's schema, and both sets need their reference length.
+void check_fixed_specimen_parameters(const FitDefinition& def, const Table& sim) {
+  if (def.law != "thesis" && def.law != "macro3d")
+    sim.fail(sim.get("law"), "law", "the dem_specimen simulator takes the thesis or macro3d law, found '" + def.law + "'");
+  const toml::node* fixed = sim.get("fixed");
+  for (const auto& [parameter, value] : def.fixed) {
+    const bool inline_value = fixed && fixed->is_table() && fixed->as_table()->contains(parameter);
+    const toml::node* node = inline_value ? fixed->as_table()->get(parameter) : sim.get("fixed_parameters_file");
+    const std::string key = inline_value ? "fixed." + parameter : "fixed_parameters_file";
+    const bool prefixed = parameter.rfind(kSwPrefix, 0) == 0 || parameter.rfind(kDtPrefix, 0) == 0;
+    if (!prefixed)
+      sim.fail(node, key, "'" + parameter + "' names no wire type: write sw." + parameter + " or dt." + parameter);
+    if (!dem::is_law_parameter(def.law, parameter.substr(3))) {
+      std::vector<std::string> known;
+      for (const std::string& name : dem::law_parameter_names(def.law)) known.push_back(parameter.substr(0, 3) + name);
+      sim.fail(node, key, "the " + def.law + " law reads no parameter '" + parameter.substr(3) + "'" +
+                              did_you_mean(parameter, known));
+    }
+  }
+  for (const char* prefix : {kSwPrefix, kDtPrefix})
+    if (!def.fixed.count(std::string(prefix) + "reference_length_m"))
+      sim.fail(sim.has("fixed_parameters_file") ? sim.get("fixed_parameters_file") : sim.get("kind"),
+               sim.has("fixed_parameters_file") ? "fixed_parameters_file" : "kind",
+               std::string("no ") + prefix +
+                   "reference_length_m (the length the set was calibrated for; give it in the set's section or "
+                   "[simulator.fixed])");
+}
+
+// [simulator.specimen] and [simulator.quasi_static] (optional tables).
+void read_specimen_tables(const Table& sim, const std::string& file, SpecimenGeometry& geometry,
+                          QuasiStaticOptions& quasi_static, bool& scale) {
+  constexpr double degree = 3.14159265358979323846 / 180.0;
+  if (const toml::node* node = sim.get("specimen")) {
+    if (!node->is_table()) sim.fail(node, "specimen", "expected a table [simulator.specimen]");
+    const Table t(*node->as_table(), "simulator.specimen", file);
+    t.only({"twist_length_mm", "arm_length_mm", "arm_angle_deg", "arm_links", "scale_to_link_length"});
+    geometry.twist_length_m = t.number("twist_length_mm", geometry.twist_length_m * 1e3) * 1e-3;
+    if (!(geometry.twist_length_m > 0)) t.fail(t.get("twist_length_mm"), "twist_length_mm", "expected a number > 0");
+    geometry.arm_length_m = t.number("arm_length_mm", geometry.arm_length_m * 1e3) * 1e-3;
+    if (!(geometry.arm_length_m > 0)) t.fail(t.get("arm_length_mm"), "arm_length_mm", "expected a number > 0");
+    geometry.arm_angle_rad = t.number("arm_angle_deg", geometry.arm_angle_rad / degree) * degree;
+    if (!(geometry.arm_angle_rad > 0 && geometry.arm_angle_rad < 90 * degree))
+      t.fail(t.get("arm_angle_deg"), "arm_angle_deg", "expected an angle in (0, 90) deg");
+    geometry.arm_links = static_cast<int>(t.integer("arm_links", 1, 1));
+    scale = t.boolean("scale_to_link_length", true);
+  }
+  if (const toml::node* node = sim.get("quasi_static")) {
+    if (!node->is_table()) sim.fail(node, "quasi_static", "expected a table [simulator.quasi_static]");
+    const Table t(*node->as_table(), "simulator.quasi_static", file);
+    t.only({"local_damping", "move_steps", "tolerance", "max_relax_steps", "safety"});
+    quasi_static.local_damping = t.number("local_damping", quasi_static.local_damping);
+    if (!(quasi_static.local_damping >= 0 && quasi_static.local_damping < 1))
+      t.fail(t.get("local_damping"), "local_damping", "expected a number in [0, 1)");
+    quasi_static.move_steps = static_cast<int>(t.integer("move_steps", quasi_static.move_steps, 1));
+    quasi_static.tolerance = t.number("tolerance", quasi_static.tolerance);
+    if (!(quasi_static.tolerance > 0)) t.fail(t.get("tolerance"), "tolerance", "expected a number > 0");
+    quasi_static.max_relax_steps = static_cast<long>(t.integer("max_relax_steps", quasi_static.max_relax_steps, 1));
+    quasi_static.safety = t.number("safety", quasi_static.safety);
+    if (!(quasi_static.safety > 0 && quasi_static.safety <= 1)) t.fail(t.get("safety"), "safety", "expected a number in (0, 1]");
+  }
+}
+
 LossKind loss_kind(const Table& t) {
   const std::string loss = t.text("loss", "squared");
   if (loss == "squared") return LossKind::Squared;
@@ -236,11 +301,27 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
   const toml::table& sim_table = table_at(root, "simulator", name);
   const Table sim(sim_table, "simulator", name);
   sim.only({"kind", "law", "fixed_parameters_file", "fixed_parameters_section", "fixed", "program",
-            "arguments", "result", "work_directory"});
+            "arguments", "result", "work_directory", "sw_section", "dt_section", "specimen", "quasi_static"});
   def.simulator = sim.text("kind");
-  if (def.simulator != "law_replay" && def.simulator != "voce_bar" && def.simulator != "command")
-    sim.fail(sim.get("kind"), "kind", "expected law_replay, command or voce_bar, found '" + def.simulator + "'");
-  if (sim.has("fixed_parameters_file")) {
+  if (def.simulator != "law_replay" && def.simulator != "voce_bar" && def.simulator != "command" &&
+      def.simulator != "dem_specimen")
+    sim.fail(sim.get("kind"), "kind",
+             "expected law_replay, dem_specimen, command or voce_bar, found '" + def.simulator + "'");
+  const bool specimen = def.simulator == "dem_specimen";
+  for (const char* key : {"sw_section", "dt_section", "specimen", "quasi_static"})
+    if (!specimen && sim.has(key)) sim.fail(sim.get(key), key, "only for kind = \"dem_specimen\"");
+  if (specimen && sim.has("fixed_parameters_section"))
+    sim.fail(sim.get("fixed_parameters_section"), "fixed_parameters_section",
+             "dem_specimen reads two sections: give sw_section and dt_section (defaults single_wire, double_twist)");
+  if (specimen && sim.has("fixed_parameters_file")) {
+    // Both sets from one file, prefixed with their wire type.
+    const auto path = resolve(sim.text("fixed_parameters_file"));
+    for (const auto& [prefix, key, fallback] : {std::tuple<std::string, std::string, std::string>{kSwPrefix, "sw_section", "single_wire"},
+                                                {kDtPrefix, "dt_section", "double_twist"}})
+      for (const auto& [parameter, value] : read_fixed_json(path, sim.text(key, fallback), sim, key))
+        def.fixed[prefix + parameter] = value;
+    def.inputs.push_back(path);
+  } else if (sim.has("fixed_parameters_file")) {
     const auto path = resolve(sim.text("fixed_parameters_file"));
     def.fixed = read_fixed_json(path, sim.text("fixed_parameters_section", ""), sim);
     def.inputs.push_back(path);
@@ -252,9 +333,16 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
       def.fixed[std::string(key.str())] = fixed_table.number_of(&value, std::string(key.str()));
   }
   CommandSpecification command;
+  SpecimenGeometry geometry;
+  QuasiStaticOptions quasi_static;
+  bool scale_to_link = true;
   if (def.simulator == "law_replay") {
     def.law = sim.text("law");
     check_fixed_law_parameters(def, sim);
+  } else if (specimen) {
+    def.law = sim.text("law");
+    check_fixed_specimen_parameters(def, sim);
+    read_specimen_tables(sim, name, geometry, quasi_static, scale_to_link);
   } else if (def.simulator == "command") {
     def.law = sim.text("law", "command");
     const std::string program = sim.text("program", "dtwire");
@@ -335,8 +423,11 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     const toml::table& raw = *node.as_table();
     const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
     x.only({"name", "target", "target_columns", "abscissa", "arc_length", "channels", "weight",
-            "branch_tolerance", "increments_per_leg", "input_template", "input_prm", "prm_set"},
+            "branch_tolerance", "increments_per_leg", "input_template", "input_prm", "prm_set",
+            "pull_angle_deg", "pull_angle_rad"},
            "path_");
+    for (const char* key : {"pull_angle_deg", "pull_angle_rad"})
+      if (x.has(key) && def.simulator != "dem_specimen") x.fail(x.get(key), key, "only for kind = \"dem_specimen\"");
     Experiment e;
     e.name = x.text("name");
     for (const auto& other : def.experiments)
@@ -404,6 +495,31 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
         x.fail(nullptr, "path_rotation", "displacement and rotation waypoints must have the same length, >= 2");
       path.increments_per_leg = increments;
       e.simulator = std::make_shared<LawReplaySimulator>(def.law, def.fixed, path);
+    } else if (specimen) {
+      SpecimenPath path;
+      path.displacement_m = waypoints(x, "path_displacement_", Dimension::Length, raw);
+      if (path.displacement_m.empty())
+        x.fail(nullptr, "path_displacement_mm", "missing: the upper grips' displacement waypoints along the pull direction");
+      for (const auto& [key, item] : raw)
+        if (std::string(key.str()).rfind("path_", 0) == 0 && std::string(key.str()).rfind("path_displacement_", 0) != 0)
+          x.fail(&item, std::string(key.str()), "dem_specimen paths have grip displacements only (path_displacement_<unit>) "
+                                                "and a pull angle (pull_angle_deg)");
+      const toml::node* first = x.get("path_displacement_mm");
+      if (path.displacement_m.size() < 2 || path.displacement_m.front() != 0.0)
+        x.fail(first, first ? "path_displacement_mm" : "path_displacement", "expected >= 2 waypoints starting at 0");
+      if (x.has("pull_angle_deg") && x.has("pull_angle_rad"))
+        x.fail(x.get("pull_angle_rad"), "pull_angle_rad", "given twice (also as pull_angle_deg)");
+      path.pull_angle_rad = x.has("pull_angle_rad") ? x.number("pull_angle_rad")
+                                                    : x.number("pull_angle_deg", 0.0) * 3.14159265358979323846 / 180.0;
+      if (std::abs(path.pull_angle_rad) > 0.5 * 3.14159265358979323846 + 1e-12)
+        x.fail(x.get(x.has("pull_angle_rad") ? "pull_angle_rad" : "pull_angle_deg"),
+               x.has("pull_angle_rad") ? "pull_angle_rad" : "pull_angle_deg", "expected an angle within [-90, 90] deg");
+      path.increments_per_leg = increments;
+      try {
+        e.simulator = std::make_shared<DemSpecimenSimulator>(def.law, def.fixed, geometry, quasi_static, path, scale_to_link);
+      } catch (const std::invalid_argument& error) {
+        x.fail(nullptr, "path_displacement_mm", error.what());
+      }
     } else if (def.simulator == "command") {
       const CommandSpecification spec = command_experiment(x, command, resolve, def.inputs);
       auto simulator = std::make_shared<CommandSimulator>(spec);
