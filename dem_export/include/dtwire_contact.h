@@ -9,6 +9,20 @@
  *   3: torsion rotation [rad]        <-> torque T [N m]
  *   4, 5: bending rotations [rad]    <-> bending moments M_y, M_z [N m]
  * Laws: "thesis", "macro3d", "parallel_bond", "wirepm"; parameters in docs/dem_laws.md.
+ *
+ * macro3d's optional bending-axial parameters (both off by default: the law is then the same,
+ * bit for bit, as without them):
+ *   bending_axial_coupling [1]  kappa >= 0; > 0 makes the bending stiffness depend on N through
+ *                               the chord stretch s = u + kappa L/24 |theta|^2 (L =
+ *                               reference_length_m [m], then required; u is the CHORD elongation,
+ *                               i.e. the change of the distance between the nodes):
+ *                               N = k_a (s - u_p), M = k_m (theta - theta_p) + 2 (kappa L/24) N theta,
+ *                               so elastically M = (k_m + kappa N L/12) theta; 1 = the geometric
+ *                               (first-order beam-column) value. The compressive strength Nc_N is
+ *                               then capped at 0.9 k_m / (2 kappa L/24).
+ *   moment_hardening_ratio [1]  r_M >= 1: the moment capacity hardens from D sqrt(m_f) N0 to
+ *                               r_M D sqrt(m_f) N0 (default Nult/N0, the thesis' tie to the axial
+ *                               hardening).
  */
 #ifndef DTWIRE_CONTACT_H
 #define DTWIRE_CONTACT_H

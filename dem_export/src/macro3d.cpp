@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dtwire/dem/detail/macroelement_coupled.hpp"
 #include "law_parameters.hpp"
 #include "macroelement_reading.hpp"
 
@@ -117,15 +118,18 @@ void Macro3dLaw::update(const Vector6& given_increment) {
   // Bending-axial coupling: the law works in the conjugate pair (s, w) with the stretch
   // s = u + c |w|^2 (w the total rotation), where the elasticity is linear and uncoupled
   // (N = k_a (s - u_p), M_s = k_m (w - w_p)): the axial increment becomes ds = du + c d|w|^2.
-  Vector6 stretched;
+  // The surface acts on the end moment M = M_s + 2 c N w: general_update with the coupled
+  // integrator (no elastic fast path).
   if (coupling_ > 0.0) {
-    stretched = given_increment;
+    Vector6 stretched = given_increment;
     const double wy = rotation_[0], wz = rotation_[1];
     const double dwy = given_increment[4], dwz = given_increment[5];
     stretched[0] += coupling_ * ((2.0 * wy + dwy) * dwy + (2.0 * wz + dwz) * dwz);
+    general_update(stretched);
     rotation_[0] = wy + dwy, rotation_[1] = wz + dwz;
+    return;
   }
-  const Vector6& increment = coupling_ > 0.0 ? stretched : given_increment;
+  const Vector6& increment = given_increment;
   // Elastic fast path, kept small so that it stays cheap: the trial state is certainly inside.
   const double N1 = plastic_.y[0] + stiffness_.axial * increment[0];
   const double My1 = plastic_.y[1] + stiffness_.moment * increment[4];
@@ -176,9 +180,20 @@ void Macro3dLaw::general_update(const Vector6& increment) {
     if (axial_plastic == 0.0 && moment_plastic == 0.0) {  // elastic piece: damage unchanged
       energy_.external += damage_factor_ * work;
     } else {
+      // With the coupling the free energy's dissipation is N du_p + M_s.dw_p (booked as plastic);
+      // the damage and the failure mode use the thesis' plastic work with the end moment,
+      // M.dw_p = (M_s + 2 c N w).dw_p >= 0 (the flow is along M).
+      double hinge_plastic = moment_plastic;
+      if (coupling_ > 0.0) {
+        const double wy0 = rotation_[0] + t0 * increment[4], wz0 = rotation_[1] + t0 * increment[5];
+        const double wy1 = rotation_[0] + t1 * increment[4], wz1 = rotation_[1] + t1 * increment[5];
+        const double Nw_y = 0.5 * (before.y[0] * wy0 + after.y[0] * wy1);
+        const double Nw_z = 0.5 * (before.y[0] * wz0 + after.y[0] * wz1);
+        hinge_plastic += 2.0 * coupling_ * (Nw_y * (after.y[4] - before.y[4]) + Nw_z * (after.y[5] - before.y[5]));
+      }
       axial_plastic_work_ += axial_plastic;
-      moment_plastic_work_ += moment_plastic;
-      damage_work_ += axial_plastic + moment_work_weight_ * moment_plastic;
+      moment_plastic_work_ += hinge_plastic;
+      damage_work_ += axial_plastic + moment_work_weight_ * hinge_plastic;
       const double d1 = damage_.factor(damage_work_);
       energy_.book({damage_factor_, d1, effective_energy(before, shear_y_, shear_z_, torque_),
                     effective_energy(after, shear_y1, shear_z1, torque1), work,
@@ -188,7 +203,13 @@ void Macro3dLaw::general_update(const Vector6& increment) {
     shear_y_ = shear_y1, shear_z_ = shear_z1, torque_ = torque1;
     return damage_factor_ > detail::DamageParameters::break_factor;
   };
-  last_substeps_ = detail::integrate_increment(surface_, stiffness_, settings_, plastic_, dq, on_substep);
+  if (coupling_ > 0.0) {
+    const detail::CouplingPath path{coupling_, rotation_, {increment[4], increment[5]}};
+    last_substeps_ =
+        detail::integrate_increment_coupled(surface_, stiffness_, settings_, path, plastic_, dq, on_substep);
+  } else {
+    last_substeps_ = detail::integrate_increment(surface_, stiffness_, settings_, plastic_, dq, on_substep);
+  }
   if (damage_factor_ <= detail::DamageParameters::break_factor) {
     // Necking when the dissipation was mostly axial and the wire ends in tension.
     const bool tension_dominated = axial_plastic_work_ >= moment_plastic_work_ && plastic_.y[0] > 0.0;
@@ -226,7 +247,10 @@ EnergyAccount Macro3dLaw::energy() const {
   return account;
 }
 
-double Macro3dLaw::normalised_yield_function() const { return detail::yield_value(surface_, plastic_); }
+double Macro3dLaw::normalised_yield_function() const {
+  if (coupling_ > 0.0) return detail::coupled_yield(surface_, coupling_, plastic_.y, rotation_, plastic_.Ny);
+  return detail::yield_value(surface_, plastic_);
+}
 
 std::unique_ptr<ContactLaw> Macro3dLaw::clone() const { return std::make_unique<Macro3dLaw>(*this); }
 

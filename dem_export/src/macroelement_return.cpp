@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dtwire/dem/detail/macroelement_coupled.hpp"
 #include "dtwire/dem/detail/macroelement_integrator.hpp"
 
 namespace dtwire::dem::detail {
@@ -253,6 +254,113 @@ bool closest_point_return(const SurfaceParameters& p, const ElasticStiffness& k,
   end.h_exponent = h_exponent;
   const double inv_f_trial = 1.0 / f_trial_value;
   end.return_hint = {lambda * inv_f_trial, (N_trial - N) * inv_f_trial, (z - z_start) * inv_f_trial};
+  return true;
+}
+
+// With the bending-axial coupling (macroelement_coupled.hpp): the surface acts on the end moment
+// M = M_s + 2 c N w_end, the flow moves w_p by dlambda c_f M, so M_s = A - k_m c_f dlambda M with
+// A = M_s,n + k_m dw, i.e. M = (A + N B) / (1 + k_m c_f dlambda), B = 2 c w_end: the unknowns stay
+// (N, z, dlambda), with m = |M| depending on N too. Newton from the elastic trial.
+bool coupled_return(const SurfaceParameters& p, const ElasticStiffness& k, const ReturnSettings& settings,
+                    double c, const std::array<double, 2>& w_end, const PlasticState& start,
+                    const std::array<double, 3>& dq, PlasticState& end, int* iterations) {
+  const double N_trial = start.y[0] + k.axial * dq[0];
+  const double A1 = start.y[1] + k.moment * dq[1], A2 = start.y[2] + k.moment * dq[2];
+  const double B1 = 2.0 * c * w_end[0], B2 = 2.0 * c * w_end[1];
+  const double cf = p.rotation_flow_scale * 2.0 / (p.D * p.D);
+  const double z_start = p.k_F * start.y[6] + p.k_M * start.y[7];
+  const double inv_z_scale = 1.0 / std::max(1.0, z_start);
+  if (iterations != nullptr) *iterations = 0;
+  {
+    const double M1 = A1 + N_trial * B1, M2 = A2 + N_trial * B2;
+    const double f_trial = yield_function(p, N_trial, M1 * M1 + M2 * M2, start.Ny);
+    if (f_trial <= 0.0) {
+      end = start;
+      end.y[0] = N_trial;
+      end.y[1] = A1;
+      end.y[2] = A2;
+      end.f_known = false;
+      return true;
+    }
+  }
+  double N = N_trial, z = z_start, lambda = 0.0, Ny = start.Ny;
+  bool converged = false;
+  const int max_iterations = 2 * settings.max_iterations;
+  int iteration = 0;
+  for (; iteration <= max_iterations; ++iteration) {
+    const double stretch = 1.0 + k.moment * cf * lambda;
+    const double P1 = A1 + N * B1, P2 = A2 + N * B2;  // M * stretch
+    const double m = std::sqrt(P1 * P1 + P2 * P2) / stretch;
+    const double dm_dN = m > 0.0 ? (P1 * B1 + P2 * B2) / (m * stretch * stretch) : 0.0;
+    const double dm_dlambda = -k.moment * cf * m / stretch;
+    const double inv_Ny = 1.0 / Ny;
+    double h = 1.0;
+    if (N >= 0.0) {
+      const double x = 0.5 * N * inv_Ny;
+      h = std::exp(-x * x * p.inv_beta_f);
+    }
+    const ResidualTerms rt = residual_terms(p, N, m, Ny, inv_Ny, h);
+    const double sign_G = rt.G < 0.0 ? -1.0 : 1.0;
+    const double rate = p.k_F * sign_G * rt.G + p.k_M * cf * m;
+    const double R1 = N - N_trial + k.axial * lambda * rt.G;
+    const double R2 = z - z_start - lambda * rate;
+    const double R3 = rt.f;
+    const double residual = std::max({std::abs(R3), std::abs(R1) * inv_Ny, std::abs(R2) * inv_z_scale});
+    if (residual <= settings.residual_tolerance) {
+      converged = true;
+      break;
+    }
+    if (iteration == max_iterations) break;
+    const DerivativeTerms t = derivative_terms(p, N, m, Ny, inv_Ny, h);
+    const double dNy_dz = p.Nult - Ny;
+    const double J11 = 1.0 + k.axial * lambda * t.G_N;
+    const double J12 = k.axial * lambda * t.G_Ny * dNy_dz;
+    const double J13 = k.axial * rt.G;
+    const double J21 = -lambda * (p.k_F * sign_G * t.G_N + p.k_M * cf * dm_dN);
+    const double J22 = 1.0 - lambda * p.k_F * sign_G * t.G_Ny * dNy_dz;
+    const double J23 = -rate - lambda * p.k_M * cf * dm_dlambda;
+    const double J31 = t.f_N + t.f_m * dm_dN;
+    const double J32 = t.f_Ny * dNy_dz;
+    const double J33 = t.f_m * dm_dlambda;
+    const double C11 = J22 * J33 - J23 * J32, C12 = J23 * J31 - J21 * J33, C13 = J21 * J32 - J22 * J31;
+    const double det = J11 * C11 + J12 * C12 + J13 * C13;
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) break;
+    const double inv_det = 1.0 / det;
+    const double b1 = -R1, b2 = -R2, b3 = -R3;
+    double dN = (b1 * C11 + J12 * (J23 * b3 - b2 * J33) + J13 * (b2 * J32 - J22 * b3)) * inv_det;
+    double dz = (J11 * (b2 * J33 - J23 * b3) + b1 * C12 + J13 * (J21 * b3 - b2 * J31)) * inv_det;
+    double dlambda = (J11 * (J22 * b3 - b2 * J32) + J12 * (b2 * J31 - J21 * b3) + b1 * C13) * inv_det;
+    if (N != 0.0 && (N + dN < 0.0) != (N < 0.0)) {  // the flow's kink at N = 0
+      const double shorten = -N / dN;
+      dz *= shorten;
+      dlambda *= shorten;
+      dN = -N;
+    }
+    N += dN;
+    z += dz;
+    lambda += dlambda;
+    Ny = p.Nult - dNy_dz * std::exp(-dz);
+    if (!std::isfinite(N + z + lambda + Ny)) break;
+  }
+  if (iterations != nullptr) *iterations = iteration;
+  if (!converged || lambda < 0.0) return false;
+  const double stretch = 1.0 + k.moment * cf * lambda;
+  const double M1 = (A1 + N * B1) / stretch, M2 = (A2 + N * B2) / stretch;
+  const double Ms1 = M1 - N * B1, Ms2 = M2 - N * B2;
+  // Plastic parts as the elastic complements (Q_1 - Q_0 = K (dq - dq_p) in (N, M_s)).
+  const double dup = (N_trial - N) / k.axial;
+  const double dw1 = (A1 - Ms1) / k.moment, dw2 = (A2 - Ms2) / k.moment;
+  end = start;
+  end.y[0] = N;
+  end.y[1] = Ms1;
+  end.y[2] = Ms2;
+  end.y[3] += dup;
+  end.y[4] += dw1;
+  end.y[5] += dw2;
+  end.y[6] += std::abs(dup);
+  end.y[7] += std::sqrt(dw1 * dw1 + dw2 * dw2);
+  end.Ny = Ny;
+  end.f_known = false;
   return true;
 }
 

@@ -190,6 +190,8 @@ TEST_P(CoupledPaths, EnergyBalanceAndYieldConsistencyOnAMixedElastoplasticPath) 
       const double scale = std::max(std::abs(e.external), stored_and_dissipated);
       EXPECT_NEAR(e.external, stored_and_dissipated, 1e-10 * scale);  // tol: 1e-10 relative
       EXPECT_GE(e.elastic, 0.0);
+      // Measured on this path (the rotation part of the dissipation, M_s.dw_p, may be negative
+      // under high tension: docs/dem_laws.md); damage grows with the end-moment plastic work.
       EXPECT_GE(e.plastic, -1e-12 * scale);
       EXPECT_GE(e.damage, -1e-12 * scale);
       const Vector6 q = law.forces();
@@ -200,7 +202,6 @@ TEST_P(CoupledPaths, EnergyBalanceAndYieldConsistencyOnAMixedElastoplasticPath) 
       if (std::abs(f) < 1e-8) ++plastic_steps;
     });
     EXPECT_GT(plastic_steps, 100);
-    EXPECT_TRUE(law.broken());
     EXPECT_GT(law.energy().plastic, 0.0);
   }
 }
@@ -210,7 +211,7 @@ INSTANTIATE_TEST_SUITE_P(ImplicitAndRk, CoupledPaths, ::testing::Values(false, t
 TEST(Macro3dCoupling, ImplicitReturnAgreesWithTheRkIntegration) {
   // Same coupled law, backward-Euler return vs RK2(3) at 1e-10, on a planar pull+spin path and the
   // mixed 3D legs (DEM-like increments): forces within the stated fraction of N0 and
-  // D sqrt(m_f) N0 (first-order return; the uncoupled law's test allows 3e-3 / 1e-2).
+  // D sqrt(m_f) N0 (first-order return).
   for (const char* wire : {"single_wire", "double_twist"}) {
     SCOPED_TRACE(wire);
     const ParameterMap p = coupled(test::thesis_parameters(wire));
@@ -230,8 +231,8 @@ TEST(Macro3dCoupling, ImplicitReturnAgreesWithTheRkIntegration) {
       worst_M = std::max({worst_M, std::abs(a[4] - b[4]) / M0, std::abs(a[5] - b[5]) / M0});
     }
     std::printf("[ coupled ] %s implicit vs RK 1e-10: N %.3g N0, M %.3g M0\n", wire, worst_N, worst_M);
-    EXPECT_LT(worst_N, 1e-2);  // tol: 1e-2 of N0
-    EXPECT_LT(worst_M, 2e-2);  // tol: 2e-2 of D sqrt(m_f) N0
+    EXPECT_LT(worst_N, 2e-3);  // tol: 2e-3 of N0 (measured 3.8e-4 / 8.7e-4, single / double twist)
+    EXPECT_LT(worst_M, 5e-3);  // tol: 5e-3 of D sqrt(m_f) N0 (measured 6.5e-4 / 2.1e-3)
   }
 }
 

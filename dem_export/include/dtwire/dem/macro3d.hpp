@@ -22,7 +22,7 @@
 //               the bond's reference_length_m (required then; u the chord elongation, w the total
 //               rotation), so N = k_a (u - u_p + c |w|^2), M = k_m (w - w_p) + 2 c N w: at kappa = 1
 //               M = (k_m + N L/12) w elastically (first-order beam column). The yield surface
-//               and flow act on (N, M_s), M_s = k_m (w - w_p) = M - 2 c N w (the conjugate of w_p);
+//               and flow act on (N, M), M the end moment (macroelement_coupled.hpp);
 //               Nc is capped at 0.9 k_m / (2 c), so that the bending tangent k_m + 2 c N >= k_m / 10
 //               in every admissible state,
 //             moment_hardening_ratio r_M (default Nult/N0: the thesis' tie): the moment capacity
@@ -69,8 +69,8 @@ class Macro3dLaw final : public ContactLaw {
   double coupling_length() const { return coupling_; }
   double buckling_force() const { return buckling_force_; }
   double compressive_strength() const { return surface_.Nc; }
-  // Moment conjugate to the plastic rotation, M_s = M - 2 c N w = k_m (w - w_p) (undamaged;
-  // the end moment M when the coupling is off), (M_sy, M_sz) [N m]: the yield surface's moment.
+  // M_s = M - 2 c N w = k_m (w - w_p), undamaged (M_sy, M_sz) [N m], the moment conjugate to
+  // the plastic rotation in the free energy (the end moment M when the coupling is off).
   std::array<double, 2> section_moment() const { return {plastic_.y[1], plastic_.y[2]}; }
 
  private:
