@@ -6,6 +6,7 @@
 // curves it made itself (see the inverse-crime note at that test).
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -98,6 +99,114 @@ TEST(DemSpecimen, ElasticTensionMatchesClosedFormAndIsSymmetric) {
     EXPECT_LT(std::abs(last(c, "shear_force")), 1e-6 * last(c, "force"));
     EXPECT_LT(std::abs(last(c, "dt_moment")), 1e-6 * last(c, "force") * 0.04);
   }
+}
+
+// Elastic pull at an angle against an independent linear solve of the planar spring assembly:
+// each link (axis e, in-plane normal t = e_y x e, length h) has the generalised strains
+//   axial (u_b - u_a).e,  shear (u_b - u_a).t - h/2 (theta_a + theta_b),  bending theta_b - theta_a
+// (rotations about +y; a rigid rotation strains nothing) with the springs k_a, k_s, k_r of the
+// scaled thesis sets; K = sum B^T diag(k) B, grips prescribed, free nodes solved.
+struct PlanarAnswer {
+  double force = 0.0, shear_force = 0.0, dt_axial_force = 0.0;
+};
+
+PlanarAnswer planar_spring_assembly(const dem::ParameterMap& sets, int n, double angle, double delta) {
+  const double L = 0.030, beta = 41.81 * kDegree, twist = 0.040;
+  struct Link {
+    int a, b;
+    Eigen::Vector2d e;  // (x, z)
+    double h, ka, ks, kr;
+  };
+  std::vector<Eigen::Vector2d> x{{0.0, 0.0}, {0.0, twist}};
+  std::vector<Link> links;
+  const auto springs = [&](const std::string& prefix, double h, Link& link) {
+    const double r = sets.at(prefix + "reference_length_m") / h;
+    link.h = h;
+    link.ka = sets.at(prefix + "EA_N") * r;
+    link.ks = link.ka / 2.6;
+    link.kr = sets.at(prefix + "EI_Nm2_per_deg_convention") * 180.0 / kPi * r;
+  };
+  Link dt{0, 1, {0.0, 1.0}, 0, 0, 0, 0};
+  springs("dt.", twist, dt);
+  links.push_back(dt);
+  std::vector<int> grips;
+  const double side[4] = {1, -1, 1, -1}, up[4] = {1, 1, -1, -1};
+  for (int arm = 0; arm < 4; ++arm) {
+    const int junction = up[arm] > 0 ? 1 : 0;
+    const Eigen::Vector2d e(side[arm] * std::sin(beta), up[arm] * std::cos(beta));
+    int previous = junction;
+    for (int i = 1; i <= n; ++i) {
+      x.push_back(x[junction] + (i * L / n) * e);
+      Link link{previous, static_cast<int>(x.size()) - 1, e, 0, 0, 0, 0};
+      springs("sw.", L / n, link);
+      links.push_back(link);
+      previous = link.b;
+    }
+    grips.push_back(previous);
+  }
+  const int dofs = 3 * static_cast<int>(x.size());  // u_x, u_z, theta_y per node
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(dofs, dofs);
+  for (const Link& link : links) {
+    const Eigen::Vector2d t(link.e.y(), -link.e.x());  // e_y x e in (x, z)
+    Eigen::Matrix<double, 3, 6> B = Eigen::Matrix<double, 3, 6>::Zero();
+    B.block<1, 2>(0, 0) = -link.e.transpose();
+    B.block<1, 2>(0, 3) = link.e.transpose();
+    B.block<1, 2>(1, 0) = -t.transpose();
+    B.block<1, 2>(1, 3) = t.transpose();
+    B(1, 2) = B(1, 5) = -0.5 * link.h;
+    B(2, 2) = -1.0;
+    B(2, 5) = 1.0;
+    const Eigen::Matrix<double, 6, 6> k = B.transpose() * Eigen::Vector3d(link.ka, link.ks, link.kr).asDiagonal() * B;
+    const int index[6] = {3 * link.a, 3 * link.a + 1, 3 * link.a + 2, 3 * link.b, 3 * link.b + 1, 3 * link.b + 2};
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) K(index[r], index[c]) += k(r, c);
+  }
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(dofs);
+  std::vector<char> prescribed(dofs, 0);
+  const Eigen::Vector2d d(std::sin(angle), std::cos(angle));
+  for (int g = 0; g < 4; ++g) {
+    for (int c = 0; c < 3; ++c) prescribed[3 * grips[g] + c] = 1;
+    if (g < 2) u.segment<2>(3 * grips[g]) = delta * d;
+  }
+  std::vector<int> free;
+  for (int i = 0; i < dofs; ++i)
+    if (!prescribed[i]) free.push_back(i);
+  Eigen::MatrixXd Kff(free.size(), free.size());
+  Eigen::VectorXd rhs(free.size());
+  for (std::size_t r = 0; r < free.size(); ++r) {
+    rhs[r] = 0.0;
+    for (int c = 0; c < dofs; ++c)
+      if (prescribed[c]) rhs[r] -= K(free[r], c) * u[c];
+    for (std::size_t c = 0; c < free.size(); ++c) Kff(r, c) = K(free[r], free[c]);
+  }
+  const Eigen::VectorXd uf = Kff.ldlt().solve(rhs);
+  for (std::size_t r = 0; r < free.size(); ++r) u[free[r]] = uf[r];
+  const Eigen::VectorXd f = K * u;  // external forces: at the grips, what they apply
+  PlanarAnswer answer;
+  const Eigen::Vector2d v(d.y(), -d.x());  // e_y x d
+  for (int g = 0; g < 2; ++g) {
+    answer.force += f.segment<2>(3 * grips[g]).dot(d);
+    answer.shear_force += f.segment<2>(3 * grips[g]).dot(v);
+  }
+  answer.dt_axial_force = links[0].ka * (u.segment<2>(3) - u.segment<2>(0)).dot(links[0].e);
+  return answer;
+}
+
+TEST(DemSpecimen, ElasticPullAtAnAngleMatchesThePlanarSpringAssembly) {
+  const dem::ParameterMap sets = thesis_sets();
+  for (int n : {1, 2})
+    for (double angle : {25.0, 47.0, 78.0}) {
+      const double u = 1e-6;  // 1 um: geometric changes 3e-5 of the arm length (at 10 um: 5e-4 differences)
+      const Curve c = specimen({0.0, u}, angle, 4, n).simulate({});
+      const PlanarAnswer expected = planar_spring_assembly(sets, n, angle * kDegree, u);
+      const double scale = std::abs(expected.force) + std::abs(expected.shear_force);
+      std::cout << "arm_links " << n << ", pull " << angle << " deg: force " << last(c, "force") << " (assembly "
+                << expected.force << "), shear " << last(c, "shear_force") << " (" << expected.shear_force
+                << "), DT N " << last(c, "dt_axial_force") << " (" << expected.dt_axial_force << ")\n";
+      EXPECT_NEAR(last(c, "force"), expected.force, 2e-4 * scale) << n << " " << angle;
+      EXPECT_NEAR(last(c, "shear_force"), expected.shear_force, 2e-4 * scale) << n << " " << angle;
+      EXPECT_NEAR(last(c, "dt_axial_force"), expected.dt_axial_force, 2e-4 * scale) << n << " " << angle;
+    }
 }
 
 // The relative deviation of b's force from a's at a's displacements (largest over the curve,
