@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "dtwire/core/error.hpp"
+#include "link_kinematics.hpp"
 #include "prm_check.hpp"
 
 namespace dtwire::fem {
@@ -145,6 +146,10 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Curve displacement", "load path", Patterns::Selection("load path|extensometer"),
                     "what the curve's displacement_mm column holds: the load-path displacement, or the "
                     "extensometer elongation (the load path then goes to grip_displacement_mm)");
+  prm.declare_entry("Link sections (mm)", "", Patterns::Anything(),
+                    "double twist as a DEM link: bottom and top section, each 'x y z, x y z, x y z' (the two "
+                    "wires' axis points, then a point off their line), separated by ';'; adds link_elongation_mm, "
+                    "link_rotation_{x,y,z}_rad, link_axial_force_N, link_shear_force_N, link_moment_{x,y,z}_Nm");
   prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
                     "write a restart checkpoint every n steps (0: none)");
   prm.leave_subsection();
@@ -493,6 +498,38 @@ void read_output(Source& source, Parameters& p) {
       p.output.extensometer.push_back({{first, first + 1}});
     }
     p.output.extensometer_as_displacement = prm.get("Curve displacement") == "extensometer";
+  }
+  {
+    const std::string entry = "'Link sections (mm)'";
+    std::stringstream list(prm.get("Link sections (mm)"));
+    std::string item;
+    while (std::getline(list, item, ';')) {
+      if (item.find_first_not_of(" \t") == std::string::npos) continue;
+      std::istringstream in(item);
+      SectionPoints section{};
+      bool ok = true;
+      for (unsigned k = 0; k < 3 && ok; ++k) {
+        char comma = 0;
+        ok = (in >> section[k][0] >> section[k][1] >> section[k][2]) && (k == 2 || ((in >> comma) && comma == ','));
+      }
+      ok = ok && (in >> std::ws).eof();
+      for (const auto& x : section)
+        for (double v : x) ok = ok && std::isfinite(v);
+      if (!ok)
+        throw InputError(name, entry + ": expected two sections 'x y z, x y z, x y z' separated by ';', found '" +
+                                   item + "'");
+      try {
+        check_section(section);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(name, entry + ": section '" + item + "': " + e.what());
+      }
+      const std::size_t first = p.output.probe_points.size();
+      for (const auto& x : section) p.output.probe_points.push_back({{x[0] * 1e-3, x[1] * 1e-3, x[2] * 1e-3}});
+      p.output.link_sections.push_back({{first, first + 1, first + 2}});
+    }
+    if (!p.output.link_sections.empty() && p.output.link_sections.size() != 2)
+      throw InputError(name, entry + ": expected exactly two sections (bottom; top), found " +
+                                 std::to_string(p.output.link_sections.size()));
     if (p.output.extensometer_as_displacement && p.output.extensometer.empty())
       throw InputError(name, "'Curve displacement = extensometer' needs 'Extensometer (mm)'");
   }

@@ -23,6 +23,7 @@
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/version.hpp"
 #include "contact/contact_curve.hpp"  // contact (issue 5)
+#include "link_kinematics.hpp"
 #include "solver.hpp"
 
 namespace dtwire::fem {
@@ -105,6 +106,46 @@ void add_generalised_channels(Curve& c, const std::vector<StepRecord>& records, 
   channel("external_work", Dimension::Energy, "J", [](const StepRecord& r) { return r.external_work; });
   channel("energy_balance_error", Dimension::Energy, "J",
           [&](const StepRecord& r) { return r.external_work - stored(r); });
+}
+
+// The twist as a DEM link (link_kinematics.hpp): chord elongation, relative rotation of the top
+// section, axial and shear force, moment about the link midpoint.
+void add_link_channels(Curve& c, const std::vector<StepRecord>& records, const OutputParameters& output) {
+  const auto section = [&](std::size_t which, const StepRecord* s) {
+    SectionPoints points{};
+    for (unsigned k = 0; k < 3; ++k) {
+      const std::size_t i = output.link_sections[which][k];
+      for (unsigned a = 0; a < 3; ++a)
+        points[k][a] = output.probe_points[i][a] + (s ? s->probe_displacements.at(i)[a] : 0.0);
+    }
+    return points;
+  };
+  std::vector<LinkState> states;
+  for (const auto& s : records)
+    states.push_back(link_state(section(0, nullptr), section(0, &s), section(1, nullptr), section(1, &s), s.end_force,
+                                s.end_moment, s.end_centre));
+  const auto channel = [&](const std::string& name, Dimension dimension, const char* unit,
+                           const std::function<double(const LinkState&)>& value) {
+    std::vector<double> values;
+    for (const auto& s : states) values.push_back(value(s));
+    c.add_channel_si(name, dimension, values, *find_unit(unit));
+  };
+  const char* axes[] = {"x", "y", "z"};
+  channel("link_elongation", Dimension::Length, "mm", [](const LinkState& s) { return s.elongation; });
+  for (unsigned a = 0; a < 3; ++a)
+    channel(std::string("link_rotation_") + axes[a], Dimension::Angle, "rad",
+            [a](const LinkState& s) { return s.rotation[a]; });
+  channel("link_axial_force", Dimension::Force, "N", [](const LinkState& s) { return s.axial_force; });
+  channel("link_shear_force", Dimension::Force, "N", [](const LinkState& s) { return s.shear_force; });
+  for (unsigned a = 0; a < 3; ++a)
+    channel(std::string("link_moment_") + axes[a], Dimension::Moment, "Nm",
+            [a](const LinkState& s) { return s.moment[a]; });
+  const SectionPoints bottom = section(0, nullptr), top = section(1, nullptr);
+  double length = 0.0;
+  for (unsigned a = 0; a < 3; ++a) length += std::pow((top[0][a] + top[1][a] - bottom[0][a] - bottom[1][a]) / 2, 2);
+  std::ostringstream text;
+  text << std::setprecision(10) << std::sqrt(length) * 1e3;
+  c.set_metadata("link_length_mm", text.str());
 }
 
 // Mean change of distance between the material points of each extensometer pair (m).
@@ -216,6 +257,7 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
     c.set_metadata("grip_capacity_N", newton.str());
   }
   if (p.generalised_output()) add_generalised_channels(c, records, p);
+  if (!p.output.link_sections.empty()) add_link_channels(c, records, p.output);
   const char* axes[] = {"x", "y", "z"};
   for (std::size_t k = 0; k < p.output.probe_points.size(); ++k)
     for (unsigned a = 0; a < 3; ++a) {

@@ -22,7 +22,7 @@ std::filesystem::path WireSolver::Impl::checkpoint_file(unsigned step) const {
 }
 
 namespace {
-constexpr char kCheckpointMagic[16] = "dtwire-ckpt-4";
+constexpr char kCheckpointMagic[16] = "dtwire-ckpt-5";
 }  // namespace
 
 // Layout: magic, then one boost binary archive: the header (ranks, DoFs, cells, quadrature

@@ -58,6 +58,7 @@ void WireSolver::Impl::record_end(StepRecord& record) {
     record.end_force[c] = Utilities::MPI::sum(force[c], comm) * scale;
     record.end_moment[c] = Utilities::MPI::sum(moment[c], comm) * scale;
     record.end_translation[c] = translation[c] * length_multiplier();
+    record.end_centre[c] = centre[c];
   }
   end_work = (bonded_grip ? 0.0 : end_work) + Utilities::MPI::sum(work, comm) * energy_scale;
   if (rigid_contact) {  // the tools push the wire: their work is -(force on the tool) . displacement

@@ -79,6 +79,8 @@ void WireSolver::Impl::setup() {
                                     comm);
     relevant.add_index(force_dof);  // every rank reads its displacement and constrains to it
   }
+  if (!prm.output.link_sections.empty() && !prm.geometry.double_twist)
+    throw InputError("Output", "'Link sections (mm)' needs a double-twist mesh file (`dtwire mesh dt`)");
   if (prm.wire_contact.enabled) {
     if (!prm.geometry.double_twist)
       throw InputError("Wire contact", "Enabled = true needs a double-twist mesh file (`dtwire mesh dt`)");

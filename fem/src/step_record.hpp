@@ -28,6 +28,7 @@ struct StepRecord {
   // top end's constraint, the moment about the end centre; translation of that centre and the
   // prescribed rotation (rad); external work of the end and the tools (J, trapezoidal rule).
   std::array<double, 3> end_force{}, end_moment{}, end_translation{};
+  std::array<double, 3> end_centre{};  // m, current position of the centre the moment is about
   std::vector<std::array<double, 3>> probe_displacements;  // m, one per Output/Probe points entry
   double end_rotation = 0.0, external_work = 0.0;
 
@@ -37,7 +38,7 @@ struct StepRecord {
     ar& step & time & displacement & force & plastic_dissipation & elastic_energy & neck_radius & iterations;
     ar& damage & damage_triaxiality & damage_lode & damage_z & damage_r;
     ar& contact & wire_contact & grip;
-    ar& end_force & end_moment & end_translation & probe_displacements & end_rotation & external_work;
+    ar& end_force & end_moment & end_translation & end_centre & probe_displacements & end_rotation & external_work;
   }
 };
 
