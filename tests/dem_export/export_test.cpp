@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <map>
 
 #include "dtwire/core/error.hpp"
@@ -162,6 +163,48 @@ TEST(Pfc7Commands, OtherLawsAreLeftOutAndNoThesisSetIsAnError) {
   wirepm.law = "wirepm";
   EXPECT_FALSE(is_pfc7_macroelement_set(wirepm));
   EXPECT_THROW(pfc7_macroelement_commands({wirepm}, make_provenance("test")), std::invalid_argument);
+}
+
+// macro3d's optional bending-axial parameters: accepted by the schema, passed through the
+// tables (JSON, CSV, HDF5, unit "1"), never written for the PFC7 plugin (it exports thesis sets
+// only; a macro3d set is left out whatever it holds).
+TEST(Pfc7Commands, Macro3dCouplingParametersPassThroughTheTablesButNotToPfc7) {
+  std::vector<ParameterSet> sets = read_parameter_file(kData + "macroelement_thesis_params.json");
+  ASSERT_EQ(sets.size(), 2u);
+  ParameterSet& sw = sets[0].wire_type == "single_wire" ? sets[0] : sets[1];
+  sw.law = "macro3d";
+  sw.set("bending_axial_coupling", 1.0);
+  sw.set("moment_hardening_ratio", 1.7);
+  EXPECT_NO_THROW(check_parameter_names(sw, "macro3d", "x.json"));
+  EXPECT_THROW(check_parameter_names(sw, "thesis", "x.json"), InputError);
+  const auto dir = scratch("macro3d_coupling");
+  export_parameter_tables({sw}, dir, make_provenance("test"));
+  const auto back = read_parameter_file(dir / "single_wire_parameters.json");
+  ASSERT_EQ(back.size(), 1u);
+  EXPECT_EQ(back[0].map().at("bending_axial_coupling"), 1.0);
+  EXPECT_EQ(back[0].map().at("moment_hardening_ratio"), 1.7);
+  for (const ParameterEntry& e : back[0].entries) {
+    if (e.name == "bending_axial_coupling" || e.name == "moment_hardening_ratio") {
+      EXPECT_EQ(e.unit, "1");
+    }
+  }
+  const Results h5 = read_results(dir / "single_wire_parameters.h5");
+  int found = 0;
+  for (const Parameter& p : h5.parameters)
+    if (p.name == "bending_axial_coupling" || p.name == "moment_hardening_ratio") ++found;
+  EXPECT_EQ(found, 2);
+  std::ifstream csv(dir / "single_wire_parameters.csv");
+  const std::string text((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("bending_axial_coupling,1,1,"), std::string::npos);
+  EXPECT_NE(text.find("moment_hardening_ratio,1.7,1,"), std::string::npos);
+  // PFC7: only the thesis set (double twist, cmat 2) is written; none of the new names.
+  EXPECT_FALSE(is_pfc7_macroelement_set(sw));
+  const std::string commands = pfc7_macroelement_commands(sets, make_provenance("test"));
+  EXPECT_EQ(read_pfc7_macroelement_commands(commands).count(1), 0u);
+  EXPECT_EQ(read_pfc7_macroelement_commands(commands).count(2), 1u);
+  EXPECT_EQ(commands.find("coupling"), std::string::npos);
+  EXPECT_EQ(commands.find("hardening_ratio"), std::string::npos);
+  EXPECT_THROW(pfc7_macroelement_commands({sw}, make_provenance("test")), std::invalid_argument);
 }
 
 TEST(YadeScript, DescribesTheMaterialAndRefusesWhatYadeCannotDo) {
