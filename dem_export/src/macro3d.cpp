@@ -119,12 +119,34 @@ void Macro3dLaw::update(const Vector6& given_increment) {
   // s = u + c |w|^2 (w the total rotation), where the elasticity is linear and uncoupled
   // (N = k_a (s - u_p), M_s = k_m (w - w_p)): the axial increment becomes ds = du + c d|w|^2.
   // The surface acts on the end moment M = M_s + 2 c N w: general_update with the coupled
-  // integrator (no elastic fast path).
+  // integrator unless the end state is certainly inside.
   if (coupling_ > 0.0) {
     Vector6 stretched = given_increment;
     const double wy = rotation_[0], wz = rotation_[1];
     const double dwy = given_increment[4], dwz = given_increment[5];
     stretched[0] += coupling_ * ((2.0 * wy + dwy) * dwy + (2.0 * wz + dwz) * dwz);
+    // Elastic fast path: the end state certainly inside (as the uncoupled one, which also tests
+    // the end of the increment only; the general update tests its end and start the same way).
+    const double N1 = plastic_.y[0] + stiffness_.axial * stretched[0];
+    const double Msy1 = plastic_.y[1] + stiffness_.moment * dwy, Msz1 = plastic_.y[2] + stiffness_.moment * dwz;
+    const double My1 = Msy1 + 2.0 * coupling_ * N1 * (wy + dwy), Mz1 = Msz1 + 2.0 * coupling_ * N1 * (wz + dwz);
+    if (detail::certainly_inside(surface_, N1, My1 * My1 + Mz1 * Mz1, plastic_.Ny)) {
+      const double shear_y1 = shear_y_ + shear_stiffness_ * stretched[1];
+      const double shear_z1 = shear_z_ + shear_stiffness_ * stretched[2];
+      const double torque1 = torque_ + torsion_stiffness_ * stretched[3];
+      energy_.external += damage_factor_ * (0.5 * (plastic_.y[0] + N1) * stretched[0] +
+                                            0.5 * (shear_y_ + shear_y1) * stretched[1] +
+                                            0.5 * (shear_z_ + shear_z1) * stretched[2] +
+                                            0.5 * (torque_ + torque1) * stretched[3] +
+                                            0.5 * (plastic_.y[1] + Msy1) * dwy + 0.5 * (plastic_.y[2] + Msz1) * dwz);
+      plastic_.y[0] = N1, plastic_.y[1] = Msy1, plastic_.y[2] = Msz1;
+      plastic_.f_known = false;
+      shear_y_ = shear_y1, shear_z_ = shear_z1, torque_ = torque1;
+      rotation_[0] = wy + dwy, rotation_[1] = wz + dwz;
+      if (shear_strength_ > 0.0 && damage_factor_ * std::hypot(shear_y_, shear_z_) > shear_strength_)
+        break_bond(FailureMode::Shear);
+      return;
+    }
     general_update(stretched);
     rotation_[0] = wy + dwy, rotation_[1] = wz + dwz;
     return;
