@@ -424,7 +424,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
     x.only({"name", "target", "target_columns", "abscissa", "arc_length", "channels", "weight",
             "branch_tolerance", "increments_per_leg", "input_template", "input_prm", "prm_set",
-            "pull_angle_deg", "pull_angle_rad"},
+            "pull_angle_deg", "pull_angle_rad", "path_from_target"},
            "path_");
     for (const char* key : {"pull_angle_deg", "pull_angle_rad"})
       if (x.has(key) && def.simulator != "dem_specimen") x.fail(x.get(key), key, "only for kind = \"dem_specimen\"");
@@ -447,6 +447,25 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
         }
       e.target = map_columns(curve, mapping);
       def.inputs.push_back(target);
+    }
+    // path_from_target: the replayed path is the target's own kinematics; it also gives the
+    // target its pseudo-time column, so it is built before the abscissa is checked.
+    std::optional<LoadPath> followed_path;
+    if (x.has("path_from_target") && def.simulator != "law_replay")
+      x.fail(x.get("path_from_target"), "path_from_target", "only for kind = \"law_replay\"");
+    if (def.simulator == "law_replay" && x.has("path_from_target")) {
+      if (!x.boolean("path_from_target", false))
+        x.fail(x.get("path_from_target"), "path_from_target", "expected true or no field");
+      for (const auto& [key, item] : raw)
+        if (std::string(key.str()).rfind("path_", 0) == 0 && std::string(key.str()) != "path_from_target")
+          x.fail(&item, std::string(key.str()), "give either path_from_target or path waypoints, not both");
+      if (!read_targets)
+        x.fail(x.get("path_from_target"), "path_from_target", "needs the target curve (not available with --synthesize)");
+      try {
+        followed_path = path_from_target(e.target, static_cast<int>(x.integer("increments_per_leg", 100, 1)));
+      } catch (const std::invalid_argument& error) {
+        x.fail(x.get("path_from_target"), "path_from_target", "the target " + target.string() + ": " + error.what());
+      }
     }
     def.experiment_targets.push_back(target);
     def.experiment_target_names.push_back(synthesized_name);
@@ -483,7 +502,9 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     if (read_targets && !e.target.has(e.abscissa))
       x.fail(x.get("abscissa"), "abscissa", "the target " + target.string() + " has no channel '" + e.abscissa + "'");
     const int increments = static_cast<int>(x.integer("increments_per_leg", 100, 1));
-    if (def.simulator == "law_replay") {
+    if (followed_path) {
+      e.simulator = std::make_shared<LawReplaySimulator>(def.law, def.fixed, *followed_path);
+    } else if (def.simulator == "law_replay") {
       LoadPath path;
       path.displacement_m = waypoints(x, "path_displacement_", Dimension::Length, raw);
       path.rotation_rad = waypoints(x, "path_rotation_", Dimension::Angle, raw);

@@ -27,6 +27,31 @@ LawReplaySimulator::LawReplaySimulator(std::string law, dem::ParameterMap fixed,
   validate(path_);
 }
 
+LoadPath path_from_target(Curve& target, int increments_per_leg) {
+  if (target.size() == 0) throw std::invalid_argument("no rows");
+  if (!target.has("displacement") && !target.has("rotation"))
+    throw std::invalid_argument("neither a displacement nor a rotation channel to follow");
+  if (target.has("time")) throw std::invalid_argument("already has a 'time' channel (path_from_target makes its own)");
+  const std::size_t rows = target.size();
+  const std::vector<double> u = target.has("displacement") ? target.si("displacement") : std::vector<double>(rows, 0.0);
+  const std::vector<double> theta = target.has("rotation") ? target.si("rotation") : std::vector<double>(rows, 0.0);
+  LoadPath path;
+  path.increments_per_leg = increments_per_leg;
+  const bool starts_at_origin = u.front() == 0.0 && theta.front() == 0.0;
+  if (!starts_at_origin) {
+    path.displacement_m.push_back(0.0);
+    path.rotation_rad.push_back(0.0);
+  }
+  path.displacement_m.insert(path.displacement_m.end(), u.begin(), u.end());
+  path.rotation_rad.insert(path.rotation_rad.end(), theta.begin(), theta.end());
+  if (path.displacement_m.size() < 2) throw std::invalid_argument("one row at the origin: no path to follow");
+  std::vector<double> time(rows);
+  for (std::size_t k = 0; k < rows; ++k) time[k] = static_cast<double>(k + (starts_at_origin ? 0 : 1));
+  target.add_channel_si("time", Dimension::Time, time, *find_unit("s"));
+  validate(path);
+  return path;
+}
+
 Curve LawReplaySimulator::simulate(const ParameterValues& parameters) const {
   dem::ParameterMap all = fixed_;
   for (const auto& [name, value] : parameters) all[name] = value;

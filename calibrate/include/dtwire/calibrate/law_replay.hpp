@@ -24,6 +24,14 @@ struct LoadPath {
 // increments_per_leg < 1.
 void validate(const LoadPath& path);
 
+// A path that follows a target's own kinematics (e.g. an FE run's measured link elongation and
+// rotation, which no waypoint list can state in advance): its waypoints are the target's rows'
+// displacement and rotation (zero where the target has no such channel), preceded by the origin
+// unless the first row is there. Adds the target's `time` channel, each row at the pseudo-time of
+// its waypoint, so that abscissa = "time" compares the forces row by row. Throws
+// std::invalid_argument if the target has neither channel, no row, or a `time` channel already.
+LoadPath path_from_target(Curve& target, int increments_per_leg);
+
 class LawReplaySimulator final : public Simulator {
  public:
   // `fixed` holds the law parameters that are not fitted; fitted ones override them.
