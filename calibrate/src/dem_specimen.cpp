@@ -198,8 +198,6 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
     nodes[i].mass = mass[i] > 0.0 ? mass[i] : 1.0;
     nodes[i].rotational_inertia = inertia[i] > 0.0 ? inertia[i] : 1.0;
   }
-  std::vector<double> arm_segment_length(links.size());
-  for (std::size_t l = 0; l < links.size(); ++l) arm_segment_length[l] = link_length[l];
 
   dem::EngineOptions engine_options;
   engine_options.gravity = Vector3::Zero();
@@ -223,14 +221,15 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
       for (std::size_t l = 0; l < engine.link_count(); ++l) {
         const dem::NetLink& link = engine.link(l).link;
         if (link.a == static_cast<int>(i) || link.b == static_cast<int>(i))
-          shortest = std::min(shortest, arm_segment_length[l]);
+          shortest = std::min(shortest, link_length[l]);
       }
       free_length.push_back(shortest);
     }
 
   std::vector<double> time, displacement, force, shear_force, moment, dt_elongation, dt_axial, dt_shear, dt_moment;
   std::array<std::vector<double>, 4> arm_force;
-  const auto record = [&](double t) {
+  // The displacement is the path's (the grips are moved to it exactly, up to round-off).
+  const auto record = [&](double t, double grip_displacement) {
     Vector3 f = Vector3::Zero();
     double m = 0.0;
     const Vector3 centre = 0.5 * (engine.position(moved[0]) + engine.position(moved[1]));
@@ -241,7 +240,7 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
     }
     const Vector6 q = engine.link(0).law->forces();
     time.push_back(t);
-    displacement.push_back((centre - start).dot(d));
+    displacement.push_back(grip_displacement);
     force.push_back(f.dot(d));
     shear_force.push_back(f.dot(v));
     moment.push_back(m);
@@ -263,7 +262,7 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
     return largest / reference;
   };
 
-  record(0.0);
+  record(0.0, 0.0);
   const auto& u = path_.displacement_m;
   const int increments = path_.increments_per_leg;
   for (std::size_t leg = 1; leg < u.size(); ++leg)
@@ -297,7 +296,10 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
       if (engine.broken_links() > 0)
         throw ComputationError("dem_specimen: the specimen broke (" + std::to_string(engine.broken_links()) +
                                " link(s)) at grip displacement " + describe(after) + ", before the path's end");
-      record(static_cast<double>(leg - 1) + static_cast<double>(i) / increments);
+      const double moved_by = (0.5 * (engine.position(moved[0]) + engine.position(moved[1])) - start).dot(d);
+      if (!(std::abs(moved_by - after) <= 1e-9 * (std::abs(after) + 1e-3)))
+        throw ComputationError("dem_specimen: the grips are at " + describe(moved_by) + " instead of " + describe(after));
+      record(static_cast<double>(leg - 1) + static_cast<double>(i) / increments, after);
     }
   info.steps = engine.steps_taken();
 
