@@ -18,11 +18,16 @@ Point3 cross(const Point3& a, const Point3& b) {
 }
 Point3 midpoint(const Point3& a, const Point3& b) { return {{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2}}; }
 
-// The section's orthonormal frame as the rows e1, e2, e3 (Gram-Schmidt on p2 - p1, p3 - p1).
+// The mean offset of the section's two off-axis points from their wires' axis points.
+Point3 mean_offset(const SectionPoints& p) {
+  const Point3 qa = minus(p[2], p[0]), qb = minus(p[3], p[1]);
+  return scaled(Point3{{qa[0] + qb[0], qa[1] + qb[1], qa[2] + qb[2]}}, 0.5);
+}
+
+// The section's orthonormal frame as the rows e1, e2, e3 (Gram-Schmidt on b - a, mean offset).
 Matrix3 section_frame(const SectionPoints& p) {
-  const Point3 a = minus(p[1], p[0]), b = minus(p[2], p[0]);
-  const double la = norm(a);
-  const Point3 e1 = scaled(a, 1.0 / la);
+  const Point3 a = minus(p[1], p[0]), b = mean_offset(p);
+  const Point3 e1 = scaled(a, 1.0 / norm(a));
   const Point3 normal_part = minus(b, scaled(e1, dot(b, e1)));
   const Point3 e2 = scaled(normal_part, 1.0 / norm(normal_part));
   return {{e1, e2, cross(e1, e2)}};
@@ -48,12 +53,11 @@ Matrix3 times_transpose(const Matrix3& a, const Matrix3& b) {  // a b^T
 }  // namespace
 
 void check_section(const SectionPoints& p) {
-  const Point3 a = minus(p[1], p[0]), b = minus(p[2], p[0]);
+  const Point3 a = minus(p[1], p[0]), b = mean_offset(p);
   const double la = norm(a), lb = norm(b);
-  if (!(la > 0.0) || !(lb > 0.0))
-    throw std::invalid_argument("two points of a link section coincide");
-  if (norm(cross(a, b)) < 1e-3 * la * lb)
-    throw std::invalid_argument("the third point of a link section lies on the line of the first two");
+  if (!(la > 0.0)) throw std::invalid_argument("the two axis points of a link section coincide");
+  if (!(lb > 0.0) || norm(cross(a, b)) < 1e-3 * la * lb)
+    throw std::invalid_argument("the mean offset of a link section's off-axis points lies along its axis points' line");
 }
 
 Point3 rotation_vector(const Matrix3& r) {

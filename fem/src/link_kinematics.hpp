@@ -3,12 +3,15 @@
 // so that a link-level fit compares the element with the twist itself rather than with the whole
 // specimen (arms and grips included).
 //
-// A section of the twist is three material points: the two wires' axis points at the section
-// (p1, p2) and a third point off their line (p3, fixing the section's roll). Its frame is
-// origin o = (p1 + p2)/2, e1 = (p2 - p1)/|p2 - p1|, e2 = the part of p3 - p1 normal to e1
-// (normalised), e3 = e1 x e2; the same construction on the deformed points gives the current
-// frame, and the section's rotation is R = E E0^T (E, E0: current and reference frames as
-// columns). The link joins the bottom section's origin to the top section's:
+// A section of the twist is four material points: the two wires' axis points (a, b) and one
+// point in each wire off its axis, both offset the same way (qa, qb), fixing the section's roll.
+// Its frame is origin o = (a + b)/2, e1 = (b - a)/|b - a|, e2 = the part of the mean offset
+// ((qa - a) + (qb - b))/2 normal to e1 (normalised), e3 = e1 x e2; the same construction on the
+// deformed points gives the current frame, and the section's rotation is R = E E0^T (E, E0:
+// current and reference frames as columns). Averaging the two wires' offsets cancels the roll
+// of each wire's own cross-section as its helix straightens (the two wires' helix tangents at a
+// section tilt oppositely), which one wire's offset alone would read as bending of the link.
+// The link joins the bottom section's origin to the top section's:
 //   elongation  = |o_t - o_b| - |o_t0 - o_b0|          (chord, as a DEM bond measures it)
 //   rotation    = log(R_t R_b^T)                        (relative rotation vector, global axes)
 //   axial force = F . c,  shear force = |F - (F . c) c|  (c: current chord direction)
@@ -23,7 +26,7 @@
 namespace dtwire::fem {
 
 using Point3 = std::array<double, 3>;
-using SectionPoints = std::array<Point3, 3>;  // p1, p2 (wire axes), p3 (off their line)
+using SectionPoints = std::array<Point3, 4>;  // a, b (wire axes), qa, qb (offsets in each wire)
 
 struct LinkState {
   double length = 0.0;      // current chord [m]
@@ -33,7 +36,8 @@ struct LinkState {
   Point3 moment{};          // about the link midpoint [N m]
 };
 
-// Throws std::invalid_argument if a section's points are (nearly) collinear or coincide.
+// Throws std::invalid_argument if a section's axis points coincide or its mean offset is
+// (nearly) along their line.
 void check_section(const SectionPoints& reference);
 
 // The link state from the sections' reference points and their current positions and the load

@@ -147,8 +147,9 @@ void declare(ParameterHandler& prm) {
                     "what the curve's displacement_mm column holds: the load-path displacement, or the "
                     "extensometer elongation (the load path then goes to grip_displacement_mm)");
   prm.declare_entry("Link sections (mm)", "", Patterns::Anything(),
-                    "double twist as a DEM link: bottom and top section, each 'x y z, x y z, x y z' (the two "
-                    "wires' axis points, then a point off their line), separated by ';'; adds link_elongation_mm, "
+                    "double twist as a DEM link: bottom and top section, each 'x y z, x y z, x y z, x y z' (the "
+                    "two wires' axis points, then a point off the axis in each wire, offset the same way), separated "
+                    "by ';'; adds link_elongation_mm, "
                     "link_rotation_{x,y,z}_rad, link_axial_force_N, link_shear_force_N, link_moment_{x,y,z}_Nm");
   prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
                     "write a restart checkpoint every n steps (0: none)");
@@ -508,15 +509,15 @@ void read_output(Source& source, Parameters& p) {
       std::istringstream in(item);
       SectionPoints section{};
       bool ok = true;
-      for (unsigned k = 0; k < 3 && ok; ++k) {
+      for (unsigned k = 0; k < 4 && ok; ++k) {
         char comma = 0;
-        ok = (in >> section[k][0] >> section[k][1] >> section[k][2]) && (k == 2 || ((in >> comma) && comma == ','));
+        ok = (in >> section[k][0] >> section[k][1] >> section[k][2]) && (k == 3 || ((in >> comma) && comma == ','));
       }
       ok = ok && (in >> std::ws).eof();
       for (const auto& x : section)
         for (double v : x) ok = ok && std::isfinite(v);
       if (!ok)
-        throw InputError(name, entry + ": expected two sections 'x y z, x y z, x y z' separated by ';', found '" +
+        throw InputError(name, entry + ": expected two sections 'x y z, x y z, x y z, x y z' separated by ';', found '" +
                                    item + "'");
       try {
         check_section(section);
@@ -525,7 +526,7 @@ void read_output(Source& source, Parameters& p) {
       }
       const std::size_t first = p.output.probe_points.size();
       for (const auto& x : section) p.output.probe_points.push_back({{x[0] * 1e-3, x[1] * 1e-3, x[2] * 1e-3}});
-      p.output.link_sections.push_back({{first, first + 1, first + 2}});
+      p.output.link_sections.push_back({{first, first + 1, first + 2, first + 3}});
     }
     if (!p.output.link_sections.empty() && p.output.link_sections.size() != 2)
       throw InputError(name, entry + ": expected exactly two sections (bottom; top), found " +

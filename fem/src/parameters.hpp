@@ -113,9 +113,9 @@ struct OutputParameters {
   // The curve's displacement_mm column holds the extensometer elongation (the load-path
   // displacement moves to grip_displacement_mm), as a laboratory curve measured that way.
   bool extensometer_as_displacement = false;
-  // The twist as a DEM link (link_kinematics.hpp): its bottom and top sections, three material
+  // The twist as a DEM link (link_kinematics.hpp): its bottom and top sections, four material
   // points each (indices into probe_points), or empty. Adds the link_* columns to the curve.
-  std::vector<std::array<std::size_t, 3>> link_sections;
+  std::vector<std::array<std::size_t, 4>> link_sections;
 };
 
 struct Parameters {

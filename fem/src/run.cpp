@@ -113,7 +113,7 @@ void add_generalised_channels(Curve& c, const std::vector<StepRecord>& records, 
 void add_link_channels(Curve& c, const std::vector<StepRecord>& records, const OutputParameters& output) {
   const auto section = [&](std::size_t which, const StepRecord* s) {
     SectionPoints points{};
-    for (unsigned k = 0; k < 3; ++k) {
+    for (unsigned k = 0; k < 4; ++k) {
       const std::size_t i = output.link_sections[which][k];
       for (unsigned a = 0; a < 3; ++a)
         points[k][a] = output.probe_points[i][a] + (s ? s->probe_displacements.at(i)[a] : 0.0);

@@ -31,13 +31,16 @@ Point3 apply(const Matrix3& r, const Point3& x, const Point3& about, const Point
 }
 
 SectionPoints moved(const SectionPoints& p, const Matrix3& r, const Point3& about, const Point3& shift) {
-  return {{apply(r, p[0], about, shift), apply(r, p[1], about, shift), apply(r, p[2], about, shift)}};
+  return {{apply(r, p[0], about, shift), apply(r, p[1], about, shift), apply(r, p[2], about, shift),
+           apply(r, p[3], about, shift)}};
 }
 
-// The 40 mm twist of the default DT: wire axes at x = +-1.355 mm at both ends, a third point
-// 0.9 mm off in y inside wire A.
-const SectionPoints kBottom{{{{1.355e-3, 0, 0}}, {{-1.355e-3, 0, 0}}, {{1.355e-3, 0.9e-3, 0}}}};
-const SectionPoints kTop{{{{-1.355e-3, 0, 40e-3}}, {{1.355e-3, 0, 40e-3}}, {{-1.355e-3, 0.9e-3, 40e-3}}}};
+// The 40 mm twist of the default DT: wire axes at x = +-1.355 mm at both ends, and a point
+// 0.9 mm off in y inside each wire.
+const SectionPoints kBottom{
+    {{{1.355e-3, 0, 0}}, {{-1.355e-3, 0, 0}}, {{1.355e-3, 0.9e-3, 0}}, {{-1.355e-3, 0.9e-3, 0}}}};
+const SectionPoints kTop{
+    {{{-1.355e-3, 0, 40e-3}}, {{1.355e-3, 0, 40e-3}}, {{-1.355e-3, 0.9e-3, 40e-3}}, {{1.355e-3, 0.9e-3, 40e-3}}}};
 const Point3 kTopOrigin{{0, 0, 40e-3}}, kZero{{0, 0, 0}};
 const Matrix3 kIdentity{{{{1, 0, 0}}, {{0, 1, 0}}, {{0, 0, 1}}}};
 
@@ -93,9 +96,22 @@ TEST(LinkKinematics, RotationVectorNearHalfATurn) {
   }
 }
 
+// As the helix straightens each wire's cross-section rolls about the line of the axis points, the
+// two wires the opposite way (their helix tangents at a section tilt oppositely): no rotation of
+// the link.
+TEST(LinkKinematics, OppositeRollOfTheTwoWiresIsNoRotation) {
+  SectionPoints top = kTop;
+  const double roll = 0.3;
+  top[2] = apply(axis_angle({{1, 0, 0}}, roll), kTop[2], kTop[0], kZero);
+  top[3] = apply(axis_angle({{1, 0, 0}}, -roll), kTop[3], kTop[1], kZero);
+  const LinkState s = link_state(kBottom, kBottom, kTop, top, kZero, kZero, kTopOrigin);
+  for (unsigned i = 0; i < 3; ++i) EXPECT_NEAR(s.rotation[i], 0.0, 1e-15);
+}
+
 TEST(LinkKinematics, DegenerateSectionsAreRefused) {
-  EXPECT_THROW(check_section({{{{0, 0, 0}}, {{1, 0, 0}}, {{2, 0, 0}}}}), std::invalid_argument);
-  EXPECT_THROW(check_section({{{{0, 0, 0}}, {{0, 0, 0}}, {{0, 1, 0}}}}), std::invalid_argument);
+  EXPECT_THROW(check_section({{{{0, 0, 0}}, {{1, 0, 0}}, {{2, 0, 0}}, {{-1, 0, 0}}}}), std::invalid_argument);
+  EXPECT_THROW(check_section({{{{0, 0, 0}}, {{0, 0, 0}}, {{0, 1, 0}}, {{0, 1, 0}}}}), std::invalid_argument);
+  EXPECT_THROW(check_section({{{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{1, -1, 0}}}}), std::invalid_argument);
   EXPECT_NO_THROW(check_section(kBottom));
 }
 
