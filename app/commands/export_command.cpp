@@ -19,7 +19,7 @@ namespace dtwire::app {
 namespace {
 
 struct ExportOptions {
-  std::string params;
+  std::vector<std::string> params;  // one or more files; their sets are exported together
   std::string backbone;
   std::string wire_type;
   std::size_t steps = 2000;
@@ -41,19 +41,38 @@ bool is_export_output(const std::string& name) {
 }
 
 int run_export_command(const ExportOptions& o) {
-  std::vector<dem::ParameterSet> sets = dem::read_parameter_file(o.params);
-  if (!o.wire_type.empty()) sets = {dem::select_wire_type(sets, o.wire_type, o.params)};
+  // The sets of every --params file, each with the file it came from (for the messages); a wire
+  // type given by two files is refused, so the SW and DT fits of one campaign export together.
+  std::vector<dem::ParameterSet> sets;
+  std::vector<std::string> source;
+  std::string types_present;
+  for (const std::string& file : o.params)
+    for (dem::ParameterSet& set : dem::read_parameter_file(file)) {
+      if (types_present.find(set.wire_type) == std::string::npos)
+        types_present += (types_present.empty() ? "" : ", ") + set.wire_type;
+      if (!o.wire_type.empty() && set.wire_type != o.wire_type) continue;
+      for (std::size_t k = 0; k < sets.size(); ++k)
+        if (sets[k].wire_type == set.wire_type)
+          throw InputError(file, "wire type '" + set.wire_type + "' is also in " + source[k] +
+                                     " (one set per wire type: export them apart, or choose one with --wire-type)");
+      sets.push_back(std::move(set));
+      source.push_back(file);
+    }
+  if (sets.empty())
+    throw InputError(o.params.front(), "no wire type '" + o.wire_type + "' in the --params files; choose one of: " +
+                                           types_present + " (--wire-type)");
   if (!o.backbone.empty()) {
     const Curve backbone = dem::read_backbone_csv(o.backbone);
     for (dem::ParameterSet& set : sets) dem::add_backbone(set, backbone);
   }
   // Every set is checked by the law the DEM driver would build from it (the same checks as
   // `dtwire dem driver` and the C ABI) before anything is written: a refused set leaves no export.
-  for (const dem::ParameterSet& set : sets) {
+  for (std::size_t index = 0; index < sets.size(); ++index) {
+    const dem::ParameterSet& set = sets[index];
     const dem::ParameterMap values = set.map();
     for (const char* length : {"reference_length_m", "diameter_m", "D_m"})
       if (values.count(length) && !(values.at(length) > 0.0))
-        throw InputError(o.params, "wire type '" + set.wire_type + "': '" + length + "': expected a length > 0, found " +
+        throw InputError(source[index], "wire type '" + set.wire_type + "': '" + length + "': expected a length > 0, found " +
                                        std::to_string(values.at(length)));
     const std::string law = !set.law.empty() ? set.law
                             : is_wirepm_set(set)                       ? "wirepm"
@@ -61,22 +80,25 @@ int run_export_command(const ExportOptions& o) {
                                                                        : "";
     if (law.empty()) continue;
     try {
-      dem::check_parameter_names(set, law, o.params);
+      dem::check_parameter_names(set, law, source[index]);
       dem::make_contact_law(law, values);
     } catch (const std::invalid_argument& e) {
-      throw InputError(o.params, "wire type '" + set.wire_type + "' (law " + law + "): " + e.what());
+      throw InputError(source[index], "wire type '" + set.wire_type + "' (law " + law + "): " + e.what());
     }
   }
-  std::vector<std::filesystem::path> inputs{o.params};
+  std::vector<std::filesystem::path> inputs(o.params.begin(), o.params.end());
   if (!o.backbone.empty()) inputs.emplace_back(o.backbone);
-  const Provenance provenance = make_provenance("dtwire export --params " + o.params, inputs);
+  std::string command_line = "dtwire export";
+  for (const std::string& file : o.params) command_line += " --params " + file;
+  const Provenance provenance = make_provenance(command_line, inputs);
   // Everything goes to a fresh folder moved into place at the end: an earlier export's files
   // (e.g. a set this parameter file no longer has) never sit beside this one's.
   PendingFolder folder(o.out, is_export_output);
   const std::filesystem::path& out = folder.temporary();
 
   std::vector<std::filesystem::path> written = dem::export_parameter_tables(sets, out, provenance);
-  for (const dem::ParameterSet& set : sets) {
+  for (std::size_t index = 0; index < sets.size(); ++index) {
+    const dem::ParameterSet& set = sets[index];
     if (!is_wirepm_set(set)) {
       std::cout << set.wire_type << ": no YADE script (needs diameter_m, reference_length_m and a backbone)\n";
       continue;
@@ -88,7 +110,7 @@ int run_export_command(const ExportOptions& o) {
       path.steps = o.steps;
       dem::write_yade_script(parameters, path, script);
     } catch (const std::invalid_argument& e) {
-      throw InputError(o.params, std::string("wire type '") + set.wire_type + "': " + e.what());
+      throw InputError(source[index], std::string("wire type '") + set.wire_type + "': " + e.what());
     }
     written.push_back(script);
   }
@@ -98,7 +120,7 @@ int run_export_command(const ExportOptions& o) {
       const std::string commands = dem::pfc7_macroelement_commands(sets, provenance);
       write_file_atomically(pfc7, [&](std::ostream& os) { os << commands; });
     } catch (const std::invalid_argument& e) {
-      throw InputError(o.params, e.what());
+      throw InputError(o.params.front(), e.what());
     }
     written.push_back(pfc7);
   }
@@ -115,7 +137,9 @@ void add_export_command(CLI::App& root, CommandSet& commands) {
   auto options = std::make_shared<ExportOptions>();
   CLI::App* command = root.add_subcommand(
       "export", "Export calibrated parameter sets for DEM codes (tables, YADE WirePM script, C ABI)");
-  command->add_option("--params", options->params, "Parameter file (.json; thesis, flat or calibrate format)")
+  command->add_option("--params", options->params,
+                      "Parameter file (.json; thesis, flat or calibrate format); repeat it to export the sets of "
+                      "several files together (e.g. the SW and the DT fit), one set per wire type")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--backbone", options->backbone, "WirePM backbone CSV (strain_1,stress_Pa) added to every set")
