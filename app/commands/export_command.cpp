@@ -1,6 +1,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 
@@ -46,8 +47,15 @@ int run_export_command(const ExportOptions& o) {
   std::vector<dem::ParameterSet> sets;
   std::vector<std::string> source;
   std::string types_present;
-  for (const std::string& file : o.params)
-    for (dem::ParameterSet& set : dem::read_parameter_file(file)) {
+  for (const std::string& given : o.params) {
+    // FILE#TYPE takes only that wire type's set from FILE (e.g. the DT set of a specimen fit).
+    const auto hash = given.rfind('#');
+    const std::string file = hash == std::string::npos ? given : given.substr(0, hash);
+    const std::string only = hash == std::string::npos ? "" : given.substr(hash + 1);
+    if (!std::filesystem::is_regular_file(file)) throw InputError(file, "cannot open the parameter file (--params)");
+    std::vector<dem::ParameterSet> file_sets = dem::read_parameter_file(file);
+    if (!only.empty()) file_sets = {dem::select_wire_type(file_sets, only, file)};
+    for (dem::ParameterSet& set : file_sets) {
       if (types_present.find(set.wire_type) == std::string::npos)
         types_present += (types_present.empty() ? "" : ", ") + set.wire_type;
       if (!o.wire_type.empty() && set.wire_type != o.wire_type) continue;
@@ -58,6 +66,7 @@ int run_export_command(const ExportOptions& o) {
       sets.push_back(std::move(set));
       source.push_back(file);
     }
+  }
   if (sets.empty())
     throw InputError(o.params.front(), "no wire type '" + o.wire_type + "' in the --params files; choose one of: " +
                                            types_present + " (--wire-type)");
@@ -86,7 +95,9 @@ int run_export_command(const ExportOptions& o) {
       throw InputError(source[index], "wire type '" + set.wire_type + "' (law " + law + "): " + e.what());
     }
   }
-  std::vector<std::filesystem::path> inputs(o.params.begin(), o.params.end());
+  std::vector<std::filesystem::path> inputs;
+  for (const std::string& file : source)
+    if (std::find(inputs.begin(), inputs.end(), std::filesystem::path(file)) == inputs.end()) inputs.emplace_back(file);
   if (!o.backbone.empty()) inputs.emplace_back(o.backbone);
   std::string command_line = "dtwire export";
   for (const std::string& file : o.params) command_line += " --params " + file;
@@ -139,9 +150,9 @@ void add_export_command(CLI::App& root, CommandSet& commands) {
       "export", "Export calibrated parameter sets for DEM codes (tables, YADE WirePM script, C ABI)");
   command->add_option("--params", options->params,
                       "Parameter file (.json; thesis, flat or calibrate format); repeat it to export the sets of "
-                      "several files together (e.g. the SW and the DT fit), one set per wire type")
-      ->required()
-      ->check(CLI::ExistingFile);
+                      "several files together (e.g. the SW and the DT fit), one set per wire type; FILE#TYPE takes "
+                      "only that wire type's set from FILE")
+      ->required();
   command->add_option("--backbone", options->backbone, "WirePM backbone CSV (strain_1,stress_Pa) added to every set")
       ->check(CLI::ExistingFile);
   command->add_option("--wire-type", options->wire_type, "Export only this set (e.g. single_wire)");

@@ -94,6 +94,23 @@ ParameterSet read_calibrate_array(const json& array, const std::filesystem::path
   return set;
 }
 
+// A joint fit of a DT specimen (calibrate's dem_specimen) names its parameters sw.<name> and
+// dt.<name>: its file holds the single-wire and the double-twist set, which are split here.
+std::vector<ParameterSet> split_specimen_set(ParameterSet joint) {
+  const auto prefixed = [](const ParameterEntry& e) { return e.name.rfind("sw.", 0) == 0 || e.name.rfind("dt.", 0) == 0; };
+  if (joint.entries.empty() || !std::all_of(joint.entries.begin(), joint.entries.end(), prefixed)) return {std::move(joint)};
+  ParameterSet sw{"single_wire", joint.law, {}}, dt{"double_twist", joint.law, {}};
+  for (ParameterEntry& e : joint.entries) {
+    ParameterSet& target = e.name.rfind("sw.", 0) == 0 ? sw : dt;
+    e.name = e.name.substr(3);
+    target.entries.push_back(std::move(e));
+  }
+  std::vector<ParameterSet> sets;
+  for (ParameterSet* set : {&sw, &dt})
+    if (!set->entries.empty()) sets.push_back(std::move(*set));
+  return sets;
+}
+
 }  // namespace
 
 ParameterMap ParameterSet::map() const {
@@ -148,7 +165,8 @@ std::vector<ParameterSet> read_parameter_file(const std::filesystem::path& file)
     if (parameters.is_object())
       sets.push_back(read_numeric_object(parameters, file, "parameters.", wire_type, law));
     else if (parameters.is_array())
-      sets.push_back(read_calibrate_array(parameters, file, wire_type, law));
+      for (ParameterSet& set : split_specimen_set(read_calibrate_array(parameters, file, wire_type, law)))
+        sets.push_back(std::move(set));
     else
       throw InputError(file.string(), "field 'parameters': expected an object {name: value} or an array of "
                                       "{name, value, unit, sigma}");

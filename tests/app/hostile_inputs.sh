@@ -96,6 +96,7 @@ case_ "nult_below_n0.json: wire type 'single_wire' (law thesis): thesis: Nult_N 
 case_ "length_zero.json: wire type 'single_wire': 'reference_length_m': expected a length > 0" export --params length_zero.json --out export
 case_ "overflow.json: not valid JSON" export --params overflow.json --out export
 case_ "wire type 'single_wire' is also in ea_missing.json (one set per wire type" export --params ea_missing.json --params ea_negative.json --out export
+case_ "no wire type 'gabion'; choose one of: double_twist, single_wire" export --params "$thesis#gabion" --out export
 case_ "no wire type 'dt' in the --params files; choose one of: double_twist, single_wire" export --params "$thesis" --params "$thesis" --wire-type dt --out export
 case_ "slideb.json:22: wire type 'single_wire': unknown parameter 'slideb' for law thesis (did you mean 'slide_b'?)" export --params slideb.json --out export
 case_ "did you mean 'slide_b'" dem driver --law thesis --params slideb.json --out driver

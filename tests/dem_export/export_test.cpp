@@ -75,6 +75,26 @@ TEST(ParameterFile, ReadsFlatAndCalibrateFormats) {
   EXPECT_FALSE(b.entries[2].sigma.has_value());
 }
 
+// A DT specimen fit (calibrate's dem_specimen) writes both sets with sw./dt. prefixes.
+TEST(ParameterFile, SpecimenFitSplitsIntoTheSingleWireAndDoubleTwistSets) {
+  const auto dir = scratch("specimen");
+  const auto joint = write_text(dir / "joint.json", R"({"law": "thesis", "wire_type": "dt_specimen", "parameters": [
+      {"name": "dt.N0_N", "value": 2173, "unit": "N", "sigma": 144},
+      {"name": "sw.N0_N", "value": 950, "unit": "N"},
+      {"name": "dt.k_F", "value": 366, "unit": "1/m"}]})");
+  const auto sets = read_parameter_file(joint);
+  ASSERT_EQ(sets.size(), 2u);
+  const ParameterSet dt = select_wire_type(sets, "double_twist", joint);
+  EXPECT_EQ(dt.law, "thesis");
+  EXPECT_EQ(dt.map(), (ParameterMap{{"N0_N", 2173.0}, {"k_F", 366.0}}));
+  EXPECT_EQ(*dt.entries[0].sigma, 144.0);
+  EXPECT_EQ(select_wire_type(sets, "single_wire", joint).map(), (ParameterMap{{"N0_N", 950.0}}));
+  // Partly prefixed names are not a specimen fit: one set, names unchanged.
+  const auto mixed = write_text(dir / "mixed.json", R"({"parameters": [
+      {"name": "dt.N0_N", "value": 1, "unit": "N"}, {"name": "m_f", "value": 0.1, "unit": "1"}]})");
+  ASSERT_EQ(read_parameter_file(mixed).size(), 1u);
+}
+
 TEST(ParameterFile, BadInputNamesTheFileAndTheField) {
   const auto dir = scratch("bad");
   EXPECT_NE(input_error_of(write_text(dir / "a.json", "{\"parameters\": {\"x\": 1,}}")).find("not valid JSON"),
