@@ -48,19 +48,7 @@ Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
   surface_ = detail::read_surface(p, law_name, "k_F_per_m", "k_M_per_rad",
                                   detail::checked(law_name, "rotation_flow_scale",
                                                   optional_parameter(p, "rotation_flow_scale", 1.0)));
-  if (p.count("moment_hardening_ratio")) {
-    // Moment capacity D sqrt(m_f) N_yM, N_yM = N0 + eta (r_M N0 - N0) = N0 (1 - sigma) + sigma N_y.
-    const double ratio = detail::checked(law_name, "moment_hardening_ratio", p.at("moment_hardening_ratio"));
-    if (!(ratio >= 1.0)) throw std::invalid_argument("macro3d: moment_hardening_ratio must be >= 1");
-    const double span = surface_.Nult - surface_.N0;
-    if (span > 0.0) {
-      surface_.moment_split = true;
-      surface_.moment_sigma = (ratio - 1.0) * surface_.N0 / span;
-      surface_.moment_offset = surface_.N0 * (1.0 - surface_.moment_sigma);
-    } else if (ratio != 1.0) {
-      throw std::invalid_argument("macro3d: moment_hardening_ratio must be 1 when Nult_N = N0_N (no hardening)");
-    }
-  }
+  detail::read_moment_hardening(p, law_name, surface_);
   damage_ = detail::read_damage(p, law_name);
   moment_work_weight_ = detail::checked(law_name, "damage_moment_work_weight",
                                         optional_parameter(p, "damage_moment_work_weight", 1.0));

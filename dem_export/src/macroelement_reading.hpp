@@ -31,6 +31,22 @@ inline SurfaceParameters read_surface(const ParameterMap& p, const std::string& 
   return s;
 }
 
+// macro3d's optional moment_hardening_ratio r_M (surface.moment_split): the moment capacity
+// D sqrt(m_f) N_yM with N_yM = N0 + eta (r_M N0 - N0) = N0 (1 - sigma) + sigma N_y.
+inline void read_moment_hardening(const ParameterMap& p, const std::string& law, SurfaceParameters& s) {
+  if (!p.count("moment_hardening_ratio")) return;
+  const double ratio = checked(law, "moment_hardening_ratio", p.at("moment_hardening_ratio"));
+  if (!(ratio >= 1.0)) throw std::invalid_argument(law + ": moment_hardening_ratio must be >= 1");
+  const double span = s.Nult - s.N0;
+  if (span > 0.0) {
+    s.moment_split = true;
+    s.moment_sigma = (ratio - 1.0) * s.N0 / span;
+    s.moment_offset = s.N0 * (1.0 - s.moment_sigma);
+  } else if (ratio != 1.0) {
+    throw std::invalid_argument(law + ": moment_hardening_ratio must be 1 when Nult_N = N0_N (no hardening)");
+  }
+}
+
 inline DamageParameters read_damage(const ParameterMap& p, const std::string& law) {
   DamageParameters d;
   d.W1 = nonnegative_parameter(p, law, "W1_J");

@@ -1,6 +1,7 @@
 // `dtwire dem driver` and `dtwire export` end to end: files written, exit codes, messages.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -75,6 +76,35 @@ TEST(DemCli, BadInputExitsWithTwoAndSaysWhere) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("field 'law'"), std::string::npos) << r.output;
   EXPECT_EQ(run_in(dir, "dem").exit_code, 2);
+}
+
+TEST(DemCli, SurfaceWritesBothCurvesOfEverySetAndRefusesOtherLaws) {
+  const auto dir = scratch("surface");
+  Outcome r = run_in(dir, "dem surface --params '" + kData + "macroelement_thesis_params.json' --points 51 --out out");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* set : {"single_wire", "double_twist"}) {
+    const dtwire::Curve table = dtwire::read_csv(dir / "out" / (std::string(set) + "_yield_surface.csv"));
+    ASSERT_EQ(table.size(), 102u) << set;  // two curves of 51 points
+    const auto& strength = table.channel("yield_strength").values;
+    const auto& force = table.channel("axial_force").values;
+    const auto& moment = table.channel("moment").values;
+    EXPECT_EQ(table.channel("moment").unit.symbol, "Nm");
+    EXPECT_LT(strength.front(), strength.back()) << set;  // N0, then Nult
+    EXPECT_EQ(force[50], strength.front());                // each curve ends at its N_y
+    EXPECT_EQ(force[101], strength.back());
+    EXPECT_GT(*std::max_element(moment.begin(), moment.end()), 0.0);
+    EXPECT_EQ(table.metadata("law"), "thesis");
+    EXPECT_EQ(table.metadata("wire_type"), set);
+  }
+  // One set of the file; a law without an N-M surface is refused, naming the file.
+  r = run_in(dir, "dem surface --params '" + kData + "macroelement_thesis_params.json' --wire-type double_twist --out one");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "one" / "single_wire_yield_surface.csv"));
+  write_text(dir / "wirepm.json", "{\"law\": \"wirepm\", \"parameters\": {\"diameter_m\": 0.0027}}");
+  r = run_in(dir, "dem surface --params wirepm.json --out bad");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("wirepm.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("thesis or macro3d"), std::string::npos) << r.output;
 }
 
 TEST(DemCli, ExportWritesTablesScriptAndTheCAbiBundle) {
