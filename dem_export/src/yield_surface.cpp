@@ -20,8 +20,8 @@ detail::SurfaceParameters surface_of(const std::string& law, const ParameterMap&
     return detail::read_surface(given, law, "k_F", "k_M", 1.0);
   }
   if (law == "macro3d") {
+    const Macro3dLaw element(given);  // the given map: the conversion below drops reference_length_m
     const ParameterMap p = given.count("EA_N") ? macro3d_parameters_from_thesis(given) : given;
-    const Macro3dLaw element(p);
     detail::SurfaceParameters s = detail::read_surface(p, law, "k_F_per_m", "k_M_per_rad", 1.0);
     detail::read_moment_hardening(p, law, s);
     s.Nc = element.compressive_strength();

@@ -85,6 +85,14 @@ TEST(YieldSurfaceCurve, Macro3dMatchesTheThesisAndSplitsTheMomentHardening) {
   const double capacity0 = p.at("D_m") * std::sqrt(p.at("m_f")) * p.at("N0_N");
   EXPECT_NEAR(moment_at(split[1], 0.0), capacity0, 1e-3 * capacity0);
   EXPECT_DOUBLE_EQ(split[1].axial_force_N.back(), p.at("Nult_N"));
+  // With the bending-axial coupling (it needs the bond length, which a thesis-keyed map carries):
+  // Nc is capped at 0.9 k_m / (2 c), c = kappa L / 24, as the law caps it.
+  p["bending_axial_coupling"] = 40.0;
+  const auto coupled = initial_and_ultimate_yield_surfaces("macro3d", p, 51);
+  const double k_m = p.at("EI_Nm2_per_deg_convention") * 180.0 / test::pi;
+  const double cap = 0.9 * k_m / (2.0 * 40.0 * p.at("reference_length_m") / 24.0);
+  ASSERT_LT(cap, p.at("Nc_N"));
+  EXPECT_NEAR(coupled[0].axial_force_N.front(), -cap, 1e-9 * cap);
 }
 
 TEST(YieldSurfaceCurve, RejectsOtherLawsAndBadArguments) {
