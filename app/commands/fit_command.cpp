@@ -10,6 +10,7 @@
 #include "../commands.hpp"
 #include "dtwire/calibrate/fit_file.hpp"
 #include "dtwire/calibrate/fit_output.hpp"
+#include "dtwire/calibrate/initial_values.hpp"
 #include "dtwire/calibrate/fitter.hpp"
 #include "dtwire/calibrate/synthesize.hpp"
 #include "dtwire/core/error.hpp"
@@ -28,6 +29,7 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     std::string file;
     std::string out;
     std::string targets;
+    std::string initial;
     bool resume = false;
     bool plot = false;
     int threads = -1;
@@ -45,6 +47,10 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                       "Directory that replaces {targets} at the start of the experiments' target paths "
                       "(e.g. where a campaign wrote its FE curves)")
       ->check(CLI::ExistingDirectory);
+  command->add_option("--initial", options->initial,
+                      "Start from the values in an earlier fit's parameters.json (parameters it names; "
+                      "e.g. a level-1 fit from the level-0 optimum)")
+      ->check(CLI::ExistingFile);
   command->add_flag("--resume", options->resume,
                     "Continue from <out>/checkpoint.json if present (same fit definition)");
   command->add_flag("--plot", options->plot,
@@ -72,6 +78,12 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     calibrate::FitReadOptions read;
     read.targets_directory = options->targets;
     auto def = calibrate::read_fit_file(options->file, read);
+    if (!options->initial.empty()) {
+      const std::size_t set = calibrate::apply_initial_values(def.parameters, options->initial);
+      std::cout << "initial values of " << set << " of " << def.parameters.size() << " parameters from "
+                << options->initial << "\n";
+      def.inputs.emplace_back(options->initial);
+    }
     const std::filesystem::path out =
         options->out.empty() ? std::filesystem::path("fit-out") / def.file.stem() : std::filesystem::path(options->out);
     std::filesystem::create_directories(out);
@@ -98,12 +110,15 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     std::signal(SIGINT, previous);
     if (!result.completed) {
       std::cerr << "fit interrupted; continue with: dtwire fit " << options->file
-                << (options->targets.empty() ? "" : " --targets " + options->targets) << " --out " << out.string()
+                << (options->targets.empty() ? "" : " --targets " + options->targets)
+                << (options->initial.empty() ? "" : " --initial " + options->initial) << " --out " << out.string()
                 << " --resume\n";
       return kExitFailure;
     }
     const auto provenance = make_provenance(
-        "dtwire fit " + options->file + (options->targets.empty() ? "" : " --targets " + options->targets), def.inputs);
+        "dtwire fit " + options->file + (options->targets.empty() ? "" : " --targets " + options->targets) +
+            (options->initial.empty() ? "" : " --initial " + options->initial),
+        def.inputs);
     calibrate::write_fit_outputs(def, result, provenance, out);
     std::cout << "fit " << def.file.filename().string() << ": cost " << result.cost << ", "
               << result.statistics.simulations << " simulation runs, " << result.wall_seconds

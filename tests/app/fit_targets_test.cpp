@@ -91,6 +91,32 @@ TEST_F(FitTargets, SynthesizedTargetsReadBackThroughTheMapping) {
   EXPECT_EQ(result["provenance"]["inputs"].count((targets / "bend/curve.csv").string()), 1u);
 }
 
+TEST_F(FitTargets, InitialStartsFromAnEarlierFitAndRefusesValuesOutsideTheBounds) {
+  const std::string toml = write_definition("{targets}/bend/curve.csv");
+  const auto targets = dir_ / "targets";
+  ASSERT_EQ(run("fit " + toml + " --synthesize " + targets.string()).exit_code, 0);
+  const auto first = dir_ / "first";
+  ASSERT_EQ(run("fit " + toml + " --targets " + targets.string() + " --out " + first.string()).exit_code, 0);
+  const auto second = dir_ / "second";
+  auto r = run("fit " + toml + " --targets " + targets.string() + " --initial " + (first / "parameters.json").string() +
+               " --out " + second.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("initial values of 2 of 2 parameters"), std::string::npos) << r.output;
+  std::ifstream in_first(first / "parameters.json"), in_second(second / "parameters.json");
+  const auto a = nlohmann::json::parse(in_first), b = nlohmann::json::parse(in_second);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(b["parameters"][i]["name"], a["parameters"][i]["name"]);
+    EXPECT_DOUBLE_EQ(b["parameters"][i]["initial"].get<double>(), a["parameters"][i]["value"].get<double>());
+  }
+  EXPECT_NE(b["provenance"]["command"].get<std::string>().find("--initial"), std::string::npos);
+  std::ofstream(dir_ / "outside.json") << R"({"parameters": [{"name": "N0_N", "value": 9000}]})";
+  r = run("fit " + toml + " --targets " + targets.string() + " --initial " + (dir_ / "outside.json").string() +
+          " --out " + (dir_ / "third").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("outside.json"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("N0_N"), std::string::npos) << r.output;
+}
+
 TEST_F(FitTargets, PlaceholderWithoutTargetsExitsTwoNamingTheLine) {
   const std::string toml = write_definition("{targets}/bend/curve.csv");
   const auto r = run("fit " + toml + " --out " + (dir_ / "out").string());
