@@ -44,6 +44,9 @@ std::size_t apply_initial_values(std::vector<ParameterDefinition>& parameters, c
     p.initial = v;
     ++set;
   }
+  // A file of another fit (other names, or prefixes missing) would silently change nothing.
+  if (set == 0 && !parameters.empty())
+    throw InputError(file.string(), "names none of the fit's parameters (e.g. '" + parameters.front().name + "')");
   return set;
 }
 

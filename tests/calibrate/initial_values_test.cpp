@@ -58,6 +58,9 @@ TEST(InitialValues, RefusesValuesOutsideTheBoundsAndBadFilesNamingThem) {
   EXPECT_THROW(apply_initial_values(parameters, write("dtwire_initial_noval.json", R"({"parameters": [{"name": "x"}]})")),
                InputError);
   EXPECT_THROW(apply_initial_values(parameters, "/nonexistent/parameters.json"), InputError);
+  EXPECT_THROW(apply_initial_values(parameters, write("dtwire_initial_other.json",
+                                                      R"({"parameters": [{"name": "N0_N", "value": 2000}]})")),
+               InputError);  // unprefixed: names none of them
 }
 
 }  // namespace

@@ -105,6 +105,21 @@ TEST(DemCli, SurfaceWritesBothCurvesOfEverySetAndRefusesOtherLaws) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("wirepm.json"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("thesis or macro3d"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
+  // A file whose second set is broken writes nothing, not even the first set's curves.
+  write_text(dir / "half.json", "{\"a_set\": {\"D_m\": 0.0027, \"EA_N\": 1e6, \"EI_Nm2_per_deg_convention\": 0.1, "
+                                "\"N0_N\": 100, \"Nult_N\": 200, \"Nc_N\": 100, \"m_f\": 0.03, \"beta_f\": 0.1, "
+                                "\"k_F\": 1, \"k_M\": 1, \"m_g\": 1, \"alpha_g\": 0.5, \"beta_g\": 1, \"W1_J\": 1, "
+                                "\"W2_J\": 2, \"alpha_d\": 1}, \"b_set\": {\"D_m\": 0.0027}}");
+  r = run_in(dir, "dem surface --params half.json --out half");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("b_set"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "half"));
+  // A rerun into a folder with an earlier run keeps only the new run's curves.
+  r = run_in(dir, "dem surface --params '" + kData + "macroelement_thesis_params.json' --wire-type double_twist --out out");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out" / "single_wire_yield_surface.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "out" / "double_twist_yield_surface.csv"));
 }
 
 TEST(DemCli, ExportWritesTablesScriptAndTheCAbiBundle) {

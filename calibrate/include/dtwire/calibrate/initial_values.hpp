@@ -11,8 +11,8 @@
 namespace dtwire::calibrate {
 
 // Returns how many parameters were set. Throws InputError naming the file (and the parameter)
-// if it cannot be read, has no "parameters" list, or gives a value outside a parameter's bounds
-// or not finite.
+// if it cannot be read, has no "parameters" list, names none of the fitted parameters, or gives
+// a value outside a parameter's bounds or not finite.
 std::size_t apply_initial_values(std::vector<ParameterDefinition>& parameters, const std::filesystem::path& file);
 
 }  // namespace dtwire::calibrate
