@@ -247,11 +247,19 @@ Parameters dt_tension(double elongation_mm) {
 }
 
 // DT tension (the bundled experiments/dt/dt_tension.prm, level-0 mesh) through the soft
-// straightening of the arms into plasticity with sliding between the wires.
-TEST(WireContactVerification, DoubleTwistTensionEnergyBalance) {
-  const auto dir = case_directory("dt_energy");
-  const auto records = run(dt_tension(6.0), dir);
-  ASSERT_GE(records.size(), 10u);
+// straightening of the arms into plasticity with sliding between the wires, with the faceted
+// master normal and with smoothed normals: the energy balances, and the smoothed normals move
+// the force little (on the tight twist the points slide along the wires, seldom over an edge).
+// The smoothed normal is not the gradient of the gap on the flat facets (a point sliding along a
+// facet moves along the smoothed normal by sin(theta) of its slide), so its contact forces are
+// not exactly conservative: measured worst balance error 1.06 % against 0.08 % faceted.
+StepRecord check_dt_tension_energy(bool smoothed_normals) {
+  const std::string name = smoothed_normals ? "dt_energy_smoothed" : "dt_energy";
+  Parameters p = dt_tension(6.0);
+  p.wire_contact.smoothed_normals = smoothed_normals;
+  const auto records = run(p, case_directory(name));
+  EXPECT_GE(records.size(), 10u);
+  if (records.empty()) return StepRecord{};
   const StepRecord& last = records.back();
   EXPECT_GT(last.wire_contact.normal_force, 0.5 * last.force);  // the wires press on each other
   EXPECT_GT(last.wire_contact.friction_dissipation, 0.0);
@@ -263,11 +271,18 @@ TEST(WireContactVerification, DoubleTwistTensionEnergyBalance) {
                           r.wire_contact.contact_energy;
     worst = std::max(worst, std::abs(r.external_work - stored) / r.external_work);
   }
-  EXPECT_LT(worst, 0.01);  // energy balance error < 1 % of the external work
-  std::cout << "[DT tension 6 mm] force " << last.force << " N, external work " << last.external_work
+  EXPECT_LT(worst, smoothed_normals ? 0.015 : 0.01) << name;  // of the external work
+  std::cout << "[DT tension 6 mm, " << name << "] force " << last.force << " N, external work " << last.external_work
             << " J, elastic " << last.elastic_energy << " J, plastic " << last.plastic_dissipation
             << " J, friction " << last.wire_contact.friction_dissipation << " J, penalty "
             << last.wire_contact.contact_energy << " J, worst balance error " << worst << "\n";
+  return last;
+}
+
+TEST(WireContactVerification, DoubleTwistTensionEnergyBalance) {
+  const StepRecord faceted = check_dt_tension_energy(false);
+  const StepRecord smoothed = check_dt_tension_energy(true);
+  EXPECT_NEAR(smoothed.force / faceted.force, 1.0, 0.02);
 }
 
 // Elastic axial stiffness of the twisted pair: the axial force over the elongation of the twist

@@ -82,6 +82,9 @@ void declare_contact_parameters(dealii::ParameterHandler& prm) {
   prm.declare_entry("Status flip limit", "4", Patterns::Integer(1),
                     "stick/slip changes or master-face switches of a point within one step before its "
                     "status is frozen for the rest of the step (chattering guard)");
+  prm.declare_entry("Smoothed normals", "false", Patterns::Bool(),
+                    "master normal interpolated from averaged vertex normals, continuous over facet edges "
+                    "(smooth forces when points slide around the faceted wire; false: the facet's normal)");
   prm.leave_subsection();
 }
 
@@ -128,6 +131,7 @@ WireContactParameters parse_wire_contact_parameters(dealii::ParameterHandler& pr
   if (!(w.gap_offset > -0.25e-3))  // deeper interference would reach beyond the contact search
     throw InputError(file, "'Wire contact/Gap offset (mm)': expected an interference smaller than 0.25 mm");
   w.flip_limit = prm.get_integer("Status flip limit");
+  w.smoothed_normals = prm.get_bool("Smoothed normals");
   prm.leave_subsection();
   return w;
 }

@@ -57,6 +57,7 @@ struct WireContactParameters {
   double gap_offset = 0.0;
   unsigned points_per_direction = 2;    // Gauss points per direction on each slave face
   unsigned flip_limit = 4;              // status changes within a step before the status is frozen
+  bool smoothed_normals = false;        // master normal from averaged vertex normals (wire_contact_point.hpp)
   bool keep_samples = false;            // not in the .prm: per-point samples in the step records
 };
 

@@ -4,19 +4,26 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <type_traits>
 
 namespace dtwire::fem::contact {
 namespace {
 
-constexpr int kDofs = 24;
-using Ad = Sacado::Fad::SFad<double, kDofs>;
+constexpr int kFaceDofs = 24;  // slave face and master face
+constexpr int kMaxDofs = kFaceDofs + 3 * static_cast<int>(kMaxNeighbourVertices);
+using FaceAd = Sacado::Fad::SFad<double, kFaceDofs>;     // faceted normal: fixed size, fastest
+using PatchAd = Sacado::Fad::SLFad<double, kMaxDofs>;    // smoothed normal: runtime size
+
+template <typename T>
+constexpr bool is_ad = !std::is_same_v<T, double>;
 
 template <typename T>
 using Vec = std::array<T, 3>;
 
 double value_of(double x) { return x; }
-double value_of(const Ad& x) { return x.val(); }
+template <typename T, std::enable_if_t<is_ad<T>, int> = 0>
+double value_of(const T& x) { return x.val(); }
 
 template <typename T>
 Vec<T> operator-(const Vec<T>& a, const Vec<T>& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2]}}; }
@@ -55,18 +62,27 @@ Vec<T> interpolate(const std::array<S, 4>& N, const std::array<Vec<T>, 4>& verte
   return out;
 }
 
-// The contact point evaluated in arithmetic T: double, or Ad seeded with the 24 dofs.
+// Corner normal x_xi x x_eta of a bilinear face at one of its vertices (unnormalised: the
+// sum over the faces around a vertex is weighted by their corner areas).
+template <typename T>
+Vec<T> corner_normal(const std::array<const Vec<T>*, 4>& x, unsigned corner) {
+  const Vec<T> a = corner < 2 ? *x[1] - *x[0] : *x[3] - *x[2];
+  const Vec<T> b = corner % 2 == 0 ? *x[2] - *x[0] : *x[3] - *x[1];
+  return cross(a, b);
+}
+
+// The contact point evaluated in arithmetic T: double, or an AD type seeded with the dofs.
 template <typename T>
 struct PointResult {
   ContactResponse response;
-  std::array<T, kDofs> force;
+  std::vector<T> force;
 };
 
 template <typename T>
-PointResult<T> evaluate(const WireContactPointInput& in, const ContactLaw& law) {
+PointResult<T> evaluate(const WireContactPointInput& in, const ContactLaw& law, int n_dofs) {
   PointResult<T> out;
-  const auto dof = [](double value, int index) {
-    if constexpr (std::is_same_v<T, Ad>) return Ad(kDofs, index, value);
+  const auto dof = [n_dofs](double value, int index) {
+    if constexpr (is_ad<T>) return T(n_dofs, index, value);
     else return value;
   };
   std::array<Vec<T>, 4> slave, master;
@@ -75,6 +91,11 @@ PointResult<T> evaluate(const WireContactPointInput& in, const ContactLaw& law) 
       slave[v][c] = in.slave_reference[v][c] + dof(in.slave_displacement[3 * v + c], 3 * v + c);
       master[v][c] = in.master_reference[v][c] + dof(in.master_displacement[3 * v + c], 12 + 3 * v + c);
     }
+  const bool smoothed = !in.vertex_corners[0].empty();  // every vertex has corners (checked)
+  std::vector<Vec<T>> neighbour(in.neighbour_reference.size());
+  for (unsigned k = 0; k < neighbour.size(); ++k)
+    for (unsigned c = 0; c < 3; ++c)
+      neighbour[k][c] = in.neighbour_reference[k][c] + dof(in.neighbour_displacement[3 * k + c], kFaceDofs + 3 * k + c);
   const Vec<T> x = interpolate(bilinear_shape(in.slave_xi, in.slave_eta), slave);
 
   // Closest point: one Newton correction of the converged (xi0, eta0) in arithmetic T. Its value
@@ -109,11 +130,24 @@ PointResult<T> evaluate(const WireContactPointInput& in, const ContactLaw& law) 
   const auto N = bilinear_shape(xi, eta);
   const Vec<T> y = interpolate(N, master);
   const auto [a, b] = tangents(xi, eta);
-  const Vec<T> normal_raw = cross(a, b);
-  const Vec<T> n = scaled(in.master_sign / norm(normal_raw), normal_raw);
+  Vec<T> normal_raw = scaled(in.master_sign, cross(a, b));
+  if (smoothed) {
+    const auto vertex = [&](unsigned i) -> const Vec<T>* { return i < 4 ? &master[i] : &neighbour[i - 4]; };
+    normal_raw = Vec<T>{{T(0.0), T(0.0), T(0.0)}};
+    for (unsigned v = 0; v < 4; ++v) {
+      Vec<T> sum{{T(0.0), T(0.0), T(0.0)}};
+      for (const NormalCorner& corner : in.vertex_corners[v]) {
+        const std::array<const Vec<T>*, 4> corner_vertices{
+            {vertex(corner.face[0]), vertex(corner.face[1]), vertex(corner.face[2]), vertex(corner.face[3])}};
+        sum = sum + scaled(corner.sign, corner_normal(corner_vertices, corner.corner));
+      }
+      normal_raw = normal_raw + scaled(N[v] / norm(sum), sum);
+    }
+  }
+  const Vec<T> n = scaled(1.0 / norm(normal_raw), normal_raw);
 
   ContactResponse& r = out.response;
-  for (auto& f : out.force) f = T(0.0);
+  out.force.assign(static_cast<std::size_t>(n_dofs), T(0.0));
   const T gap = dot(x - y, n) + in.gap_offset;
   const T pressure = in.history.multiplier - law.normal_penalty * gap;
   r.gap = value_of(gap);
@@ -159,24 +193,48 @@ PointResult<T> evaluate(const WireContactPointInput& in, const ContactLaw& law) 
   return out;
 }
 
+template <typename T>
+WireContactPointOutput with_tangent_in(const WireContactPointInput& input, const ContactLaw& law, int n_dofs) {
+  WireContactPointOutput out;
+  const auto result = evaluate<T>(input, law, n_dofs);
+  out.response = result.response;
+  out.force.resize(static_cast<std::size_t>(n_dofs));
+  out.stiffness.assign(static_cast<std::size_t>(n_dofs * n_dofs), 0.0);
+  for (int i = 0; i < n_dofs; ++i) {
+    out.force[i] = result.force[i].val();
+    if (result.force[i].size() == 0) continue;  // a force that stayed constant (open point)
+    for (int j = 0; j < n_dofs; ++j) out.stiffness[i * n_dofs + j] = result.force[i].dx(j);
+  }
+  return out;
+}
+
 }  // namespace
 
 WireContactPointOutput evaluate_wire_contact_point(const WireContactPointInput& input, const ContactLaw& law,
                                                    bool with_tangent) {
-  WireContactPointOutput out;
+  const unsigned neighbours = input.neighbour_reference.size();
+  if (neighbours > kMaxNeighbourVertices || input.neighbour_displacement.size() != 3 * neighbours)
+    throw std::invalid_argument("wire contact point: " + std::to_string(neighbours) +
+                                " neighbour vertices (at most " + std::to_string(kMaxNeighbourVertices) +
+                                ", 3 displacements each)");
+  for (const auto& corners : input.vertex_corners)
+    for (const NormalCorner& corner : corners)
+      if (corner.corner > 3 || *std::max_element(corner.face.begin(), corner.face.end()) >= 4 + neighbours)
+        throw std::invalid_argument("wire contact point: a normal corner names a vertex outside the patch");
+  const bool smoothed = !input.vertex_corners[0].empty();
+  for (const auto& corners : input.vertex_corners)
+    if (corners.empty() == smoothed)
+      throw std::invalid_argument("wire contact point: a smoothed normal needs corners at all four vertices");
+  const int n_dofs = kFaceDofs + 3 * static_cast<int>(neighbours);
   if (!with_tangent) {
-    const auto result = evaluate<double>(input, law);
+    auto result = evaluate<double>(input, law, n_dofs);
+    WireContactPointOutput out;
     out.response = result.response;
-    out.force = result.force;
+    out.force = std::move(result.force);
     return out;
   }
-  const auto result = evaluate<Ad>(input, law);
-  out.response = result.response;
-  for (int i = 0; i < kDofs; ++i) {
-    out.force[i] = result.force[i].val();
-    for (int j = 0; j < kDofs; ++j) out.stiffness[i][j] = result.force[i].dx(j);
-  }
-  return out;
+  if (neighbours == 0 && !smoothed) return with_tangent_in<FaceAd>(input, law, n_dofs);
+  return with_tangent_in<PatchAd>(input, law, n_dofs);
 }
 
 }  // namespace dtwire::fem::contact

@@ -16,8 +16,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include <map>
+
 #include "packed_state.hpp"
-#include "wire_contact_point.hpp"
 
 namespace dtwire::fem::contact {
 
@@ -142,12 +143,67 @@ WireWireContact::WireWireContact(const WireContactParameters& parameters, double
   keep_margin_ = 1e-3 * smallest_face;
   committed_master_values_.assign(12 * masters_.size(), 0.0);
   master_values_ = committed_master_values_;
+  if (parameters_.smoothed_normals) build_normal_patches();
+}
+
+// Vertices of the master surface (keyed by their x dof) and, per master face, the faces sharing
+// one of its vertices: their vertices beyond the face's own become the point's neighbours.
+void WireWireContact::build_normal_patches() {
+  std::map<types::global_dof_index, unsigned> vertex_of_dof;
+  std::vector<std::array<unsigned, 4>> face_vertices(masters_.size());
+  std::vector<std::vector<std::pair<unsigned, unsigned>>> faces_at_vertex;  // (face, corner)
+  for (unsigned m = 0; m < masters_.size(); ++m)
+    for (unsigned v = 0; v < 4; ++v) {
+      const auto [it, added] = vertex_of_dof.emplace(masters_[m].dofs[3 * v], vertices_.size());
+      if (added) {
+        MasterVertex vertex;
+        for (unsigned c = 0; c < 3; ++c) vertex.dofs[c] = masters_[m].dofs[3 * v + c];
+        vertex.reference = masters_[m].reference[v];
+        vertices_.push_back(vertex);
+        faces_at_vertex.emplace_back();
+      }
+      face_vertices[m][v] = it->second;
+      faces_at_vertex[it->second].emplace_back(m, v);
+    }
+  for (unsigned m = 0; m < masters_.size(); ++m) {
+    MasterFace& face = masters_[m];
+    std::vector<unsigned> patch(face_vertices[m].begin(), face_vertices[m].end());
+    const auto local = [&](unsigned vertex) {
+      const auto found = std::find(patch.begin(), patch.end(), vertex);
+      if (found != patch.end()) return static_cast<unsigned>(found - patch.begin());
+      patch.push_back(vertex);
+      return static_cast<unsigned>(patch.size() - 1);
+    };
+    for (unsigned v = 0; v < 4; ++v)
+      for (const auto& [other, corner] : faces_at_vertex[face_vertices[m][v]]) {
+        NormalCorner c;
+        for (unsigned k = 0; k < 4; ++k) c.face[k] = local(face_vertices[other][k]);
+        c.corner = corner;
+        c.sign = masters_[other].normal_sign;
+        face.corners[v].push_back(c);
+      }
+    if (patch.size() - 4 > kMaxNeighbourVertices)
+      throw std::invalid_argument("wire contact: a master face has " + std::to_string(patch.size() - 4) +
+                                  " neighbour vertices, more than the smoothed normal supports (" +
+                                  std::to_string(kMaxNeighbourVertices) + "); set 'Smoothed normals = false'");
+    face.neighbours.assign(patch.begin() + 4, patch.end());
+  }
+}
+
+std::vector<types::global_dof_index> WireWireContact::point_dofs(const SlaveFace& slave, const MasterFace& master) const {
+  std::vector<types::global_dof_index> dofs(slave.dofs.begin(), slave.dofs.end());
+  dofs.insert(dofs.end(), master.dofs.begin(), master.dofs.end());
+  for (const unsigned k : master.neighbours)
+    dofs.insert(dofs.end(), vertices_[k].dofs.begin(), vertices_[k].dofs.end());
+  return dofs;
 }
 
 void WireWireContact::initialise(const IndexSet& relevant, const AffineConstraints<double>& constraints,
                                  const IndexSet& owned) {
   for (auto& face : masters_)
     for (unsigned i = 0; i < 12; ++i) face.value_index[i] = relevant.index_within_set(face.dofs[i]);
+  for (auto& vertex : vertices_)
+    for (unsigned c = 0; c < 3; ++c) vertex.value_index[c] = relevant.index_within_set(vertex.dofs[c]);
   std::vector<types::global_dof_index> constrained;
   for (auto& face : slaves_)
     for (unsigned i = 0; i < 12; ++i) {
@@ -213,13 +269,9 @@ bool WireWireContact::begin_step(const StepStart& step) {
 }
 
 void WireWireContact::add_sparsity(DynamicSparsityPattern& pattern, const AffineConstraints<double>& constraints) const {
-  std::vector<types::global_dof_index> dofs(24);
   for (const auto& face : slaves_)
-    for (const unsigned m : face.pattern) {
-      std::copy(face.dofs.begin(), face.dofs.end(), dofs.begin());
-      std::copy(masters_[m].dofs.begin(), masters_[m].dofs.end(), dofs.begin() + 12);
-      constraints.add_entries_local_to_global(dofs, pattern, false);
-    }
+    for (const unsigned m : face.pattern)
+      constraints.add_entries_local_to_global(point_dofs(face, masters_[m]), pattern, false);
 }
 
 bool WireWireContact::assemble(const AssemblyTarget& target) {
@@ -229,10 +281,8 @@ bool WireWireContact::assemble(const AssemblyTarget& target) {
     master_geometry[m] = current_face(face.reference, face.value_index, face.normal_sign, target.relevant_values);
     for (unsigned i = 0; i < 12; ++i) master_values_[12 * m + i] = target.relevant_values[face.value_index[i]];
   }
-  std::vector<types::global_dof_index> dofs(24);
-  std::vector<double> force(24);
-  FullMatrix<double> K(24, 24);
-  Vector<double> local_rhs(24);
+  FullMatrix<double> K;
+  Vector<double> local_rhs;
   for (const auto& face : slaves_) {
     const BilinearFace slave = current_face(face.reference, face.value_index, face.normal_sign, target.relevant_values);
     const unsigned n_points = parameters_.points_per_direction * parameters_.points_per_direction;
@@ -294,6 +344,12 @@ bool WireWireContact::assemble(const AssemblyTarget& target) {
       in.history = p.committed;
       in.history.multiplier = p.multiplier;
       in.forced = p.frozen;
+      in.vertex_corners = master.corners;
+      for (const unsigned k : master.neighbours) {
+        in.neighbour_reference.push_back(vertices_[k].reference);
+        for (unsigned c = 0; c < 3; ++c)
+          in.neighbour_displacement.push_back(target.relevant_values[vertices_[k].value_index[c]]);
+      }
       const WireContactPointOutput point = evaluate_wire_contact_point(in, law_, target.with_matrix);
       p.last = point.response;
       const int status = !p.last.active ? 0 : p.last.slipping ? 2 : 1;
@@ -307,27 +363,26 @@ bool WireWireContact::assemble(const AssemblyTarget& target) {
       }
       if (!p.last.active) continue;
 
-      for (unsigned i = 0; i < 12; ++i) {
-        dofs[i] = face.dofs[i];
-        dofs[12 + i] = master.dofs[i];
-      }
-      for (unsigned i = 0; i < 24; ++i) {
-        force[i] = point.force[i];
-        local_rhs[i] = -force[i];
+      const std::vector<types::global_dof_index> dofs = point_dofs(face, master);
+      const unsigned n = dofs.size();
+      local_rhs.reinit(n);
+      if (target.with_matrix) K.reinit(n, n);
+      for (unsigned i = 0; i < n; ++i) {
+        local_rhs[i] = -point.force[i];
         if (!target.with_matrix) continue;
-        for (unsigned j = 0; j < 24; ++j) K(i, j) = point.stiffness[i][j];
+        for (unsigned j = 0; j < n; ++j) K(i, j) = point.tangent(i, j);
       }
       // Constrained dofs whose constraint this rank does not hold: drop their rows and columns
       // (the owner replaces the row by the constraint; the reaction keeps the force).
-      for (unsigned i = 0; i < 24; ++i)
+      for (unsigned i = 0; i < n; ++i)
         if (constrained_.is_element(dofs[i]) && !target.constraints.is_constrained(dofs[i])) {
           local_rhs[i] = 0.0;
           if (!target.with_matrix) continue;
-          for (unsigned j = 0; j < 24; ++j) K(i, j) = K(j, i) = 0.0;
+          for (unsigned j = 0; j < n; ++j) K(i, j) = K(j, i) = 0.0;
         }
       if (target.with_matrix) target.constraints.distribute_local_to_global(K, local_rhs, dofs, target.matrix, target.rhs);
       else target.constraints.distribute_local_to_global(local_rhs, dofs, target.rhs);
-      target.internal_force.add(dofs, force);
+      target.internal_force.add(dofs, point.force);
     }
   }
   return true;

@@ -9,6 +9,10 @@
 // new faces near. Chattering guards: a point whose stick/slip status or master face changed
 // `flip_limit` times within a step keeps them for the rest of the step.
 //
+// Smoothed normals (optional): the master normal at a point is interpolated from averaged vertex
+// normals (wire_contact_point.hpp), so each point couples to the vertices of the master faces
+// around its face as well (the matrix pattern grows accordingly).
+//
 // Linearisation: consistent (wire_contact_point.hpp): the variations of the master normal, of the
 // closest-point parameters and of the friction anchor are differentiated exactly (forward AD), so
 // Newton converges quadratically once the stick/slip status and the master faces settle. Every
@@ -30,6 +34,7 @@
 #include "contact_part.hpp"
 #include "contact_parameters.hpp"
 #include "contact_record.hpp"
+#include "wire_contact_point.hpp"
 
 namespace dtwire::fem::contact {
 
@@ -70,6 +75,15 @@ class WireWireContact final : public ContactPart {
     std::array<Vector3, 4> reference;
     double normal_sign = 1.0;
     std::array<unsigned, 12> value_index{};  // positions in the relevant values
+    // Smoothed normals only: the vertices of the faces around this one (indices in vertices_)
+    // and, per own vertex, the corners whose normals are averaged there.
+    std::vector<unsigned> neighbours;
+    std::array<std::vector<NormalCorner>, 4> corners;
+  };
+  struct MasterVertex {
+    std::array<dealii::types::global_dof_index, 3> dofs;
+    Vector3 reference;
+    std::array<unsigned, 3> value_index{};
   };
   struct SlaveFace {  // this rank's
     std::array<dealii::types::global_dof_index, 12> dofs;
@@ -96,6 +110,8 @@ class WireWireContact final : public ContactPart {
     int status = 0;  // 0 open, 1 stick, 2 slip (last assembly with a matrix)
   };
 
+  void build_normal_patches();
+  std::vector<dealii::types::global_dof_index> point_dofs(const SlaveFace& slave, const MasterFace& master) const;
   BilinearFace current_face(const std::array<Vector3, 4>& reference, const std::array<unsigned, 12>& index,
                             double sign, const std::vector<double>& values) const;
 
@@ -105,6 +121,7 @@ class WireWireContact final : public ContactPart {
   double search_distance_ = 0.0;
   double keep_margin_ = 0.0;  // m: how much nearer another master face must be to replace the current one
   std::vector<MasterFace> masters_;
+  std::vector<MasterVertex> vertices_;  // of the master surface; smoothed normals only
   std::vector<SlaveFace> slaves_;
   std::vector<SlavePoint> points_;
   std::vector<double> committed_master_values_;  // 12 per master face, displacement at the last step
