@@ -313,6 +313,7 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
   };
 
   record(0.0, 0.0);
+  const std::string what_moves = bending ? "roller displacement" : "grip displacement";
   const auto& u = path_.displacement_m;
   const int increments = path_.increments_per_leg;
   for (std::size_t leg = 1; leg < u.size(); ++leg)
@@ -341,7 +342,7 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
         ratio = residual_ratio();
         if (ratio <= options_.tolerance) break;
         if (relax >= options_.max_relax_steps)
-          throw ComputationError("dem_specimen: not converged at grip displacement " + describe(after) + " (leg " +
+          throw ComputationError("dem_specimen: not converged at " + what_moves + " " + describe(after) + " (leg " +
                                  std::to_string(leg) + ", increment " + std::to_string(i) + "): unbalanced force " +
                                  format_number(ratio) + " of the largest link force after " +
                                  std::to_string(relax) + " steps (tolerance " + format_number(options_.tolerance) + ")");
@@ -349,7 +350,7 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
       info.largest_relax_steps = std::max(info.largest_relax_steps, relax);
       if (engine.broken_links() > 0)
         throw ComputationError("dem_specimen: the specimen broke (" + std::to_string(engine.broken_links()) +
-                               " link(s)) at grip displacement " + describe(after) + ", before the path's end");
+                               " link(s)) at " + what_moves + " " + describe(after) + ", before the path's end");
       const double moved_by = bending ? (engine.roller(loading).point - start).dot(press)
                                       : (0.5 * (engine.position(moved[0]) + engine.position(moved[1])) - start).dot(d);
       if (!(std::abs(moved_by - after) <= 1e-9 * (std::abs(after) + 1e-3)))
