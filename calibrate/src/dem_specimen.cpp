@@ -13,6 +13,7 @@
 #include "dtwire/core/units.hpp"
 #include "dtwire/dem/engine.hpp"
 #include "dtwire/dem/law_schema.hpp"
+#include "specimen_rollers.hpp"
 
 namespace dtwire::calibrate {
 namespace {
@@ -87,6 +88,19 @@ void validate(const QuasiStaticOptions& o) {
   if (!(o.safety > 0.0 && o.safety <= 1.0)) throw std::invalid_argument("quasi-static options: safety must be in (0, 1]");
 }
 
+void validate(const RollerRig& r) {
+  if (!(r.radius_m > 0.0)) throw std::invalid_argument("roller rig: radius must be > 0");
+  for (double z : {r.support_z_m[0], r.support_z_m[1], r.loading_z_m, r.support_tilt_rad})
+    if (!std::isfinite(z)) throw std::invalid_argument("roller rig: positions and tilt must be finite");
+  if (!(r.support_z_m[0] < r.loading_z_m && r.loading_z_m < r.support_z_m[1]))
+    throw std::invalid_argument("roller rig: expected the loading roller between the supports (z1 < z_load < z2)");
+  if (!(std::abs(r.support_tilt_rad) < 0.25 * kPi)) throw std::invalid_argument("roller rig: tilt must be within 45 deg");
+  if (!(r.friction >= 0.0)) throw std::invalid_argument("roller rig: friction must be >= 0");
+  if (!(r.normal_stiffness_N_per_m > 0.0)) throw std::invalid_argument("roller rig: stiffness must be > 0");
+  if (!(r.sw_contact_radius_m > 0.0) || !(r.dt_contact_radius_m > 0.0))
+    throw std::invalid_argument("roller rig: contact radii must be > 0");
+}
+
 dem::ParameterMap scale_to_link_length(const dem::ParameterMap& set, double reference_length, double link_length) {
   if (!(reference_length > 0.0) || !(link_length > 0.0))
     throw std::invalid_argument("reference and link lengths must be > 0");
@@ -98,14 +112,15 @@ dem::ParameterMap scale_to_link_length(const dem::ParameterMap& set, double refe
 }
 
 DemSpecimenSimulator::DemSpecimenSimulator(std::string law, dem::ParameterMap fixed, SpecimenGeometry geometry,
-                                           QuasiStaticOptions options, SpecimenPath path, bool scale)
+                                           QuasiStaticOptions options, SpecimenPath path, bool scale, RollerRig rig)
     : law_(std::move(law)), fixed_(std::move(fixed)), geometry_(geometry), options_(options), path_(std::move(path)),
-      scale_(scale) {
+      scale_(scale), rig_(rig) {
   if (law_ != "thesis" && law_ != "macro3d")
     throw std::invalid_argument("dem_specimen: law '" + law_ + "' is not supported (expected thesis or macro3d)");
   validate(geometry_);
   validate(options_);
   validate(path_);
+  validate(rig_);
   for (const auto& [name, value] : fixed_) {
     const bool sw = has_prefix(name, kSwPrefix), dt = has_prefix(name, kDtPrefix);
     if (!sw && !dt)
@@ -180,6 +195,27 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
     grip_link[arm] = static_cast<int>(links.size()) - 1;
     nodes[previous].fixity = dem::NodeFixity::Guided;  // clamped: translation imposed, no spin
   }
+  // Bending on rollers: the lower grips guided (x, z, rotations held, free along y), the upper
+  // ones free (experiments/dt/dt_bending.prm).
+  const bool bending = path_.test == SpecimenTest::ThreePointBending;
+  BendingRollers rig;
+  if (bending) {
+    for (int arm = 0; arm < 4; ++arm) {
+      dem::NetNode& node = nodes[grip[arm]];
+      node.fixity = dem::NodeFixity::Free;
+      if (up[arm] < 0) {
+        node.held_translation = {true, false, true};
+        node.held_rotation = true;
+      }
+    }
+    std::vector<dem::NetLink> net_links;
+    for (const dem::EngineLink& link : links) net_links.push_back(link.link);
+    try {
+      rig = place_bending_rollers(rig_, nodes, net_links);
+    } catch (const std::invalid_argument& error) {
+      throw ComputationError(error.what());
+    }
+  }
   // Density scaling: each node's mass and inertia from the elastic stiffness of its links, so
   // that every node has about the same frequency (pseudo-units; statics do not depend on them).
   std::vector<double> mass(nodes.size(), 0.0), inertia(nodes.size(), 0.0);
@@ -194,6 +230,10 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
       inertia[end] += rotational;
     }
   }
+  // A roller's contact springs count at the nodes of the links it touches.
+  for (const std::vector<int>& touched : rig.touched)
+    for (int l : touched)
+      for (int end : {links[l].link.a, links[l].link.b}) mass[end] += 2.0 * rig_.normal_stiffness_N_per_m;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     nodes[i].mass = mass[i] > 0.0 ? mass[i] : 1.0;
     nodes[i].rotational_inertia = inertia[i] > 0.0 ? inertia[i] : 1.0;
@@ -205,13 +245,16 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
   engine_options.safety = options_.safety;
   engine_options.threads = 1;
   dem::Engine engine(nodes, std::move(links), engine_options);
+  for (const dem::Roller& roller : rig.rollers) engine.add_roller(roller, rig.link_radius);
+  const int loading = 2;  // rig.rollers: supports 0, 1, loading roller 2
+  const Vector3 press = -Vector3::UnitY();
   const double dt = engine.time_step();
   info.time_step = dt;
 
   const Vector3 d(std::sin(path_.pull_angle_rad), 0.0, std::cos(path_.pull_angle_rad));
   const Vector3 v = Vector3::UnitY().cross(d);
   const std::array<int, 2> moved = {grip[0], grip[1]};
-  const Vector3 start = 0.5 * (nodes[moved[0]].position + nodes[moved[1]].position);
+  const Vector3 start = bending ? rig.rollers[loading].point : Vector3(0.5 * (nodes[moved[0]].position + nodes[moved[1]].position));
   std::vector<int> free_nodes;
   std::vector<double> free_length;  // shortest link at a free node: moment -> force scale
   for (std::size_t i = 0; i < nodes.size(); ++i)
@@ -227,6 +270,7 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
     }
 
   std::vector<double> time, displacement, force, shear_force, moment, dt_elongation, dt_axial, dt_shear, dt_moment;
+  std::array<std::vector<double>, 2> support_force;
   std::array<std::vector<double>, 4> arm_force;
   // The displacement is the path's (the grips are moved to it exactly, up to round-off).
   const auto record = [&](double t, double grip_displacement) {
@@ -241,7 +285,8 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
     const Vector6 q = engine.link(0).law->forces();
     time.push_back(t);
     displacement.push_back(grip_displacement);
-    force.push_back(f.dot(d));
+    force.push_back(bending ? engine.roller_force(loading).dot(-press) : f.dot(d));
+    for (int k = 0; k < 2; ++k) support_force[k].push_back(bending ? -engine.roller_force(k).y() : 0.0);
     shear_force.push_back(f.dot(v));
     moment.push_back(m);
     dt_elongation.push_back(engine.link_length(0) - g.twist_length_m);
@@ -254,7 +299,12 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
     double largest = 0.0;
     for (std::size_t k = 0; k < free_nodes.size(); ++k) {
       const int i = free_nodes[k];
-      largest = std::max(largest, engine.unbalanced_force(i).norm() + engine.unbalanced_moment(i).norm() / free_length[k]);
+      const dem::NetNode& node = engine.node(i);
+      Vector3 f = engine.unbalanced_force(i);  // a held component's is the support's reaction
+      for (int c = 0; c < 3; ++c)
+        if (node.held_translation[c]) f[c] = 0.0;
+      const double m = node.held_rotation ? 0.0 : engine.unbalanced_moment(i).norm();
+      largest = std::max(largest, f.norm() + m / free_length[k]);
     }
     double reference = 1.0;  // N
     for (std::size_t l = 0; l < engine.link_count(); ++l)
@@ -263,6 +313,7 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
   };
 
   record(0.0, 0.0);
+  const std::string what_moves = bending ? "roller displacement" : "grip displacement";
   const auto& u = path_.displacement_m;
   const int increments = path_.increments_per_leg;
   for (std::size_t leg = 1; leg < u.size(); ++leg)
@@ -274,11 +325,15 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
       const int n_move = options_.move_steps;
       for (int s = 0; s < n_move; ++s) {
         const double weight = n_move == 1 ? 1.0 : (1.0 - std::cos(2.0 * kPi * (s + 0.5) / n_move)) / n_move;
-        const Vector3 velocity = (after - before) * weight / dt * d;
-        for (int gi : moved) engine.set_guided_velocity(static_cast<std::size_t>(gi), velocity);
+        const double speed = (after - before) * weight / dt;
+        if (bending) engine.roller(loading).velocity = speed * press;
+        else
+          for (int gi : moved) engine.set_guided_velocity(static_cast<std::size_t>(gi), speed * d);
         engine.step();
       }
-      for (int gi : moved) engine.set_guided_velocity(static_cast<std::size_t>(gi), Vector3::Zero());
+      if (bending) engine.roller(loading).velocity.setZero();
+      else
+        for (int gi : moved) engine.set_guided_velocity(static_cast<std::size_t>(gi), Vector3::Zero());
       long relax = 0;
       double ratio = 0.0;
       for (;;) {
@@ -287,7 +342,7 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
         ratio = residual_ratio();
         if (ratio <= options_.tolerance) break;
         if (relax >= options_.max_relax_steps)
-          throw ComputationError("dem_specimen: not converged at grip displacement " + describe(after) + " (leg " +
+          throw ComputationError("dem_specimen: not converged at " + what_moves + " " + describe(after) + " (leg " +
                                  std::to_string(leg) + ", increment " + std::to_string(i) + "): unbalanced force " +
                                  format_number(ratio) + " of the largest link force after " +
                                  std::to_string(relax) + " steps (tolerance " + format_number(options_.tolerance) + ")");
@@ -295,10 +350,12 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
       info.largest_relax_steps = std::max(info.largest_relax_steps, relax);
       if (engine.broken_links() > 0)
         throw ComputationError("dem_specimen: the specimen broke (" + std::to_string(engine.broken_links()) +
-                               " link(s)) at grip displacement " + describe(after) + ", before the path's end");
-      const double moved_by = (0.5 * (engine.position(moved[0]) + engine.position(moved[1])) - start).dot(d);
+                               " link(s)) at " + what_moves + " " + describe(after) + ", before the path's end");
+      const double moved_by = bending ? (engine.roller(loading).point - start).dot(press)
+                                      : (0.5 * (engine.position(moved[0]) + engine.position(moved[1])) - start).dot(d);
       if (!(std::abs(moved_by - after) <= 1e-9 * (std::abs(after) + 1e-3)))
-        throw ComputationError("dem_specimen: the grips are at " + describe(moved_by) + " instead of " + describe(after));
+        throw ComputationError(std::string("dem_specimen: the ") + (bending ? "loading roller is" : "grips are") +
+                               " at " + describe(moved_by) + " instead of " + describe(after));
       record(static_cast<double>(leg - 1) + static_cast<double>(i) / increments, after);
     }
   info.steps = engine.steps_taken();
@@ -312,6 +369,8 @@ Curve DemSpecimenSimulator::simulate(const ParameterValues& parameters, Specimen
   add("time", Dimension::Time, time);
   add("displacement", Dimension::Length, displacement);
   add("force", Dimension::Force, force);
+  add("support1_force", Dimension::Force, support_force[0]);
+  add("support2_force", Dimension::Force, support_force[1]);
   add("shear_force", Dimension::Force, shear_force);
   add("moment", Dimension::Moment, moment);
   add("dt_elongation", Dimension::Length, dt_elongation);
@@ -332,14 +391,22 @@ std::string DemSpecimenSimulator::identity() const {
           " max_relax_steps=" + std::to_string(options_.max_relax_steps) + " safety=" + format_number(options_.safety);
   text += "\nfixed:";
   for (const auto& [name, value] : fixed_) text += " " + name + "=" + format_number(value);
-  text += "\npath: angle=" + format_number(path_.pull_angle_rad) + " increments=" + std::to_string(path_.increments_per_leg);
+  if (path_.test == SpecimenTest::ThreePointBending)
+    text += "\nrollers: radius=" + format_number(rig_.radius_m) + " supports=" + format_number(rig_.support_z_m[0]) + "," +
+            format_number(rig_.support_z_m[1]) + " loading=" + format_number(rig_.loading_z_m) +
+            " tilt=" + format_number(rig_.support_tilt_rad) + " friction=" + format_number(rig_.friction) +
+            " stiffness=" + format_number(rig_.normal_stiffness_N_per_m) + " radii=" +
+            format_number(rig_.sw_contact_radius_m) + "," + format_number(rig_.dt_contact_radius_m);
+  text += "\npath: " + std::string(path_.test == SpecimenTest::ThreePointBending ? "test=bending " : "") +
+          "angle=" + format_number(path_.pull_angle_rad) + " increments=" + std::to_string(path_.increments_per_leg);
   for (double x : path_.displacement_m) text += " " + format_number(x);
   return text;
 }
 
 std::vector<std::pair<std::string, Dimension>> DemSpecimenSimulator::channels() const {
   return {{"time", Dimension::Time},          {"displacement", Dimension::Length},
-          {"force", Dimension::Force},        {"shear_force", Dimension::Force},
+          {"force", Dimension::Force},        {"support1_force", Dimension::Force},
+          {"support2_force", Dimension::Force}, {"shear_force", Dimension::Force},
           {"moment", Dimension::Moment},      {"dt_elongation", Dimension::Length},
           {"dt_axial_force", Dimension::Force}, {"dt_shear_force", Dimension::Force},
           {"dt_moment", Dimension::Moment},   {"arm1_force", Dimension::Force},

@@ -232,12 +232,14 @@ void check_fixed_specimen_parameters(const FitDefinition& def, const Table& sim)
 
 // [simulator.specimen] and [simulator.quasi_static] (optional tables).
 void read_specimen_tables(const Table& sim, const std::string& file, SpecimenGeometry& geometry,
-                          QuasiStaticOptions& quasi_static, bool& scale) {
+                          QuasiStaticOptions& quasi_static, bool& scale, RollerRig& rig) {
   constexpr double degree = 3.14159265358979323846 / 180.0;
   if (const toml::node* node = sim.get("specimen")) {
     if (!node->is_table()) sim.fail(node, "specimen", "expected a table [simulator.specimen]");
     const Table t(*node->as_table(), "simulator.specimen", file);
-    t.only({"twist_length_mm", "arm_length_mm", "arm_angle_deg", "arm_links", "scale_to_link_length"});
+    t.only({"twist_length_mm", "arm_length_mm", "arm_angle_deg", "arm_links", "scale_to_link_length", "roller_radius_mm",
+            "support_z_mm", "loading_z_mm", "support_tilt_deg", "roller_friction", "roller_stiffness_N_per_m",
+            "sw_contact_radius_mm", "dt_contact_radius_mm"});
     geometry.twist_length_m = t.number("twist_length_mm", geometry.twist_length_m * 1e3) * 1e-3;
     if (!(geometry.twist_length_m > 0)) t.fail(t.get("twist_length_mm"), "twist_length_mm", "expected a number > 0");
     geometry.arm_length_m = t.number("arm_length_mm", geometry.arm_length_m * 1e3) * 1e-3;
@@ -247,6 +249,31 @@ void read_specimen_tables(const Table& sim, const std::string& file, SpecimenGeo
       t.fail(t.get("arm_angle_deg"), "arm_angle_deg", "expected an angle in (0, 90) deg");
     geometry.arm_links = static_cast<int>(t.integer("arm_links", 1, 1));
     scale = t.boolean("scale_to_link_length", true);
+    // The bending rig (three_point_bending experiments; dem_specimen.hpp, RollerRig).
+    const auto positive_mm = [&](const char* key, double& metres) {
+      metres = t.number(key, metres * 1e3) * 1e-3;
+      if (!(metres > 0)) t.fail(t.get(key), key, "expected a number > 0 (mm)");
+    };
+    positive_mm("roller_radius_mm", rig.radius_m);
+    positive_mm("sw_contact_radius_mm", rig.sw_contact_radius_m);
+    positive_mm("dt_contact_radius_mm", rig.dt_contact_radius_m);
+    if (t.has("support_z_mm")) {
+      const std::vector<double> z = t.numbers("support_z_mm");
+      if (z.size() != 2 || !(z[0] < z[1]))
+        t.fail(t.get("support_z_mm"), "support_z_mm", "expected two increasing z positions [lower, upper] (mm)");
+      rig.support_z_m = {z[0] * 1e-3, z[1] * 1e-3};
+    }
+    rig.loading_z_m = t.number("loading_z_mm", rig.loading_z_m * 1e3) * 1e-3;
+    if (!(rig.support_z_m[0] < rig.loading_z_m && rig.loading_z_m < rig.support_z_m[1]))
+      t.fail(t.get("loading_z_mm"), "loading_z_mm", "expected a z between the supports' (support_z_mm)");
+    rig.support_tilt_rad = t.number("support_tilt_deg", rig.support_tilt_rad / degree) * degree;
+    if (!(std::abs(rig.support_tilt_rad) < 45 * degree))
+      t.fail(t.get("support_tilt_deg"), "support_tilt_deg", "expected an angle within (-45, 45) deg");
+    rig.friction = t.number("roller_friction", rig.friction);
+    if (!(rig.friction >= 0)) t.fail(t.get("roller_friction"), "roller_friction", "expected a number >= 0");
+    rig.normal_stiffness_N_per_m = t.number("roller_stiffness_N_per_m", rig.normal_stiffness_N_per_m);
+    if (!(rig.normal_stiffness_N_per_m > 0))
+      t.fail(t.get("roller_stiffness_N_per_m"), "roller_stiffness_N_per_m", "expected a number > 0");
   }
   if (const toml::node* node = sim.get("quasi_static")) {
     if (!node->is_table()) sim.fail(node, "quasi_static", "expected a table [simulator.quasi_static]");
@@ -336,13 +363,14 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
   SpecimenGeometry geometry;
   QuasiStaticOptions quasi_static;
   bool scale_to_link = true;
+  RollerRig rig;
   if (def.simulator == "law_replay") {
     def.law = sim.text("law");
     check_fixed_law_parameters(def, sim);
   } else if (specimen) {
     def.law = sim.text("law");
     check_fixed_specimen_parameters(def, sim);
-    read_specimen_tables(sim, name, geometry, quasi_static, scale_to_link);
+    read_specimen_tables(sim, name, geometry, quasi_static, scale_to_link, rig);
   } else if (def.simulator == "command") {
     def.law = sim.text("law", "command");
     const std::string program = sim.text("program", "dtwire");
@@ -424,9 +452,9 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
     x.only({"name", "target", "target_columns", "abscissa", "arc_length", "channels", "weight",
             "branch_tolerance", "increments_per_leg", "input_template", "input_prm", "prm_set",
-            "pull_angle_deg", "pull_angle_rad", "path_from_target"},
+            "pull_angle_deg", "pull_angle_rad", "path_from_target", "test"},
            "path_");
-    for (const char* key : {"pull_angle_deg", "pull_angle_rad"})
+    for (const char* key : {"pull_angle_deg", "pull_angle_rad", "test"})
       if (x.has(key) && def.simulator != "dem_specimen") x.fail(x.get(key), key, "only for kind = \"dem_specimen\"");
     Experiment e;
     e.name = x.text("name");
@@ -519,8 +547,18 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     } else if (specimen) {
       SpecimenPath path;
       path.displacement_m = waypoints(x, "path_displacement_", Dimension::Length, raw);
+      const std::string test = x.text("test", "pull");
+      if (test != "pull" && test != "three_point_bending")
+        x.fail(x.get("test"), "test", "expected pull or three_point_bending, found '" + test + "'");
+      if (test == "three_point_bending") {
+        path.test = SpecimenTest::ThreePointBending;
+        for (const char* key : {"pull_angle_deg", "pull_angle_rad"})
+          if (x.has(key)) x.fail(x.get(key), key, "a three_point_bending experiment has no pull angle");
+      }
       if (path.displacement_m.empty())
-        x.fail(nullptr, "path_displacement_mm", "missing: the upper grips' displacement waypoints along the pull direction");
+        x.fail(nullptr, "path_displacement_mm",
+               "missing: the upper grips' displacement waypoints along the pull direction (three_point_bending: the "
+               "loading roller's along -y)");
       for (const auto& [key, item] : raw)
         if (std::string(key.str()).rfind("path_", 0) == 0 && std::string(key.str()).rfind("path_displacement_", 0) != 0)
           x.fail(&item, std::string(key.str()), "dem_specimen paths have grip displacements only (path_displacement_<unit>) "
@@ -537,7 +575,8 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
                x.has("pull_angle_rad") ? "pull_angle_rad" : "pull_angle_deg", "expected an angle within [-90, 90] deg");
       path.increments_per_leg = increments;
       try {
-        e.simulator = std::make_shared<DemSpecimenSimulator>(def.law, def.fixed, geometry, quasi_static, path, scale_to_link);
+        e.simulator =
+            std::make_shared<DemSpecimenSimulator>(def.law, def.fixed, geometry, quasi_static, path, scale_to_link, rig);
       } catch (const std::invalid_argument& error) {
         x.fail(nullptr, "path_displacement_mm", error.what());
       }

@@ -68,6 +68,25 @@ struct ToolState {
   std::size_t contacts = 0;
 };
 
+// A roller and its contact with each link (roller.hpp).
+struct RollerState {
+  Roller roller;
+  std::vector<double> link_radius;
+  std::vector<Vector3> shear, on_a, on_b;
+  std::vector<double> contact_energy, friction_increment;
+  std::vector<char> touching;
+  Vector3 previous_point = Vector3::Zero();
+  Vector3 force_on_roller = Vector3::Zero(), previous_force_on_links = Vector3::Zero();
+  std::size_t contacts = 0;
+};
+
+// The velocity of a free node after its held components are zeroed (slider supports).
+void hold(const NetNode& node, Vector3& v, Vector3& w) {
+  for (int c = 0; c < 3; ++c)
+    if (node.held_translation[c]) v[c] = 0.0;
+  if (node.held_rotation) w.setZero();
+}
+
 }  // namespace
 
 struct Engine::State {
@@ -80,6 +99,7 @@ struct Engine::State {
   std::vector<LinkState> link_state;
   std::vector<std::vector<std::pair<int, bool>>> node_links;  // (link, node is end a)
   std::vector<ToolState> tools;
+  std::vector<RollerState> rollers;
   bool imposed_pending = false;
   bool held_tools = false;
 };
@@ -167,6 +187,36 @@ int Engine::add_tool(std::unique_ptr<Tool> tool) {
   return static_cast<int>(s_->tools.size()) - 1;
 }
 
+int Engine::add_roller(const Roller& roller, std::vector<double> link_radius) {
+  const std::size_t links = s_->links.size();
+  if (link_radius.size() != links)
+    throw std::invalid_argument("roller: " + std::to_string(link_radius.size()) + " link radii for " +
+                                std::to_string(links) + " links");
+  for (double r : link_radius)
+    if (!(r >= 0.0)) throw std::invalid_argument("roller: link radii must be >= 0");
+  if (!(roller.radius > 0.0)) throw std::invalid_argument("roller: radius must be > 0");
+  if (!(roller.axis.norm() > 0.0)) throw std::invalid_argument("roller: axis must be non-zero");
+  RollerState r;
+  r.roller = roller;
+  r.roller.axis.normalize();
+  r.link_radius = std::move(link_radius);
+  r.shear.assign(links, Vector3::Zero());
+  r.on_a.assign(links, Vector3::Zero());
+  r.on_b.assign(links, Vector3::Zero());
+  r.contact_energy.assign(links, 0.0);
+  r.friction_increment.assign(links, 0.0);
+  r.touching.assign(links, 0);
+  r.previous_point = roller.point;
+  s_->rollers.push_back(std::move(r));
+  const double critical = critical_time_step();
+  if (options_.time_step > 0.0) {
+    set_time_step(options_.time_step);
+  } else {
+    dt_ = std::min(dt_, options_.safety * critical);
+  }
+  return static_cast<int>(s_->rollers.size()) - 1;
+}
+
 void Engine::place_tool(std::size_t i, const Vector3& position, const Vector3& velocity) {
   ToolState& t = s_->tools.at(i);
   if (t.tool->mass > 0.0) {
@@ -208,6 +258,14 @@ double Engine::critical_time_step() const {
       const double r = s.nodes[i].radius;
       bound[i] += t.tool->contact.normal_stiffness * s.inverse_mass[i] +
                   t.tool->contact.shear_stiffness * (s.inverse_mass[i] + r * r * s.inverse_inertia[i]);
+    }
+  // A roller-link contact at s is the spring kn w w^T with w = ((1 - s), s) (x) normal; its row
+  // sums at either node are below kn / m (Gershgorin), as a node-tool contact's.
+  for (const RollerState& r : s.rollers)
+    for (std::size_t l = 0; l < s.links.size(); ++l) {
+      if (!(r.link_radius[l] > 0.0)) continue;
+      const double k = r.roller.contact.normal_stiffness + r.roller.contact.shear_stiffness;
+      for (int end : {s.links[l].link.a, s.links[l].link.b}) bound[end] += k * s.inverse_mass[end];
     }
   const double largest = n == 0 ? 0.0 : *std::max_element(bound.begin(), bound.end());
   return largest > 0.0 ? 2.0 / std::sqrt(largest) : 1.0;
@@ -315,8 +373,47 @@ void Engine::step() {
     }
   }
 
+  // Rollers: every link against every roller (each link writes its own slot).
+  for (RollerState& r : s.rollers) {
+#pragma omp parallel for num_threads(threads) schedule(static) if (links >= options_.parallel_threshold)
+    for (std::size_t l = 0; l < links; ++l) {
+      const NetLink& link = s.links[l].link;
+      r.on_a[l].setZero();
+      r.on_b[l].setZero();
+      r.contact_energy[l] = 0.0;
+      r.friction_increment[l] = 0.0;
+      r.touching[l] = 0;
+      if (!(r.link_radius[l] > 0.0) || s.link_state[l].broken) {
+        r.shear[l].setZero();
+        continue;
+      }
+      const SegmentContact c = roller_segment_contact(r.roller, s.x[link.a], s.x[link.b], r.link_radius[l],
+                                                      s.v[link.a], s.v[link.b], dt, r.shear[l]);
+      if (!c.touching) continue;
+      r.touching[l] = 1;
+      r.on_a[l] = c.on_a;
+      r.on_b[l] = c.on_b;
+      r.contact_energy[l] = c.elastic_energy;
+      r.friction_increment[l] = c.friction_work;
+    }
+  }
+
   // Works over x_{n-1} -> x_n (none for an imposed jump: its work is in the links).
   const bool imposed = s.imposed_pending;
+  for (RollerState& r : s.rollers) {
+    Vector3 on_links = Vector3::Zero();
+    std::size_t contacts = 0;
+    for (std::size_t l = 0; l < links; ++l) {
+      if (!r.touching[l]) continue;
+      ++contacts;
+      on_links += r.on_a[l] + r.on_b[l];
+      energy_.friction += r.friction_increment[l];
+    }
+    r.contacts = contacts;
+    if (!imposed) energy_.tool_work += 0.5 * (r.previous_force_on_links + on_links).dot(r.roller.point - r.previous_point);
+    r.previous_force_on_links = on_links;
+    r.force_on_roller = -on_links;
+  }
   for (ToolState& t : s.tools) {
     Vector3 on_nodes = Vector3::Zero(), on_tool_moment = Vector3::Zero();
     std::size_t contacts = 0;
@@ -350,6 +447,8 @@ void Engine::step() {
       f += t.force_on_node[i];
       m += t.moment_on_node[i];
     }
+    for (const RollerState& r : s.rollers)
+      for (const auto& [l, is_a] : s.node_links[i]) f += is_a ? r.on_a[l] : r.on_b[l];
     s.force[i] = f;
     s.moment[i] = m;
     const Vector3 dx = imposed ? Vector3::Zero() : Vector3(s.x[i] - s.x_previous[i]);
@@ -371,6 +470,7 @@ void Engine::step() {
     const Vector3 v_old = s.v[i], w_old = s.w[i];
     s.v[i] += dt * (f + fd) * s.inverse_mass[i];
     s.w[i] += dt * (m + md) * s.inverse_inertia[i];
+    hold(s.nodes[i], s.v[i], s.w[i]);
     s.node_kinetic[i] = 0.5 * v_old.dot(s.v[i]) / s.inverse_mass[i] + 0.5 * w_old.dot(s.w[i]) / s.inverse_inertia[i];
   }
 
@@ -399,6 +499,8 @@ void Engine::step() {
   double contact = 0.0;
   for (const ToolState& t : s.tools)
     for (double e : t.contact_energy) contact += e;
+  for (const RollerState& r : s.rollers)
+    for (double e : r.contact_energy) contact += e;
   energy_.contact_elastic = contact;
 
   // Rigid tools: free bodies integrate their own motion, kinematic ones move as prescribed.
@@ -419,6 +521,10 @@ void Engine::step() {
     if (angle > 0.0)
       tool.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(angle, tool.angular_velocity.normalized())) * tool.orientation;
     tool.orientation.normalize();
+  }
+  for (RollerState& r : s.rollers) {
+    r.previous_point = r.roller.point;
+    r.roller.point += dt * r.roller.velocity;
   }
   energy_.kinetic = kinetic;
 
@@ -447,7 +553,11 @@ RelaxResult Engine::relax(double tolerance, long max_steps) {
     if (k % 10 != 9) continue;
     double largest = 0.0, mean = 0.0;
     for (std::size_t i = 0; i < s_->nodes.size(); ++i)
-      if (s_->nodes[i].fixity == NodeFixity::Free) largest = std::max(largest, s_->force[i].norm());
+      if (s_->nodes[i].fixity == NodeFixity::Free) {
+        Vector3 f = s_->force[i], unused = Vector3::Zero();
+        hold(s_->nodes[i], f, unused);  // a held component's force is the support's
+        largest = std::max(largest, f.norm());
+      }
     for (const LinkState& state : s_->link_state) mean += state.force_on_a.norm();
     mean = s_->link_state.empty() ? 1.0 : mean / static_cast<double>(s_->link_state.size());
     result.force_ratio = mean > 0.0 ? largest / mean : largest;
@@ -485,5 +595,10 @@ const Tool& Engine::tool(std::size_t i) const { return *s_->tools.at(i).tool; }
 std::size_t Engine::tool_count() const { return s_->tools.size(); }
 Vector3 Engine::tool_force(std::size_t i) const { return s_->tools.at(i).force_on_tool; }
 std::size_t Engine::tool_contacts(std::size_t i) const { return s_->tools.at(i).contacts; }
+Roller& Engine::roller(std::size_t i) { return s_->rollers.at(i).roller; }
+const Roller& Engine::roller(std::size_t i) const { return s_->rollers.at(i).roller; }
+std::size_t Engine::roller_count() const { return s_->rollers.size(); }
+Vector3 Engine::roller_force(std::size_t i) const { return s_->rollers.at(i).force_on_roller; }
+std::size_t Engine::roller_contacts(std::size_t i) const { return s_->rollers.at(i).contacts; }
 
 }  // namespace dtwire::dem

@@ -12,6 +12,18 @@
 // held, i.e. clamped). Lower grips held; the upper grips move together along the pull
 // direction d = (sin a, 0, cos a) by the path's grip displacement (a = 0: tension).
 //
+// Three-point bending on rollers (SpecimenTest::ThreePointBending; the FE's
+// experiments/dt/dt_bending.prm): rigid cylinders of radius R, two supports under the arms at
+// z = support_z (axes along x, turned by support_tilt about z) and the loading roller above the
+// twist at z = loading_z, pressed along -y (normal to the mesh plane) by the path's displacement.
+// Each roller starts touching the nearest link (wire radius sw_/dt_contact_radius) and acts on
+// the links' axis segments (dem/include/dtwire/dem/roller.hpp: penalty, Coulomb friction, lever
+// rule): the specimen's nodes are only at link ends, so the loading roller presses the DT link
+// between its nodes and the supports the one-link arms. The lower grips are guided (x, z and
+// rotations held, free along y), the upper grips free, as in the FE run. Limits: a one-link arm
+// is straight and cannot wrap a roller; the twist's section is a circle of radius
+// dt_contact_radius (the FE twist's envelope turns along its length).
+//
 // Parameters carry the wire type as a prefix: "sw.N0_N", "dt.EA_N" (the rest is a name of the
 // law's schema, dtwire/dem/law_schema.hpp). Each set is given for its own reference length
 // (sw./dt.reference_length_m, required: 0.06 / 0.04 m for the published sets) and scaled to each
@@ -42,6 +54,20 @@ struct SpecimenGeometry {
   int arm_links = 1;  // SW links per arm
 };
 
+// The bending rig (defaults: experiments/dt/dt_bending.prm). The FE's supports are turned by
+// 4.6 deg about z because its two wires leave the twist 1.4 mm apart in y; the DEM's arms lie in
+// the mesh plane, where level supports (tilt 0) touch both arms as the FE's tilted ones do.
+struct RollerRig {
+  double radius_m = 0.020;
+  std::array<double, 2> support_z_m = {-0.010, 0.050};
+  double loading_z_m = 0.020;
+  double support_tilt_rad = 0.0;          // about z; the +z support turned the other way
+  double friction = 0.3;                  // Coulomb, roller-wire (the FE's)
+  double normal_stiffness_N_per_m = 5e7;  // penalty (and shear spring)
+  double sw_contact_radius_m = 0.00135;   // the arms' wire, d / 2
+  double dt_contact_radius_m = 0.0027;    // the twist's half-thickness normal to the mesh plane (two wires)
+};
+
 struct QuasiStaticOptions {
   double local_damping = 0.7;    // PFC/YADE local damping alpha in [0, 1)
   int move_steps = 200;          // explicit steps over which the grips move by one increment (smooth profile)
@@ -50,8 +76,13 @@ struct QuasiStaticOptions {
   double safety = 0.5;           // fraction of the engine's critical time step
 };
 
+enum class SpecimenTest { Pull, ThreePointBending };
+
 struct SpecimenPath {
-  std::vector<double> displacement_m;  // grip displacement along the pull direction, waypoints from 0
+  SpecimenTest test = SpecimenTest::Pull;
+  // Pull: the upper grips' displacement along the pull direction; bending: the loading roller's
+  // along -y. Waypoints from 0.
+  std::vector<double> displacement_m;
   double pull_angle_rad = 0.0;         // from the twist axis z towards +x, in the mesh plane
   int increments_per_leg = 100;
 };
@@ -61,6 +92,7 @@ struct SpecimenPath {
 void validate(const SpecimenPath& path);
 void validate(const SpecimenGeometry& geometry);
 void validate(const QuasiStaticOptions& options);
+void validate(const RollerRig& rig);
 
 // The prefixes of the two parameter sets.
 inline constexpr const char* kSwPrefix = "sw.";
@@ -84,11 +116,14 @@ class DemSpecimenSimulator final : public Simulator {
   // prefix or outside the law's schema, a missing reference_length_m of either set, or bad
   // geometry/options/path.
   DemSpecimenSimulator(std::string law, dem::ParameterMap fixed, SpecimenGeometry geometry,
-                       QuasiStaticOptions options, SpecimenPath path, bool scale_to_link_length = true);
+                       QuasiStaticOptions options, SpecimenPath path, bool scale_to_link_length = true,
+                       RollerRig rig = {});
 
   // Channels (SI): time (pseudo-time, leg k from k-1 to k), displacement (of the upper grips
-  // along d), force (sum over the upper grips of the force they apply to the specimen, along d;
-  // tension > 0), shear_force (the same along v = e_y x d), moment (of those forces and moments
+  // along d; bending: of the loading roller along -y), force (sum over the upper grips of the
+  // force they apply to the specimen, along d, tension > 0; bending: the loading roller's on
+  // the specimen along -y), support1_force, support2_force (bending: the lower and upper
+  // supports' on the specimen along +y; 0 in a pull), shear_force (the same along v = e_y x d), moment (of those forces and moments
   // about the upper grips' centroid, about e_y), dt_elongation (length change of the DT link),
   // dt_axial_force, dt_shear_force, dt_moment (the DT law's N, V_z, M_y: the in-plane shear
   // along -x and the moment about +y of the undeformed twist), arm1_force..arm4_force (axial
@@ -106,6 +141,7 @@ class DemSpecimenSimulator final : public Simulator {
   const SpecimenGeometry& geometry() const { return geometry_; }
   const QuasiStaticOptions& options() const { return options_; }
   const SpecimenPath& path() const { return path_; }
+  const RollerRig& rig() const { return rig_; }
 
  private:
   std::string law_;
@@ -114,6 +150,7 @@ class DemSpecimenSimulator final : public Simulator {
   QuasiStaticOptions options_;
   SpecimenPath path_;
   bool scale_ = true;
+  RollerRig rig_;
 };
 
 }  // namespace dtwire::calibrate

@@ -6,7 +6,8 @@
 // Per step n (positions x_n, half-step velocities v_{n-1/2}):
 //   1. links: increments of the six generalised displacements from x_{n-1} -> x_n (axial from
 //      the length, shear and rotations from the half-step velocities), law update, forces;
-//   2. tools: node-tool contacts (normal spring, incremental shear spring, Coulomb cap);
+//   2. tools: node-tool contacts (normal spring, incremental shear spring, Coulomb cap), and
+//      roller-link contacts (roller.hpp: the same law at a link's point, lever rule to its nodes);
 //   3. nodes: F = links + tools + gravity (gravitational mass); local damping
 //      F_d = -alpha |F_i| sign(F_i (v_i + dt F_i / 2m)) per component (YADE's NewtonIntegrator);
 //      v_{n+1/2} = v_{n-1/2} + dt (F + F_d)/m_inertial, x_{n+1} = x_n + dt v_{n+1/2}.
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include "dtwire/dem/net.hpp"
+#include "dtwire/dem/roller.hpp"
 #include "dtwire/dem/tools.hpp"
 
 namespace dtwire::dem {
@@ -39,8 +41,8 @@ struct EngineOptions {
 struct EnergySplit {
   double kinetic = 0.0;
   double link_elastic = 0.0, link_plastic = 0.0, link_damage = 0.0;
-  double contact_elastic = 0.0;  // node-tool springs
-  double friction = 0.0;         // node-tool slip
+  double contact_elastic = 0.0;  // node-tool and roller-link springs
+  double friction = 0.0;         // node-tool and roller-link slip
   double damping = 0.0;          // local damping (dissipated, >= 0)
   double gravity_work = 0.0, tool_work = 0.0, boundary_work = 0.0;
   double external() const { return gravity_work + tool_work + boundary_work; }
@@ -72,6 +74,11 @@ class Engine {
 
   // Adds a tool; returns its index. The critical step is recomputed.
   int add_tool(std::unique_ptr<Tool> tool);
+  // Adds a kinematic roller that touches the links (roller.hpp); link_radius[l] is link l's wire
+  // radius against it (0: no contact). Returns its index; the critical step is recomputed.
+  // Throws std::invalid_argument for a radius list of the wrong size, a negative radius or a
+  // roller with a non-positive radius or a zero axis.
+  int add_roller(const Roller& roller, std::vector<double> link_radius);
   // Moves tool i (no contacts may act at that moment) and sets its velocity; the kinetic energy
   // given to a free tool is booked as boundary work.
   void place_tool(std::size_t i, const Vector3& position, const Vector3& velocity);
@@ -115,6 +122,13 @@ class Engine {
   // Resultant force of the nodes on tool i (last step) [N] and its moment about the tool centre.
   Vector3 tool_force(std::size_t i) const;
   std::size_t tool_contacts(std::size_t i) const;
+  // Roller i (its point moves by its velocity each step), the resultant force of the links on it
+  // (last step) [N] and the links it touches.
+  Roller& roller(std::size_t i);
+  const Roller& roller(std::size_t i) const;
+  std::size_t roller_count() const;
+  Vector3 roller_force(std::size_t i) const;
+  std::size_t roller_contacts(std::size_t i) const;
 
  private:
   struct State;

@@ -2,6 +2,7 @@
 // The wire net a DEM run advances: nodes (spheres with mass and rotational inertia) and links
 // (one contact-library law per wire segment). SI units; positions in metres.
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,6 +22,11 @@ struct NetNode {
   double radius = 0.0;              // contact radius against tools [m]
   NodeFixity fixity = NodeFixity::Free;
   Vector3 guided_velocity = Vector3::Zero();  // [m/s], Guided nodes only
+  // Free nodes only: translation components (x, y, z) and rotations held at zero velocity, a
+  // slider support (e.g. a grip guided in x and z, free along y); the engine's unbalanced force
+  // of a held component is minus the support's reaction.
+  std::array<bool, 3> held_translation{};
+  bool held_rotation = false;
 };
 
 // Which parameter set a link takes: single wire, double twist, selvedge wire.
