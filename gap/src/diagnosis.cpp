@@ -42,10 +42,12 @@ void check_force(const ForceCurve& c) {
   if (!(peak > 0)) throw InputError(c.source, "the force is zero throughout");
 }
 
-double mean_gap(const ForceCurve& model, const std::vector<Comparison>& labs) {
+// Mean gap over the curves, the specimen scatter profiled out when the problem has it.
+double mean_gap(const ForceCurve& model, const FitProblem& problem) {
+  const auto forces = forces_with_scatter(model, problem.labs, problem.scatter);
   double sum = 0.0;
-  for (const Comparison& c : labs) sum += normalised_area(model, c);
-  return sum / static_cast<double>(labs.size());
+  for (std::size_t k = 0; k < forces.size(); ++k) sum += normalised_area(forces[k], problem.labs[k]);
+  return sum / static_cast<double>(forces.size());
 }
 
 std::string joined_name(const std::vector<AppliedEffect>& effects) {
@@ -69,10 +71,10 @@ RankedEffect rank_entry(const Context& ctx, const EffectFit& fit) {
   r.fitted = fit.effects;
   r.parameters = fit.parameter_count;
   const ForceCurve model = augment(ctx.problem.sim, fit.effects, ctx.problem.scale, ctx.problem.runner);
-  r.gap_after = mean_gap(model, ctx.problem.labs);
+  r.gap_after = mean_gap(model, ctx.problem);
   r.shrink = ctx.gap_before > 0 ? 1.0 - r.gap_after / ctx.gap_before : 0.0;
   const Comparison& first = ctx.problem.labs.front();
-  const auto forces = model_forces_at_lab(model, first);
+  const auto forces = forces_with_scatter(model, ctx.problem.labs, ctx.problem.scatter).front();
   r.gap_after_by_segment = segment_gaps(ctx.where, first, forces);
   r.frechet_after = frechet_distance(model, first);
   r.pcm_after = partial_curve_mapping(model, first);
@@ -284,13 +286,25 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
           ++pairs;
         }
     d.scatter_gap = sum / pairs;
-    d.noise_floor = std::max(d.noise_floor, d.scatter_gap);
+    // The smooth scale scatter between the specimens is profiled out of every fit; what the
+    // aligned specimens still differ by (noise, drift, shape scatter) is the floor.
+    const ScatterEstimate scatter = estimate_scatter(d.labs, ctx.problem.labs);
+    ctx.problem.scatter = scatter.scatter;
+    d.aligned_scatter_gap = scatter.aligned_gap;
+    d.specimen_force_bound = scatter.scatter.force_bound;
+    d.specimen_length_bound = scatter.scatter.length_bound;
+    d.noise_floor = std::max(d.noise_floor, d.aligned_scatter_gap);
   }
   ctx.floor = d.noise_floor;
   ctx.noise_area = std::sqrt(2.0 / M_PI) * d.noise_sigma_N / first.f_scale;
 
-  ctx.sim_forces_first = model_forces_at_lab(d.sim, first);
-  d.gap_before = mean_gap(d.sim, ctx.problem.labs);
+  ctx.sim_forces_first = forces_with_scatter(d.sim, ctx.problem.labs, ctx.problem.scatter).front();
+  d.gap_before = mean_gap(d.sim, ctx.problem);
+  if (ctx.problem.scatter.active) {
+    double sum = 0.0;
+    for (const Comparison& c : ctx.problem.labs) sum += normalised_area(d.sim, c);
+    d.gap_before_unadjusted = sum / static_cast<double>(ctx.problem.labs.size());
+  }
   ctx.gap_before = d.gap_before;
   d.frechet_before = frechet_distance(d.sim, first);
   d.pcm_before = partial_curve_mapping(d.sim, first);

@@ -203,8 +203,10 @@ EffectFit evaluate_fit(const FitProblem& problem, std::vector<AppliedEffect> eff
   EffectFit fit;
   for (const AppliedEffect& a : effects) fit.parameter_count += static_cast<int>(a.params.size());
   const ForceCurve model = augment(problem.sim, effects, problem.scale, problem.runner);
-  for (const Comparison& c : problem.labs) {
-    const auto r = normalised_residual(model_forces_at_lab(model, c), c);
+  const auto forces = forces_with_scatter(model, problem.labs, problem.scatter);
+  for (std::size_t k = 0; k < problem.labs.size(); ++k) {
+    const Comparison& c = problem.labs[k];
+    const auto r = normalised_residual(forces[k], c);
     for (std::size_t i = 0; i < r.size(); ++i) {
       fit.weighted_sse += c.weight[i] * r[i] * r[i];
       fit.residual.push_back(r[i]);

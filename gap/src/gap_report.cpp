@@ -128,6 +128,12 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                         {"lab", labs},
                         {"sim", d.sim.source}};
   if (d.scatter_gap >= 0) out["scatter_gap"] = d.scatter_gap;
+  if (d.aligned_scatter_gap >= 0) {
+    out["aligned_scatter_gap"] = d.aligned_scatter_gap;
+    out["gap_before_unadjusted"] = d.gap_before_unadjusted;
+    out["specimen_scale_bounds"] = {{"force_1", d.specimen_force_bound},
+                                    {"displacement_1", d.specimen_length_bound}};
+  }
   std::vector<std::string> also_possible;
   for (const RankedEffect& r : d.ranking)
     if (r.also_possible) also_possible.push_back(r.effect);
@@ -147,7 +153,8 @@ std::string diagnosis_markdown(const Diagnosis& d) {
     << "; discrete Frechet distance " << d.frechet_before << "; partial curve mapping "
     << d.pcm_before << "\n"
     << "- noise floor: " << d.noise_floor << " (load noise " << d.noise_sigma_N << " N"
-    << (d.scatter_gap >= 0 ? ", scatter between the laboratory curves " + std::to_string(d.scatter_gap) : std::string())
+    << (d.scatter_gap >= 0 ? ", scatter between the laboratory curves " + std::to_string(d.scatter_gap) +
+                                 ", " + std::to_string(d.aligned_scatter_gap) + " once aligned by scale" : std::string())
     << ")\n"
     << "- **cause: " << d.cause << "** (" << d.reason << ")\n";
   for (const RankedEffect& r : d.ranking)

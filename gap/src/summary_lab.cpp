@@ -48,7 +48,15 @@ std::vector<double> features_of(const ForceCurve& c, const std::vector<SummaryFe
 std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& scale,
                                      const EffectSpec& effect, const std::vector<SummaryFeature>& lab,
                                      std::mt19937& rng) {
-  const auto specs = effect.parameters(scale);
+  // Shape parameters cannot be told apart by a few features: held at the basic form.
+  auto specs = effect.parameters(scale);
+  std::vector<std::size_t> free;
+  for (std::size_t j = 0; j < specs.size(); ++j) {
+    if (specs[j].shape_neutral)
+      specs[j].lower = specs[j].upper = specs[j].plausible_lower = specs[j].plausible_upper = *specs[j].shape_neutral;
+    else
+      free.push_back(j);
+  }
   std::vector<std::vector<double>> starts;
   std::vector<double> centre;
   for (const auto& s : specs) centre.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
@@ -62,18 +70,19 @@ std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& sc
     for (const auto& s : specs) p.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * s.width() : 0.0);
     starts.push_back(p);
   }
-  const auto value_of = [&specs](const std::vector<double>& x) {
+  const auto value_of = [&specs, &free](const std::vector<double>& x) {
     std::vector<double> p;
-    for (std::size_t j = 0; j < specs.size(); ++j) p.push_back(specs[j].from_scaled(x[j]));
+    for (const ParameterSpec& s : specs) p.push_back(s.from_scaled(0.0));
+    for (std::size_t k = 0; k < free.size(); ++k) p[free[k]] = specs[free[k]].from_scaled(x[k]);
     return p;
   };
   lsq::Problem problem;
-  problem.parameter_count = specs.size();
+  problem.parameter_count = free.size();
   problem.residual_count = lab.size();
   problem.difference_step = 1e-4;
-  for (const auto& s : specs) {
-    problem.lower.push_back(s.to_scaled(s.lower));
-    problem.upper.push_back(s.to_scaled(s.upper));
+  for (std::size_t j : free) {
+    problem.lower.push_back(specs[j].to_scaled(specs[j].lower));
+    problem.upper.push_back(specs[j].to_scaled(specs[j].upper));
   }
   problem.residuals = [&](const std::vector<double>& x, std::vector<double>& r) {
     const auto f = features_of(apply_effects(sim, {{&effect, value_of(x)}}, scale), lab);
@@ -83,7 +92,7 @@ std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& sc
   std::vector<std::vector<double>> points;
   for (const auto& start : starts) {
     std::vector<double> x;
-    for (std::size_t j = 0; j < specs.size(); ++j) x.push_back(specs[j].to_scaled(start[j]));
+    for (std::size_t j : free) x.push_back(specs[j].to_scaled(start[j]));
     points.push_back(x);
   }
   lsq::Options options;
@@ -217,9 +226,12 @@ double aic_of(const std::vector<SummaryFeature>& lab, double gap, int parameters
   return static_cast<double>(lab.size()) * gap * gap + 2.0 * parameters;
 }
 
+// Fitted parameters only: shape parameters are held at their basic form here.
 int parameter_count(const std::vector<AppliedEffect>& effects) {
   int k = 0;
-  for (const AppliedEffect& a : effects) k += static_cast<int>(a.params.size());
+  for (const AppliedEffect& a : effects)
+    for (const ParameterSpec& s : a.effect->parameters(CurveScale{}))
+      k += !s.shape_neutral;
   return k;
 }
 

@@ -70,7 +70,7 @@ TEST(GapModes, ComplianceInTensionOnlyIsFoundThereAndSharedOverTheTensionCurves)
   const RankedEffect& top = d.combined.ranking.front();
   ASSERT_EQ(top.effect, "machine_compliance");
   ASSERT_EQ(top.fitted_by_mode.size(), 2u);  // one compliance per mode
-  EXPECT_EQ(top.parameters, 2);
+  EXPECT_EQ(top.parameters, 4);  // compliance and exponent per mode
   // One compliance over both tension curves: within 5 % of the injected value (0.4 % load noise;
   // a single curve recovers it within 10 %, tests/gap/effect_recovery_test.cpp).
   EXPECT_EQ(top.fitted_by_mode[0].first, "tension");
@@ -119,7 +119,7 @@ TEST(GapModes, SpecimenEffectSharesOneValueOverTheModes) {
   EXPECT_EQ(d.modes[1].diagnosis.cause, "strain_rate");
   ASSERT_EQ(d.combined.cause, "strain_rate");
   const RankedEffect& r = entry(d.combined, "strain_rate");
-  EXPECT_EQ(r.parameters, 1);  // one value for both modes
+  EXPECT_EQ(r.parameters, 2);  // one factor (and its fade) for both modes
   ASSERT_EQ(r.fitted_by_mode.size(), 2u);
   EXPECT_DOUBLE_EQ(r.fitted_by_mode[0].second.front().params[0], r.fitted_by_mode[1].second.front().params[0]);
   // Within 10 % of its distance from 1 (0.4 % load noise).
@@ -200,7 +200,7 @@ TEST(GapModes, PairWithAModelOnlyEffectIsFittedOverTheModesWithinItsBudget) {
   ASSERT_EQ(d.combined.cause, "geometry_imperfection+machine_compliance") << d.combined.reason;
   const RankedEffect& pair = d.combined.ranking.front();
   EXPECT_LE(pair.search_points, 6);
-  EXPECT_EQ(pair.parameters, 3);  // one imperfection, a compliance per mode
+  EXPECT_EQ(pair.parameters, 5);  // one imperfection, a compliance and exponent per mode
   for (const RankedEffect& r : d.combined.ranking)
     if (r.effect == "geometry_imperfection" || r.effect == "machine_compliance") {
       EXPECT_GT(pair.score, r.score) << r.effect;
@@ -238,16 +238,17 @@ TEST(GapModes, CombinedPairMustBeatTheSingleOnHeldOutDataAcrossTheModes) {
   DiagnosisOptions options;
   options.effects = {"machine_compliance", "gauge_length", "strain_rate", "ductile_damage"};
 
-  // One effect in a shape the fitted augmentation does not have (Hertzian contacts in the
-  // tension load train, u' = u + C F_p (f/F_p)^(2/3)): its misfit is smooth and correlated, the
-  // kind a second effect absorbs. No pair may be the cause.
-  independent::Setting hertz;
-  hertz.shape = 1;
-  hertz.draws = {0.8, 0.5, 0.5, 0.5};
-  hertz.end_m = tension.u.back();
-  hertz.visible_peak_N = scale.peak_force_N;
-  hertz.stiffness_N_per_m = scale.initial_stiffness_N_per_m;
-  const ForceCurve with_compliance = independent::machine_compliance(tension, hertz);
+  // One effect none of the candidates has (a cubic seating toe in the tension grips, 1.5 mm
+  // taken up by 8 % of the peak, with initial_slack not offered; the Hertzian compliance this
+  // test used is now fitted by the compliance exponent): its misfit is smooth and correlated,
+  // the kind a second effect absorbs. No pair may be the cause.
+  independent::Setting toe;
+  toe.shape = 0;
+  toe.draws = {1.0, 1.0, 0.5, 0.5};
+  toe.end_m = tension.u.back();
+  toe.visible_peak_N = scale.peak_force_N;
+  toe.stiffness_N_per_m = scale.initial_stiffness_N_per_m;
+  const ForceCurve with_compliance = independent::initial_slack(tension, toe);
   std::vector<ModeInput> single(2);
   single[0].mode = "tension";
   single[0].labs = {correlated(with_compliance, 21, "t1"), correlated(with_compliance, 22, "t2")};
@@ -256,16 +257,15 @@ TEST(GapModes, CombinedPairMustBeatTheSingleOnHeldOutDataAcrossTheModes) {
   single[1].labs = {correlated(compression, 23, "c1")};
   single[1].sim = compression;
   const MultiModeDiagnosis one = diagnose_modes(single, options);
-  EXPECT_EQ(one.combined.cause, "machine_compliance") << one.combined.reason;
+  EXPECT_EQ(one.combined.cause.find('+'), std::string::npos) << one.combined.cause;
   int pairs = 0;
   for (const RankedEffect& r : one.combined.ranking)
     if (r.effect.find('+') != std::string::npos) {
       ++pairs;
       EXPECT_TRUE(r.against_single.done) << r.effect;
-      EXPECT_EQ(r.against_single.single, "machine_compliance");
       EXPECT_FALSE(r.qualifies) << r.effect;
     }
-  EXPECT_GT(pairs, 0) << "the Hertzian compliance leaves enough misfit for pairs to be tried";
+  EXPECT_GT(pairs, 0) << "the toe leaves enough misfit for pairs to be tried";
 
   // Two effects (compliance in tension, a 10 % rate scaling of the steel in both modes): the pair
   // is the cause and its evidence against the single is in the ranking, held-out check done.

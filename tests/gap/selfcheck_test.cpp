@@ -34,8 +34,8 @@ namespace dtwire::gap {
 namespace {
 
 // Independent family (issue 17), two effect-free trials on the Voce base: the family runs and
-// reports itself. No goal is asserted: none is met with a margin (docs/gap.md, measured figures;
-// this very run gives `none` in 1 of 2).
+// reports itself. No goal is asserted on two trials (docs/gap.md, "Independent family", has the
+// measured figures).
 TEST(GapSelfcheck, IndependentFamilyRunsOnRepeatedSpecimens) {
   SelfcheckOptions options;
   options.family = "independent";

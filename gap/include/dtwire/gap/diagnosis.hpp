@@ -70,6 +70,12 @@ struct Diagnosis {
   std::string metric = "normalised_area";
   double noise_sigma_N = 0.0;
   double scatter_gap = -1.0;  // mean gap between the laboratory curves (< 0: one curve)
+  // Repeated curves (< 0: one curve): their mean gap once each pair is aligned by a force and a
+  // displacement scale, the bounds on the mean specimen's scales, and the gap before with the
+  // scatter left in (gap_before has it profiled out).
+  double aligned_scatter_gap = -1.0;
+  double specimen_force_bound = -1.0, specimen_length_bound = -1.0;
+  double gap_before_unadjusted = -1.0;
   double noise_floor = 0.0;
   double gap_before = 0.0;
   double frechet_before = 0.0;

@@ -6,6 +6,7 @@
 
 #include "dtwire/gap/curve_metrics.hpp"
 #include "dtwire/gap/effects.hpp"
+#include "dtwire/gap/specimen_scatter.hpp"
 
 namespace dtwire::gap {
 
@@ -14,6 +15,7 @@ struct FitProblem {
   CurveScale scale;
   std::vector<Comparison> labs;  // residuals of all curves are stacked
   ModelRunner runner;            // --model mode only
+  SpecimenScatter scatter;       // repeated curves: profiled out of every residual
 };
 
 struct EffectFit {

@@ -6,6 +6,7 @@
 // they are listed as not tested.
 #include <algorithm>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,9 @@ struct ParameterSpec {
   double plausible_lower = 0.0, plausible_upper = 1.0;  // realistic range
   // Fitted by a search over `grid` (piecewise-constant effect on the curve, no gradient).
   std::vector<double> grid;
+  // A shape parameter (issue 17): its value for the effect's basic form. Held there where a
+  // few summary figures cannot tell shapes apart.
+  std::optional<double> shape_neutral;
 
   // The fits' coordinate x = (p - plausible_lower) / plausible width: every unknown O(1).
   double width() const {

@@ -1,0 +1,79 @@
+// Shape parameters of the fitted effects (issue 17): each reduces to the earlier form at its
+// neutral value, follows its physical form elsewhere, and the diagnosis recovers it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "dtwire/gap/diagnosis.hpp"
+#include "dtwire/gap/effects.hpp"
+#include "dtwire/gap/synthetic_curves.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+ForceCurve with(const ForceCurve& sim, const std::string& effect, const std::vector<double>& p) {
+  return apply_effects(sim, {{&find_effect(effect), p}}, curve_scale(sim));
+}
+
+TEST(GapEffectShapes, NeutralShapeGivesTheEarlierForm) {
+  const ForceCurve sim = voce_tension_curve();
+  const CurveScale s = curve_scale(sim);
+  const ForceCurve linear = with(sim, "machine_compliance", {0.5, 1.0});
+  const ForceCurve scaled_u = with(sim, "gauge_length", {1.2, 0.0});
+  const ForceCurve constant = with(sim, "strain_rate", {1.1, 0.0});
+  for (std::size_t i = 0; i < sim.size(); ++i) {
+    EXPECT_DOUBLE_EQ(linear.u[i], sim.u[i] + 0.5e-6 * sim.f[i]);
+    EXPECT_DOUBLE_EQ(scaled_u.u[i], 1.2 * sim.u[i]);
+    EXPECT_NEAR(constant.f[i], 1.1 * sim.f[i], 1e-9 * s.peak_force_N);
+    EXPECT_NEAR(constant.u[i], sim.u[i] + 0.1 * sim.f[i] / s.initial_stiffness_N_per_m, 1e-15);
+  }
+  // A parameter list without the shape (earlier callers) is the neutral shape.
+  EXPECT_EQ(with(sim, "machine_compliance", {0.5}).u, linear.u);
+  EXPECT_EQ(with(sim, "gauge_length", {1.2}).u, scaled_u.u);
+  EXPECT_EQ(with(sim, "strain_rate", {1.1}).f, constant.f);
+}
+
+TEST(GapEffectShapes, ShapesFollowTheirPhysicalForms) {
+  const ForceCurve sim = voce_tension_curve();
+  const CurveScale s = curve_scale(sim);
+  const ForceCurve hertz = with(sim, "machine_compliance", {0.5, 2.0 / 3.0});
+  const ForceCurve plastic = with(sim, "gauge_length", {1.2, 1.0});
+  const ForceCurve fading = with(sim, "strain_rate", {1.1, 1.0});
+  for (std::size_t i = 0; i < sim.size(); ++i) {
+    const double f = sim.f[i], u = sim.u[i];
+    // Hertzian contacts: approach ~ load^(2/3), secant compliance C at the peak force.
+    EXPECT_NEAR(hertz.u[i], u + 0.5e-6 * s.peak_force_N * std::pow(f / s.peak_force_N, 2.0 / 3.0), 1e-12);
+    // Only the plastic part u - f/k0 is scaled.
+    const double elastic = std::min(u, f / s.initial_stiffness_N_per_m);
+    EXPECT_NEAR(plastic.u[i], elastic + 1.2 * (u - elastic), 1e-12);
+    // The whole gain lost at the end of the test, none at its start.
+    EXPECT_NEAR(fading.f[i], (1.0 + 0.1 * (1.0 - u / s.max_displacement_m)) * f, 1e-9 * s.peak_force_N);
+  }
+  EXPECT_NEAR(fading.f.back(), sim.f.back(), 1e-9 * s.peak_force_N);
+}
+
+// Hertzian compliance (m = 2/3) with 0.3 % load noise: the linear spring alone leaves a toe-like
+// misfit that initial slack took; with the exponent, compliance is the cause and m is recovered.
+TEST(GapEffectShapes, HertzianComplianceIsFoundWithItsExponent) {
+  const ForceCurve sim = voce_tension_curve();
+  const double peak = curve_scale(sim).peak_force_N;
+  std::mt19937 rng(5);
+  LabSampling sampling;
+  sampling.points = 700;
+  sampling.noise_sigma_N = 0.003 * peak;
+  const ForceCurve lab = sample_lab_curve(with(sim, "machine_compliance", {0.6, 2.0 / 3.0}), sampling, rng);
+  DiagnosisOptions options;
+  options.effects = {"machine_compliance", "initial_slack", "grip_slip"};
+  options.try_pairs = false;
+  const Diagnosis d = diagnose({lab}, sim, options);
+  ASSERT_EQ(d.cause, "machine_compliance") << d.reason;
+  const RankedEffect& top = d.ranking.front();
+  ASSERT_EQ(top.effect, "machine_compliance");
+  EXPECT_NEAR(top.fitted[0].params[0], 0.6, 0.06);
+  EXPECT_NEAR(top.fitted[0].params[1], 2.0 / 3.0, 0.05);
+  EXPECT_LE(top.gap_after, d.noise_floor);
+}
+
+}  // namespace
+}  // namespace dtwire::gap
