@@ -318,6 +318,24 @@ std::string selfcheck_markdown(const SelfcheckResult& r) {
     if (as_truth) rows.push_back(label);
     if (as_prediction) columns.push_back(label);
   }
+  // Sample sizes next to each figure; a figure with no trials behind it is n/a, not 0.
+  std::size_t singles = 0, pairs = 0, nones = 0, magnitudes = 0;
+  for (const SelfcheckTrial& t : r.trials) {
+    if (t.truth == "none") ++nones;
+    else if (t.truth.find('+') != std::string::npos) ++pairs;
+    else ++singles;
+    if (t.parameter_error >= 0.0) ++magnitudes;
+  }
+  const auto fixed2 = [](double value) {
+    std::ostringstream c;
+    c.setf(std::ios::fixed);
+    c.precision(2);
+    c << value;
+    return c.str();
+  };
+  const auto cell = [&](double value, std::size_t n) {
+    return n == 0 ? std::string("n/a") : fixed2(value) + " (n = " + std::to_string(n) + ")";
+  };
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(2);
@@ -325,14 +343,18 @@ std::string selfcheck_markdown(const SelfcheckResult& r) {
     << r.trials.size() << " trials of synthetic laboratory curves (effect withheld from the simulation), "
     << r.seconds << " s.\n\n"
     << "| figure | value | goal |\n|---|---|---|\n"
-    << "| top-1 cause correct, single effects | " << r.single_top1 << " | >= " << kGoalTop1 << " |\n"
-    << "| mean gap shrink, single effects | " << r.single_mean_shrink << " | >= " << kGoalShrink << " |\n"
-    << "| `none` on effect-free curves | " << r.none_rate << " | >= " << kGoalNone << " |\n"
-    << "| pairs diagnosed on single-effect curves | " << r.spurious_pair_rate << " | <= " << kGoalSpuriousPairs << " |\n"
-    << "| pairs: both found | " << r.pair_exact << " | - |\n"
-    << "| pairs: at least one found | " << r.pair_partial << " | - |\n"
-    << "| magnitude recovery error (relative), mean / median | " << r.mean_parameter_error
-    << " / " << r.median_parameter_error << " | - |\n\n"
+    << "| top-1 cause correct, single effects | " << cell(r.single_top1, singles) << " | >= " << kGoalTop1 << " |\n"
+    << "| mean gap shrink, single effects | " << cell(r.single_mean_shrink, singles) << " | >= " << kGoalShrink << " |\n"
+    << "| `none` on effect-free curves | " << cell(r.none_rate, nones) << " | >= " << kGoalNone << " |\n"
+    << "| pairs diagnosed on single-effect curves | " << cell(r.spurious_pair_rate, singles) << " | <= "
+    << kGoalSpuriousPairs << " |\n"
+    << "| pairs: both found | " << cell(r.pair_exact, pairs) << " | - |\n"
+    << "| pairs: at least one found | " << cell(r.pair_partial, pairs) << " | - |\n"
+    << "| magnitude recovery error (relative), mean / median | "
+    << (magnitudes == 0 ? std::string("n/a (the family's shapes differ from the fitted forms)")
+                        : fixed2(r.mean_parameter_error) + " / " + fixed2(r.median_parameter_error) +
+                              " (n = " + std::to_string(magnitudes) + ")")
+    << " | - |\n\n"
     << "Goals " << (r.goals_met ? "met" : "NOT met") << ".\n\n"
     << "Confusion matrix (rows: injected, columns: diagnosed):\n\n| injected |";
   for (const auto& c : columns) s << " " << c << " |";
