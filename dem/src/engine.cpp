@@ -178,13 +178,13 @@ int Engine::add_tool(std::unique_ptr<Tool> tool) {
   }
   t.previous_force_on_nodes.setZero();
   s_->tools.push_back(std::move(t));
-  const double critical = critical_time_step();
-  if (options_.time_step > 0.0) {
-    set_time_step(options_.time_step);
-  } else {
-    dt_ = std::min(dt_, options_.safety * critical);
-  }
+  update_time_step_for_new_contact();
   return static_cast<int>(s_->tools.size()) - 1;
+}
+
+void Engine::update_time_step_for_new_contact() {
+  if (options_.time_step > 0.0) set_time_step(options_.time_step);
+  else dt_ = std::min(dt_, options_.safety * critical_time_step());
 }
 
 int Engine::add_roller(const Roller& roller, std::vector<double> link_radius) {
@@ -208,12 +208,7 @@ int Engine::add_roller(const Roller& roller, std::vector<double> link_radius) {
   r.touching.assign(links, 0);
   r.previous_point = roller.point;
   s_->rollers.push_back(std::move(r));
-  const double critical = critical_time_step();
-  if (options_.time_step > 0.0) {
-    set_time_step(options_.time_step);
-  } else {
-    dt_ = std::min(dt_, options_.safety * critical);
-  }
+  update_time_step_for_new_contact();
   return static_cast<int>(s_->rollers.size()) - 1;
 }
 

@@ -15,6 +15,7 @@
 #include "dtwire/calibrate/fit_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/dem/contact_law.hpp"
+#include "thesis_sets.hpp"
 
 namespace dtwire::calibrate {
 namespace {
@@ -22,15 +23,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegree = kPi / 180.0;
 
-dem::ParameterMap thesis_sets() {
-  std::ifstream in(std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/data/macroelement_thesis_params.json");
-  const nlohmann::json root = nlohmann::json::parse(in);
-  dem::ParameterMap out;
-  for (const auto& [section, prefix] : {std::pair<std::string, std::string>{"single_wire", "sw."}, {"double_twist", "dt."}})
-    for (const auto& [name, value] : root.at(section).items())
-      if (value.is_number()) out[prefix + name] = value.get<double>();
-  return out;
-}
+using testing::thesis_sets;
 
 DemSpecimenSimulator bending(std::vector<double> path_m, RollerRig rig, int increments = 4,
                              dem::ParameterMap sets = thesis_sets()) {

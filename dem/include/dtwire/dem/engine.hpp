@@ -131,6 +131,9 @@ class Engine {
   std::size_t roller_contacts(std::size_t i) const;
 
  private:
+  // After a tool or roller is added: the fixed step if one was given, else the stable step.
+  void update_time_step_for_new_contact();
+
   struct State;
   std::unique_ptr<State> s_;
   EngineOptions options_;
