@@ -9,6 +9,7 @@
 #include "../commands.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
+#include "dtwire/meshes/axis_io.hpp"
 #include "dtwire/meshes/mesh_check.hpp"
 #include "dtwire/meshes/mesh_io.hpp"
 #include "dtwire/meshes/parameter_file.hpp"
@@ -53,7 +54,10 @@ int run_mesh(const MeshOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const WireMesh mesh = build_wire_mesh(parameters, locations);
   const double build_seconds = seconds_since(start);
-  if (!options.msh.empty()) write_msh(mesh.mesh, options.msh);
+  if (!options.msh.empty()) {
+    write_msh(mesh.mesh, options.msh);
+    write_axis_csv(mesh, axis_file_for(options.msh));
+  }
   if (!options.vtu.empty()) write_vtu(mesh.mesh, options.vtu);
   const double total_seconds = seconds_since(start);
   std::cerr << "mesh: " << mesh.mesh.hexes.size() << " hexahedra, built in " << build_seconds
@@ -86,7 +90,7 @@ void add_kind(CLI::App& mesh, CommandSet& commands, meshes::WireKind kind) {
     option->capture_default_str()->type_name(field.integer ? "INT" : "FLOAT");
     options->given[field.name] = option;
   }
-  command->add_option("-o,--out", options->msh, "Mesh file to write (gmsh MSH 2.2, coordinates in m)");
+  command->add_option("-o,--out", options->msh, "Mesh file to write (gmsh MSH 2.2, coordinates in m); its wire axes go to FILE.axis.csv beside it");
   command->add_option("--vtu", options->vtu, "VTU preview for ParaView");
   command->add_flag("--check", options->check,
                     "Print cell count, scaled Jacobian, aspect ratio, wire-wire distance, lay angle and volume");

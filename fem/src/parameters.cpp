@@ -74,6 +74,20 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Polynomial degree", "1", Patterns::Integer(1, 2), "");
   prm.leave_subsection();
 
+  prm.enter_subsection("As made");
+  prm.declare_entry("Forming history", "false", Patterns::Bool(),
+                    "start from the wires bent from straight wire into the mesh's axes (plastic strain, "
+                    "backstress, damage and stress of that bending), released with the bottom grips held "
+                    "(springback) before the load path; double-twist mesh files only");
+  prm.declare_entry("Forming scale", "1", Patterns::Double(0.0, 2.0),
+                    "fraction of each fibre's bending strain taken as forming (0: tight and stress-free)");
+  prm.declare_entry("Axis file", "", Patterns::Anything(),
+                    "the mesh's wire axes (CSV of `dtwire mesh`); empty: the mesh file with .axis.csv");
+  prm.declare_entry("Forming increments", "20", Patterns::Integer(1, 1000), "steps of each fibre's forming path");
+  prm.declare_entry("Initial release step", "0.25", Patterns::Double(1e-4, 1.0),
+                    "fraction of the forming stress released in the first springback step");
+  prm.leave_subsection();
+
   prm.enter_subsection("Boundary conditions");
   prm.declare_entry("Bottom end", "clamped", Patterns::Selection("clamped|axial|guided|symmetry"),
                     "z = 0: clamped (u = 0), axial (u_z = 0), guided (u_x = u_z = 0: free to move along y "
@@ -348,6 +362,26 @@ void read_formulation(Source& source, Parameters& p) {
   prm.leave_subsection();
 }
 
+void read_forming(Source& source, Parameters& p) {
+  ParameterHandler& prm = source.prm;
+  prm.enter_subsection("As made");
+  auto& f = p.forming;
+  f.enabled = prm.get_bool("Forming history");
+  f.scale = prm.get_double("Forming scale");
+  f.increments = static_cast<unsigned>(prm.get_integer("Forming increments"));
+  f.initial_release_step = prm.get_double("Initial release step");
+  if (f.enabled) {
+    source.require(!p.geometry.mesh_file.empty(), "As made", "Forming history",
+                   "false without a mesh file (the forming bends wires into the axes of a `dtwire mesh` file)");
+    f.axis_file = prm.get("Axis file").empty() ? std::filesystem::path(p.geometry.mesh_file).replace_extension(".axis.csv")
+                                               : source.file.parent_path() / prm.get("Axis file");
+    source.require(std::filesystem::is_regular_file(f.axis_file), "As made", "Axis file",
+                   "the mesh's axis file (cannot open " + f.axis_file.string() +
+                       "; `dtwire mesh ... -o X.msh` writes X.axis.csv beside the mesh)");
+  }
+  prm.leave_subsection();
+}
+
 void read_boundary_conditions(Source& source, Parameters& p) {
   ParameterHandler& prm = source.prm;
   const std::string& name = source.name;
@@ -563,6 +597,7 @@ Parameters read_and_convert(const std::filesystem::path& file, const std::vector
   read_geometry(source, p);
   read_material(source, p);
   read_formulation(source, p);
+  read_forming(source, p);
   read_boundary_conditions(source, p);
   read_load_stepping(source, p);
   read_newton(source, p);

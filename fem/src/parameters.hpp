@@ -39,6 +39,17 @@ struct MaterialParameters {
   bool stop_at_failure = true;
 };
 
+// The double twist as made (forming_history.hpp, issue 19): the wires start with the plastic
+// strain, backstress, damage and stress of being bent from straight wire into the mesh's axes,
+// and are released (springback, bottom grips held) before the load path begins.
+struct FormingParameters {
+  bool enabled = false;
+  double scale = 1.0;            // fraction of the bending strain taken (0: tight and stress-free)
+  std::filesystem::path axis_file;  // the mesh's X.axis.csv
+  unsigned increments = 20;      // steps of each fibre's uniaxial forming path
+  double initial_release_step = 0.25;  // fraction of the forming stress released in the first step
+};
+
 struct FormulationParameters {
   bool fbar = true;
   unsigned degree = 1;
@@ -122,6 +133,7 @@ struct Parameters {
   GeometryParameters geometry;
   MaterialParameters material;
   FormulationParameters formulation;
+  FormingParameters forming;
   LoadParameters load;
   SteppingParameters stepping;
   NewtonParameters newton;

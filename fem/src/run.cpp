@@ -104,8 +104,10 @@ void add_generalised_channels(Curve& c, const std::vector<StepRecord>& records, 
            r.grip.slip_dissipation;
   };
   channel("external_work", Dimension::Energy, "J", [](const StepRecord& r) { return r.external_work; });
+  // from the first record: an as-made specimen starts with the energy its forming left
+  const double initial = stored(records.front());
   channel("energy_balance_error", Dimension::Energy, "J",
-          [&](const StepRecord& r) { return r.external_work - stored(r); });
+          [&](const StepRecord& r) { return r.external_work - (stored(r) - initial); });
 }
 
 // The twist as a DEM link (link_kinematics.hpp): chord elongation, relative rotation of the top
@@ -209,7 +211,9 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
     d.push_back(s.plastic_dissipation);
     e.push_back(s.elastic_energy);
     r.push_back(s.neck_radius);
-    if (!p.output.extensometer.empty()) gauge.push_back(extensometer_elongation(s, p.output));
+    // from the first record: an as-made specimen's springback is not an elongation of the test
+    if (!p.output.extensometer.empty())
+      gauge.push_back(extensometer_elongation(s, p.output) - extensometer_elongation(records.front(), p.output));
   }
   Curve c;
   if (p.output.extensometer_as_displacement) {
@@ -338,6 +342,9 @@ RunSummary run_experiment(const RunOptions& options) {
   summary.cutbacks = st.cutbacks;
   summary.assembly_seconds = st.assembly_seconds;
   summary.solve_seconds = st.solve_seconds;
+  if (st.forming.done)
+    summary.springback = {true, st.forming.energy_balance, st.forming.largest_displacement * 1e3,
+                          st.forming.clearance_mean * 1e3, st.forming.clearance_largest * 1e3, st.forming.seconds};
   for (const auto& r : records)
     if (std::abs(r.force) > std::abs(summary.peak_force_N)) {  // largest magnitude, signed
       summary.peak_force_N = r.force;
@@ -368,6 +375,40 @@ RunSummary run_experiment(const RunOptions& options) {
     results.parameters.push_back({"failure_triaxiality", f->damage_triaxiality, "1", std::nullopt});
     results.parameters.push_back({"failure_lode_parameter", f->damage_lode, "1", std::nullopt});
     log << "failure: " << curve.metadata("failure") << "\n";
+  }
+  if (st.forming.done) {  // as made: what the springback left (issue 19)
+    const auto& fm = st.forming;
+    Curve profile;
+    const auto column = [&](const std::string& name, Dimension dimension, const char* unit,
+                            const std::function<double(const FormingProfileRow&)>& value) {
+      std::vector<double> v;
+      for (const auto& row : fm.profile) v.push_back(value(row));
+      profile.add_channel_si(name, dimension, v, *find_unit(unit));
+    };
+    column("wire", Dimension::Dimensionless, "1", [](const FormingProfileRow& r) { return r.wire; });
+    column("arc_length", Dimension::Length, "mm", [](const FormingProfileRow& r) { return r.arc_length; });
+    column("z", Dimension::Length, "mm", [](const FormingProfileRow& r) { return r.z; });
+    column("von_mises_mean", Dimension::Stress, "MPa", [](const FormingProfileRow& r) { return r.von_mises_mean; });
+    column("von_mises_max", Dimension::Stress, "MPa", [](const FormingProfileRow& r) { return r.von_mises_max; });
+    column("plastic_strain_mean", Dimension::Dimensionless, "1",
+           [](const FormingProfileRow& r) { return r.plastic_strain_mean; });
+    column("plastic_strain_max", Dimension::Dimensionless, "1",
+           [](const FormingProfileRow& r) { return r.plastic_strain_max; });
+    column("damage_max", Dimension::Dimensionless, "1", [](const FormingProfileRow& r) { return r.damage_max; });
+    write_csv(profile, out / "as_made.csv");
+    struct Figure {
+      const char* name;
+      double value;
+      const char* unit;
+    };
+    const Figure figures[] = {{"springback_energy_balance", fm.energy_balance, "1"},
+                              {"springback_seconds", fm.seconds, "s"},
+                              {"springback_largest_displacement", fm.largest_displacement, "m"},
+                              {"clearance_mean", fm.clearance_mean, "m"},
+                              {"clearance_largest", fm.clearance_largest, "m"},
+                              {"forming_elastic_energy", fm.initial_elastic_energy, "J"},
+                              {"residual_elastic_energy", fm.elastic_energy, "J"}};
+    for (const auto& figure : figures) results.parameters.push_back({figure.name, figure.value, figure.unit, std::nullopt});
   }
   const auto files = solver.field_files();
   for (std::size_t i = 0; i < files.size(); ++i)

@@ -54,8 +54,14 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
     record = s.history.back();
     s.log << "restarted from the checkpoint of step " << step << " at t = " << t << "\n";
   } else {
-    s.assemble(false, s.homogeneous);  // initial state (stress-free), fills the field records
+    if (s.prm.forming.enabled) {  // as made: formed, then sprung back (solver_forming.cpp)
+      s.apply_forming_history();
+      s.release_forming();
+    }
+    s.assemble(false, s.homogeneous);  // initial state (stress-free unless as made), fills the field records
     s.commit();
+    record.plastic_dissipation = s.dissipation * s.force_multiplier() * s.length_multiplier();
+    record.elastic_energy = s.elastic_energy * s.force_multiplier() * s.length_multiplier();
     record.neck_radius = s.neck_radius();
     s.record_contact_parts(record, false);
     s.record_end(record);

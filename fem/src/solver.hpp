@@ -16,11 +16,36 @@
 
 namespace dtwire::fem {
 
+// The as-made start (As made/Forming history): the springback of the formed wires and what it
+// leaves, per wire and axis station (profile).
+struct FormingProfileRow {
+  unsigned wire = 0;
+  double arc_length = 0.0, z = 0.0;  // m
+  double von_mises_mean = 0.0, von_mises_max = 0.0;  // Pa, over the section's quadrature points
+  double plastic_strain_mean = 0.0, plastic_strain_max = 0.0;
+  double damage_max = 0.0;
+};
+struct FormingSummary {
+  bool done = false;
+  unsigned steps = 0, newton_iterations = 0, cutbacks = 0;
+  double seconds = 0.0;
+  // Energies (J): the forming stress's elastic energy held in the mesh, and after the release;
+  // the plastic and friction work of the release; the work of the holding forces as they fall.
+  double initial_elastic_energy = 0.0, elastic_energy = 0.0, plastic_work = 0.0, friction_work = 0.0,
+         holding_work = 0.0;
+  double energy_balance = 0.0;  // |initial + holding - elastic - plastic - friction| / initial
+  double largest_displacement = 0.0;  // m, of the springback
+  unsigned clearance_points = 0, points_in_contact = 0;
+  double clearance_mean = 0.0, clearance_largest = 0.0;  // m, after the springback
+  std::vector<FormingProfileRow> profile;
+};
+
 struct SolverStatistics {
   std::size_t dofs = 0, cells = 0;
   unsigned ranks = 1;
   std::size_t steps = 0, newton_iterations = 0, cutbacks = 0, assemblies = 0;
   double assembly_seconds = 0.0, solve_seconds = 0.0;
+  FormingSummary forming;
 };
 
 class WireSolver {

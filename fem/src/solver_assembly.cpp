@@ -117,6 +117,7 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
   if (force_dof != numbers::invalid_dof_index && owned.is_element(force_dof)) rhs(force_dof) += applied_force;
   if (with_matrix) matrix.compress(VectorOperation::add);
   rhs.compress(VectorOperation::add);
+  if (holding_factor != 0.0) rhs.add(holding_factor, holding_force);
   internal_force.compress(VectorOperation::add);
   elastic_energy = Utilities::MPI::sum(elastic_energy, comm);
   dissipation = Utilities::MPI::sum(dissipation, comm);

@@ -56,10 +56,13 @@ void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double t_o
   const TopEndIncrement top(prm.load, load_direction, rotation_centre, t_old, t_new);
   std::map<types::boundary_id, const Function<3>*> top_map, bottom_map;
   if (!prm.load.grip.bonded) {  // bonded grips are held by the bond (contact/bonded_grip.hpp) instead
-    for (const auto id : top_ids) top_map[id] = &top;
+    if (!top_released)
+      for (const auto id : top_ids) top_map[id] = &top;
     for (const auto id : bottom_ids) bottom_map[id] = &zero;
   }
-  if (prm.load.force_control) {
+  if (top_released) {
+    // springback of the as-made wires: the top end follows the wires (solver_forming.cpp)
+  } else if (prm.load.force_control) {
     // The top face translates as one along z (all u_z equal to force_dof's); clamped also
     // holds u_x, u_y.
     if (prm.load.top == EndCondition::clamped) {

@@ -138,6 +138,16 @@ struct WireSolver::Impl {
                   unsigned& iterations, std::string& reason);
   void write_fields(unsigned step, double time);
 
+  // As made (solver_forming.cpp): the forming history put into every quadrature point, then
+  // released by letting the holding forces (the initial internal forces, scaled by
+  // holding_factor) fall to zero with the top end free.
+  bool top_released = false;
+  double holding_factor = 0.0;
+  PETScWrappers::MPI::Vector holding_force;
+  void apply_forming_history();
+  void release_forming();
+  void record_forming_profile();
+
   // Checkpoint / restart (binary, one file per rank; doubles written exactly).
   std::filesystem::path checkpoint_directory;
   unsigned checkpoint_interval = 0;

@@ -12,6 +12,14 @@ Vec3 rotate(const Vec3& v, const Vec3& k, double angle) {
   return c * v + s * cross(k, v) + (1 - c) * dot(k, v) * k;
 }
 
+// d(tangent)/ds of the piece at s, by central differences inside the piece (one-sided at its
+// ends, so that a station shared by two pieces takes the curvature of the piece it closes).
+Vec3 piece_curvature(const AxisPiece& piece, double s) {
+  const double h = 1e-4 * piece.length;
+  const double a = std::max(0.0, s - h), b = std::min(piece.length, s + h);
+  return (1.0 / (b - a)) * (piece.at(b).tangent - piece.at(a).tangent);
+}
+
 }  // namespace
 
 Station flipped(const Station& station) { return {station.point, -station.tangent, station.normal}; }
@@ -45,12 +53,23 @@ SampledAxis sample_axis(const std::vector<AxisPiece>& pieces, double cell_length
   for (const AxisPiece& piece : pieces) {
     if (piece.length <= 0) continue;
     const int layers = std::max(piece.min_layers, static_cast<int>(std::ceil(piece.length / cell_length - 1e-9)));
-    for (int k = axis.stations.empty() ? 0 : 1; k <= layers; ++k)
-      axis.stations.push_back(piece.at(piece.length * k / layers));
+    for (int k = axis.stations.empty() ? 0 : 1; k <= layers; ++k) {
+      const double s = piece.length * k / layers;
+      axis.stations.push_back(piece.at(s));
+      axis.curvature.push_back(piece_curvature(piece, s));
+      axis.arc_length.push_back(axis.length + s);
+    }
     axis.layer_part.insert(axis.layer_part.end(), layers, piece.part);
     axis.length += piece.length;
   }
   return axis;
+}
+
+std::vector<AxisSample> axis_samples(const SampledAxis& axis) {
+  std::vector<AxisSample> samples;
+  for (std::size_t k = 0; k < axis.stations.size(); ++k)
+    samples.push_back({axis.arc_length[k], axis.stations[k].point, axis.stations[k].tangent, axis.curvature[k]});
+  return samples;
 }
 
 void sweep_wire(HexMesh& mesh, const CrossSection& section, const SampledAxis& axis, int wire,

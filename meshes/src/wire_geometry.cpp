@@ -147,6 +147,7 @@ WireMesh build_wire_mesh(const MeshParameters& p, const FieldLocations& where) {
     const SampledAxis axis = sample_axis(pieces, res.axial_cell_length);
     sweep_wire(result.mesh, section, axis, 0, false);
     result.axis_lengths = {axis.length};
+    result.axes = {axis_samples(axis)};
     return result;
   }
   // The facets of a steep (e.g. coated) twist can come closer than the exact tubes: widen
@@ -165,6 +166,7 @@ WireMesh build_wire_mesh(const MeshParameters& p, const FieldLocations& where) {
       const SampledAxis axis = sample_axis(axes[wire], res.axial_cell_length);
       sweep_wire(trial.mesh, section, axis, wire, true);
       trial.axis_lengths.push_back(axis.length);
+      trial.axes.push_back(axis_samples(axis));
     }
     trial.min_surface_distance = min_surface_distance(trial.mesh, 0, 1, 0.5 * p.diameter + p.coating);
     const double shortfall = p.gap - trial.min_surface_distance;

@@ -519,4 +519,21 @@ std::vector<std::pair<std::string, Vector<float>>> WireWireContact::cell_fields(
   return {{"wire_contact_pressure_Pa", pressure}, {"wire_contact_slip_m", slip}};
 }
 
+WireWireContact::Clearance WireWireContact::clearance() const {
+  double count = 0.0, touching = 0.0, sum = 0.0, largest = 0.0;
+  for (const auto& p : points_) {
+    if (p.master < 0) continue;
+    count += 1.0;
+    if (p.last.active) touching += 1.0;
+    sum += std::max(p.last.gap, 0.0);
+    largest = std::max(largest, p.last.gap);
+  }
+  Clearance c;
+  c.points = static_cast<unsigned>(dealii::Utilities::MPI::sum(count, comm_));
+  c.in_contact = static_cast<unsigned>(dealii::Utilities::MPI::sum(touching, comm_));
+  c.mean = c.points > 0 ? dealii::Utilities::MPI::sum(sum, comm_) / c.points : 0.0;
+  c.largest = dealii::Utilities::MPI::max(largest, comm_);
+  return c;
+}
+
 }  // namespace dtwire::fem::contact

@@ -62,6 +62,13 @@ class WireWireContact final : public ContactPart {
   // Largest pressure (Pa) and accumulated slip (m) over each slave cell's points.
   std::vector<std::pair<std::string, dealii::Vector<float>>> cell_fields(unsigned n_cells) const override;
   unsigned augmentations() const override { return augmentations_; }
+  // The normal gap between the wires at the slave points that project onto wire B (last
+  // assembly), over all ranks: the clearance a springback leaves (m).
+  struct Clearance {
+    unsigned points = 0, in_contact = 0;
+    double mean = 0.0, largest = 0.0;  // of max(gap, 0)
+  };
+  Clearance clearance() const;
   // The committed state for checkpoints (packed_state.hpp): per point the friction history,
   // pressure, position and master face; per slave face the matrix pattern; the master
   // displacements; the dissipation. After restore_state the caller rebuilds the matrix.

@@ -17,6 +17,13 @@ struct RunOptions {
   int restart_step = -1;                   // >= 0: resume from output_directory/checkpoints/step_N
 };
 
+// As made (As made/Forming history = true): the springback before the load path.
+struct SpringbackSummary {
+  bool done = false;
+  double energy_balance = 0.0;  // relative: |W0 + holding work - elastic - plastic - friction| / W0
+  double largest_displacement_mm = 0.0, clearance_mean_mm = 0.0, clearance_largest_mm = 0.0, seconds = 0.0;
+};
+
 struct RunSummary {
   bool root = true;  // this process is MPI rank 0 (the one that wrote the files)
   unsigned ranks = 1;
@@ -25,6 +32,7 @@ struct RunSummary {
   double peak_force_N = 0.0, displacement_at_peak_mm = 0.0;  // force of largest magnitude (signed)
   double wall_seconds = 0.0, assembly_seconds = 0.0, solve_seconds = 0.0;
   std::filesystem::path curve_csv, results_h5, log;
+  SpringbackSummary springback;
 };
 
 // MPI must already be initialised (tests, benchmarks). Throws InputError for a bad .prm and

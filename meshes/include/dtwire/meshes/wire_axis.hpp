@@ -36,11 +36,17 @@ AxisPiece bend_piece(const Station& start, const Vec3& direction, double radius,
 
 struct SampledAxis {
   std::vector<Station> stations;
+  // Curvature vector d(tangent)/ds at each station (1/m, towards the centre of curvature),
+  // from the piece the station lies in: what bending a straight wire into this axis takes.
+  std::vector<Vec3> curvature;
+  std::vector<double> arc_length;  // m from the first station
   std::vector<WirePart> layer_part;  // part of the cell layer between station k and k + 1
   double length = 0;                 // exact axis length
 };
 // Each piece gets max(ceil(length / cell_length), min_layers) equal layers.
 SampledAxis sample_axis(const std::vector<AxisPiece>& pieces, double cell_length);
+
+std::vector<AxisSample> axis_samples(const SampledAxis& axis);
 
 // Sweeps the section along the axis and appends hexes, end faces and lateral faces of wire
 // `wire` (0 or 1) with the region ids of wire_mesh.hpp.

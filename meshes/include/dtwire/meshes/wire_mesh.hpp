@@ -31,6 +31,13 @@ struct HexMesh {
   std::map<int, std::string> surface_names;
 };
 
+// A station of a wire's axis (m): the forming history of fem/ bends a straight wire into it.
+struct AxisSample {
+  double arc_length = 0;  // from the wire's first station
+  Vec3 point, tangent;
+  Vec3 curvature;  // d(tangent)/ds (1/m), towards the centre of curvature
+};
+
 // The mesh with what the checks compare against.
 struct WireMesh {
   HexMesh mesh;
@@ -38,6 +45,7 @@ struct WireMesh {
   double steel_radius = 0;
   double coating = 0;
   std::vector<double> axis_lengths;  // per wire, exact arc length of the axis
+  std::vector<std::vector<AxisSample>> axes;  // per wire, the stations the section was swept along
   double lay_angle = 0;              // DT helix lay angle (rad), 0 for the SW
   double gap = 0;                    // DT nominal gap between the wire surfaces
   double axis_allowance = 0;         // DT extra axis separation (see MeshParameters)

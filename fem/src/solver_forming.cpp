@@ -1,0 +1,176 @@
+#include <deal.II/base/timer.h>
+#include <deal.II/fe/fe_values.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/region_ids.hpp"
+#include "forming_history.hpp"
+#include "solver_impl.hpp"
+
+namespace dtwire::fem {
+
+using namespace dealii;
+
+namespace {
+bool is_coating(types::material_id id) { return (id - 1) % 10 >= 3; }  // region_ids.hpp: + 3 for the coating
+}  // namespace
+
+// Every steel quadrature point gets the state of its fibre bent from straight wire into the
+// wire's axis (forming_history.hpp); the PVC coating, if any, stays stress-free.
+void WireSolver::Impl::apply_forming_history() {
+  Timer timer;
+  const WireAxes axes(prm.forming.axis_file);
+  FEValues<3> values(fe, quadrature, update_quadrature_points);
+  const unsigned n_q = quadrature.size();
+  for (const auto& cell : dof_handler.active_cell_iterators()) {
+    if (!cell->is_locally_owned() || is_coating(cell->material_id())) continue;
+    values.reinit(cell);
+    const unsigned wire = prm.geometry.double_twist ? static_cast<unsigned>(regions::wire_of_id(cell->material_id())) : 0;
+    for (unsigned q = 0; q < n_q; ++q) {
+      const AxisLocation at = axes.locate(wire, values.quadrature_point(q));
+      const double strain = prm.forming.scale * at.bending_strain;
+      auto& point = points[cell->active_cell_index() * n_q + q];
+      if (std::abs(strain) > 1e-12) point.committed = formed_state(material, at.tangent, strain, prm.forming.increments);
+      point.trial = point.committed;
+    }
+  }
+  log << "as made: forming history of " << prm.forming.axis_file.filename().string() << " (scale "
+      << prm.forming.scale << ") in " << timer.wall_time() << " s\n";
+}
+
+// Springback: the forming tools' forces (the internal forces of the held, formed mesh) fall to
+// zero in load steps with cut-back, the bottom grips held and the top end free; then the top
+// end is clamped where it came to rest and the load path starts from there.
+void WireSolver::Impl::release_forming() {
+  Timer timer;
+  auto& f = stats.forming;
+  const auto rebuild = [&](bool released) {
+    top_released = released;
+    make_constraints(homogeneous, 0.0, 0.0);
+    make_constraints(predictor, 0.0, 0.0);
+    make_matrix();
+  };
+  rebuild(true);
+  holding_factor = 0.0;
+  assemble(false, homogeneous);
+  holding_force = rhs;
+  holding_force *= -1.0;
+  f.initial_elastic_energy = elastic_energy;
+  const double dissipation_before = dissipation;
+  const auto friction = [&]() {
+    StepRecord r;
+    record_contact_parts(r, false);
+    return r.wire_contact.friction_dissipation;
+  };
+  const double friction_before = friction();
+  const PETScWrappers::MPI::Vector formed = solution;
+  PETScWrappers::MPI::Vector start(owned, comm), change(owned, comm);
+  const auto& stepping = prm.stepping;
+  double released = 0.0, step = prm.forming.initial_release_step;
+  while (released < 1.0 - 1e-12) {
+    const double next = std::min(1.0, released + step);
+    holding_factor = 1.0 - next;
+    start = solution;
+    unsigned iterations = 0;
+    std::string reason;
+    log << "springback: released " << released << " -> " << next << "\n";
+    if (solve_contact_step(0.0, 0.0, nullptr, start, iterations, reason)) {
+      commit();
+      change = solution;
+      change -= start;
+      // The holding force falls linearly over the step: trapezoidal rule.
+      f.holding_work += (1.0 - 0.5 * (released + next)) * (holding_force * change);
+      released = next;
+      ++f.steps;
+      f.newton_iterations += iterations;
+      if (iterations <= stepping.easy_iterations) step = std::min(1.0, step * stepping.growth_factor);
+    } else {
+      solution = start;
+      ++f.cutbacks;
+      step *= stepping.cutback_factor;
+      log << "  springback step failed (" << reason << "): cut back to " << step << "\n";
+      if (step < stepping.minimum_step)
+        throw ComputationError("springback of the as-made wires did not converge at released fraction " +
+                               std::to_string(released) + " (" + reason + ")");
+    }
+  }
+  holding_factor = 0.0;
+  assemble(false, homogeneous);  // the released state's energies and stresses
+  f.elastic_energy = elastic_energy;
+  f.plastic_work = dissipation - dissipation_before;
+  f.friction_work = friction() - friction_before;
+  f.energy_balance = std::abs(f.initial_elastic_energy + f.holding_work - f.elastic_energy - f.plastic_work -
+                              f.friction_work) /
+                     std::max(f.initial_elastic_energy, 1e-300);
+  change = solution;
+  change -= formed;
+  f.largest_displacement = change.linfty_norm();
+  if (wire_contact) {
+    const auto c = wire_contact->clearance();
+    f.clearance_points = c.points;
+    f.points_in_contact = c.in_contact;
+    f.clearance_mean = c.mean;
+    f.clearance_largest = c.largest;
+  }
+  record_forming_profile();
+  rebuild(false);
+  StepRecord reset;  // the top end's work counts from where it came to rest
+  record_end(reset);
+  end_work = tool_work = 0.0;
+  f.seconds = timer.wall_time();
+  f.done = true;
+  log << "springback: " << f.steps << " steps, " << f.newton_iterations << " Newton iterations, " << f.cutbacks
+      << " cut-backs, " << f.seconds << " s; elastic energy " << f.initial_elastic_energy << " -> " << f.elastic_energy
+      << " J, plastic work " << f.plastic_work << " J, friction " << f.friction_work << " J, holding forces "
+      << f.holding_work << " J: balance " << 100.0 * f.energy_balance << " %; largest displacement "
+      << f.largest_displacement * 1e3 << " mm; clearance mean " << f.clearance_mean * 1e3 << " mm, largest "
+      << f.clearance_largest * 1e3 << " mm (" << f.points_in_contact << " of " << f.clearance_points
+      << " points in contact)\n";
+}
+
+// Per wire and axis station: von Mises stress, equivalent plastic strain and damage over the
+// section's quadrature points (nearest station), gathered over the ranks.
+void WireSolver::Impl::record_forming_profile() {
+  const WireAxes axes(prm.forming.axis_file);
+  std::vector<unsigned> first(axes.wires() + 1, 0);
+  for (unsigned w = 0; w < axes.wires(); ++w) first[w + 1] = first[w] + axes.stations(w);
+  const unsigned n = first.back();
+  std::vector<double> count(n), vm_sum(n), vm_max(n), ep_sum(n), ep_max(n), d_max(n);
+  FEValues<3> values(fe, quadrature, update_quadrature_points);
+  const unsigned n_q = quadrature.size();
+  for (const auto& cell : dof_handler.active_cell_iterators()) {
+    if (!cell->is_locally_owned() || is_coating(cell->material_id())) continue;
+    values.reinit(cell);
+    const unsigned wire = prm.geometry.double_twist ? static_cast<unsigned>(regions::wire_of_id(cell->material_id())) : 0;
+    for (unsigned q = 0; q < n_q; ++q) {
+      const unsigned k = first[wire] + axes.locate(wire, values.quadrature_point(q)).station;
+      const auto& point = points[cell->active_cell_index() * n_q + q];
+      const double vm = stress_invariants(point.cauchy).von_mises, ep = point.committed.equivalent_plastic_strain;
+      count[k] += 1.0;
+      vm_sum[k] += vm;
+      ep_sum[k] += ep;
+      vm_max[k] = std::max(vm_max[k], vm);
+      ep_max[k] = std::max(ep_max[k], ep);
+      d_max[k] = std::max(d_max[k], point.committed.damage);
+    }
+  }
+  Utilities::MPI::sum(count, comm, count);
+  Utilities::MPI::sum(vm_sum, comm, vm_sum);
+  Utilities::MPI::sum(ep_sum, comm, ep_sum);
+  Utilities::MPI::max(vm_max, comm, vm_max);
+  Utilities::MPI::max(ep_max, comm, ep_max);
+  Utilities::MPI::max(d_max, comm, d_max);
+  auto& profile = stats.forming.profile;
+  profile.clear();
+  for (unsigned w = 0; w < axes.wires(); ++w)
+    for (unsigned s = 0; s < axes.stations(w); ++s) {
+      const unsigned k = first[w] + s;
+      if (count[k] == 0.0) continue;
+      profile.push_back({w, axes.arc_length(w, s), axes.height(w, s), vm_sum[k] / count[k], vm_max[k],
+                         ep_sum[k] / count[k], ep_max[k], d_max[k]});
+    }
+}
+
+}  // namespace dtwire::fem
