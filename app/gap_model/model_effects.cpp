@@ -13,6 +13,7 @@ const std::vector<std::unique_ptr<ModelEffect>>& model_effects() {
     list.push_back(make_twist_tightening());
     list.push_back(make_shear_failure());
     list.push_back(make_coating_slip());
+    list.push_back(make_forming_history());
     return list;
   }();
   return all;

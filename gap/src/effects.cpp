@@ -181,6 +181,8 @@ std::vector<EffectSpec> make_catalogue() {
        {"initial_gap_mm", 0.0, 2.0, 0.0, 0.5, {}, {}}, 0.0},
       {"residual_stress", "plasticity left by twisting, as a fraction of the twisting strain",
        {"twist_plasticity_1", 0.0, 1.0, 0.0, 1.0, {}, {}}, 0.0},
+      {"forming_history", "the double twist as made: plastic strain, backstress and residual stress of bending straight wire into the twist, released (springback); 0 tight and stress-free, 1 as made",
+       {"forming_1", 0.0, 1.0, 0.5, 1.0, {}, {}}, 0.0},
       {"shear_failure", "failure by combined tension and shear (e.g. at the SW/DT junction): the FE locus's shear branch lowered",
        {"shear_ductility_ratio_1", 0.3, 1.0, 0.5, 0.8, {}, {}}, 1.0},
       // The force at which the steel core slides in the gripped sheath (bond strength x gripped

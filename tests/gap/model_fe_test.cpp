@@ -67,6 +67,20 @@ TEST(GapModelPrm, DoubleTwistEffectsEditTheWireContact) {
   EXPECT_EQ(column.unsupported.count("wire_friction"), 1u);
 }
 
+// forming_history (issue 19) switches the as-made start on at scale p; p = 0 is the tight model.
+// The bundled DT has its axis file beside the mesh; a DT .prm whose mesh has none cannot.
+TEST(GapModelPrm, FormingHistorySetsTheAsMadeStart) {
+  const std::string dt = "subsection Wire contact\n  set Enabled = true\nend\n";
+  const std::string on = edited_text(dt, {{&gap::find_effect("forming_history"), {0.8}}}, ".");
+  EXPECT_NE(on.find("set Forming history = true\n"), std::string::npos) << on;
+  EXPECT_NE(on.find("set Forming scale = 0.8\n"), std::string::npos) << on;
+  const std::string off = edited_text(dt, {{&gap::find_effect("forming_history"), {0.0}}}, ".");
+  EXPECT_NE(off.find("set Forming history = false\n"), std::string::npos) << off;
+  const FeModel model = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
+                                      fs::temp_directory_path() / "dtwire_gap_fe_test_f");
+  EXPECT_EQ(model.unsupported.count("forming_history"), 0u);
+}
+
 // shear_failure lowers the shear branch of the failure locus (Material subsection); a model
 // without a failure locus cannot show it.
 TEST(GapModelPrm, ShearFailureEditsTheFailureLocus) {
