@@ -322,6 +322,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     return 0;
   });
 
+  add_gap_features_command(*command, commands);
+
   struct SelfcheckOptions {
     gap::SelfcheckOptions run;
     std::string json, report;

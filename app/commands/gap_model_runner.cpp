@@ -37,6 +37,8 @@ PrmDocument edit_prm(const PrmDocument& model, const PrmDocument& declared,
   edited.set("Output/Fields", "false");  // no VTU output in fits
   if (const auto mesh = model.get("Geometry/Mesh file"); mesh && !mesh->empty() && std::filesystem::path(*mesh).is_relative())
     edited.set("Geometry/Mesh file", (prm_directory / *mesh).string());
+  if (const auto axis = model.get("As made/Axis file"); axis && !axis->empty() && std::filesystem::path(*axis).is_relative())
+    edited.set("As made/Axis file", (prm_directory / *axis).string());
   const ModelContext context{model, declared, prm_directory, grip};
   for (const gap::AppliedEffect& a : effects) {
     const ModelEffect* effect = find_model_effect(a.effect->name);
@@ -63,7 +65,7 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
   if (work.empty())
     work = std::filesystem::temp_directory_path() / ("dtwire_gap_model_" + std::to_string(::getpid()));
   std::filesystem::create_directories(work);
-  auto cache = std::make_shared<std::map<std::string, gap::ForceCurve>>();
+  auto cache = std::make_shared<std::map<std::string, Curve>>();
   auto runs = std::make_shared<int>(0);
   const std::string source = prm.string();
   model.runs = runs.get();
@@ -81,26 +83,34 @@ FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path wo
     spec.work_directory = work;
     std::cout << "  FE run: " << label << std::flush;
     const Curve curve = calibrate::CommandSimulator(spec).simulate({});
+    ++*keep;
+    std::cout << " (done)\n";
+    (*cache)[key] = curve;
+    return curve;
+  };
+  const auto force_curve = [](const Curve& curve, const std::string& label) {
     gap::ForceCurve c;
     c.u = curve.si("displacement");
     c.f = curve.si("force");
     c.source = label;
-    ++*keep;
-    std::cout << " (done)\n";
-    (*cache)[key] = c;
     return c;
   };
-  model.run = [=](const std::vector<gap::AppliedEffect>& effects) {
+  model.run_curve = [=](const std::vector<gap::AppliedEffect>& effects) {
     std::string label = source;
     GripBond bond = grip;
     for (const gap::AppliedEffect& a : effects) {
       label += " " + a.effect->name + "=" + number_text(a.params[0]);
       if (a.effect->name == "coating_slip") {  // capacity relative to the clamped model's peak force
-        for (const double f : run(edit_prm(model_prm, declared, {}, directory).text(), source).f)
+        for (const double f : run(edit_prm(model_prm, declared, {}, directory).text(), source).si("force"))
           bond.reference_force = std::max(bond.reference_force, std::abs(f));
       }
     }
     return run(edit_prm(model_prm, declared, effects, directory, bond).text(), label);
+  };
+  model.run = [=, full = model.run_curve](const std::vector<gap::AppliedEffect>& effects) {
+    std::string label = source;
+    for (const gap::AppliedEffect& a : effects) label += " " + a.effect->name + "=" + number_text(a.params[0]);
+    return force_curve(full(effects), label);
   };
   return model;
 }

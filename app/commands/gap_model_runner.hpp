@@ -4,9 +4,11 @@
 // switched on through its parameters (one effect per file in app/gap_model/). gap does not depend
 // on fem; this lives in app/.
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 
+#include "dtwire/core/curve.hpp"
 #include "dtwire/core/prm_document.hpp"
 #include "dtwire/gap/effects.hpp"
 #include "gap_model/model_effect.hpp"
@@ -15,6 +17,8 @@ namespace dtwire::app {
 
 struct FeModel {
   gap::ModelRunner run;  // cached by the edited .prm text; each new run prints one line
+  // The same runs as the whole curve (every channel and the metadata, e.g. the failure).
+  std::function<Curve(const std::vector<gap::AppliedEffect>&)> run_curve;
   std::map<std::string, std::string> unsupported;  // model-only effect -> reason
   int* runs = nullptr;                              // FE runs done so far
   std::filesystem::path work;                       // run directories (removed after success)

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli.hpp"
 #include "commands/gap_model_runner.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
@@ -255,6 +256,34 @@ TEST(GapModelFe, InjectedResidualStressRecoveredThroughDtwireRun) {
   ASSERT_EQ(d.cause, "residual_stress") << d.reason;
   EXPECT_NEAR(d.ranking.front().fitted.front().params.front(), injected, 0.15 * injected);  // issue 17: 15 %
   EXPECT_LT(d.ranking.front().gap_after, d.noise_floor);
+}
+
+// `gap features` refuses bad input before any FE run (exit 2, naming what is wrong; nothing
+// written): an unknown effect, a curve-mode effect, a missing axis file, a bad zone.
+TEST(GapFeatures, BadInputIsNamedBeforeAnyRun) {
+  const std::string prm = (fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm").string();
+  const fs::path json = fs::temp_directory_path() / "dtwire_gap_features_never.json";
+  fs::remove(json);
+  const auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = {"gap", "features", "--model", prm, "--json", json.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::ostringstream captured;
+    auto* old = std::cerr.rdbuf(captured.rdbuf());
+    const int code = run_command_line(args);
+    std::cerr.rdbuf(old);
+    return std::make_pair(code, captured.str());
+  };
+  const auto unknown = run({"--effects", "gravity"});
+  EXPECT_EQ(unknown.first, 2);
+  EXPECT_NE(unknown.second.find("gravity"), std::string::npos) << unknown.second;
+  const auto curve_mode = run({"--effects", "strain_rate"});
+  EXPECT_EQ(curve_mode.first, 2);
+  EXPECT_NE(curve_mode.second.find("model-only"), std::string::npos) << curve_mode.second;
+  const auto axis = run({"--axis", "/nonexistent/dt.axis.csv"});
+  EXPECT_EQ(axis.first, 2);
+  EXPECT_NE(axis.second.find("dt.axis.csv"), std::string::npos) << axis.second;
+  EXPECT_EQ(run({"--lab-failure", "neck"}).first, 2);
+  EXPECT_FALSE(fs::exists(json));
 }
 
 }  // namespace
