@@ -11,8 +11,8 @@
 #include "../cli.hpp"
 #include "../plotting.hpp"
 #include "../commands.hpp"
+#include "text_output.hpp"
 #include "../data_path.hpp"
-#include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/core/csv.hpp"
@@ -36,12 +36,6 @@ std::vector<std::string> split_names(const std::string& text) {
   return out;
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  if (path.empty()) return;
-  const std::filesystem::path target(path);
-  if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
-  write_file_atomically(target, [&](std::ostream& out) { out << text; });
-}
 
 void render_plot(const nlohmann::json& data, const std::string& png) {
   const std::filesystem::path target(png);

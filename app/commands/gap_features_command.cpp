@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -15,13 +14,14 @@
 
 #include "../cli.hpp"
 #include "../commands.hpp"
-#include "dtwire/core/atomic_file.hpp"
+#include "dtwire/core/axis_csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/prm_document.hpp"
 #include "dtwire/gap/curve_metrics.hpp"
 #include "dtwire/gap/dt_features.hpp"
 #include "dtwire/gap/effects.hpp"
 #include "gap_model_runner.hpp"
+#include "text_output.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -40,31 +40,12 @@ struct RunFeatures {
   gap::FailureZone zone = gap::FailureZone::unknown;
 };
 
-// (height, curvature magnitude) of every station of the axis CSV that `dtwire mesh` writes (mm).
+// (height, curvature magnitude) of every station of the mesh's axis file.
 std::vector<std::pair<double, double>> read_axis_stations(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), "cannot open the axis file (`dtwire mesh dt -o X.msh` writes X.axis.csv)");
   std::vector<std::pair<double, double>> stations;
-  std::string line;
-  int number = 0;
-  bool header = false;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      header = true;
-      continue;
-    }
-    std::vector<double> v;
-    std::stringstream s(line);
-    for (std::string item; std::getline(s, item, ',');) {
-      const auto value = parse_number(item);
-      if (!value) throw InputError(file.string(), number, 0, "expected numbers, found '" + item + "'");
-      v.push_back(*value);
-    }
-    if (v.size() != 11) throw InputError(file.string(), number, 0, "expected 11 columns");
-    stations.emplace_back(1e-3 * v[4], 1e3 * std::hypot(v[8], v[9], v[10]));
-  }
+  for (const auto& wire : read_axis_csv(file))
+    for (const AxisStation& s : wire)
+      stations.emplace_back(s.point[2], std::hypot(s.curvature[0], s.curvature[1], s.curvature[2]));
   return stations;
 }
 
@@ -159,13 +140,6 @@ nlohmann::json to_json(const std::vector<RunFeatures>& runs, const FeaturesOptio
     j["runs"].push_back(e);
   }
   return j;
-}
-
-void write_text(const std::string& path, const std::string& text) {
-  if (path.empty()) return;
-  const std::filesystem::path target(path);
-  if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
-  write_file_atomically(target, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace

@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 
 #include "dtwire/core/error.hpp"
-#include "dtwire/core/prm_document.hpp"
+#include "dtwire/core/axis_csv.hpp"
 
 namespace dtwire::fem {
 
@@ -49,48 +47,20 @@ PlasticState formed_state(const J2LogPlasticity& material, const Tensor<1, 3>& t
 }
 
 WireAxes::WireAxes(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), "cannot open the axis file (`dtwire mesh ... -o X.msh` writes X.axis.csv)");
-  std::string line;
-  unsigned number = 0;
-  bool header = false;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      if (line.rfind("wire,arc_length_mm,x_mm", 0) != 0)
-        throw InputError(file.string(), number, 0, "expected the header 'wire,arc_length_mm,x_mm,...'");
-      header = true;
-      continue;
+  for (const auto& wire : read_axis_csv(file)) {
+    auto& stations = stations_.emplace_back();
+    for (const AxisStation& a : wire) {
+      Station st;
+      st.arc_length = a.arc_length;
+      for (unsigned c = 0; c < 3; ++c) {
+        st.point[c] = a.point[c];
+        st.tangent[c] = a.tangent[c];
+        st.curvature[c] = a.curvature[c];
+      }
+      stations.push_back(st);
     }
-    std::stringstream s(line);
-    std::vector<double> v;
-    for (std::string item; std::getline(s, item, ',');) {
-      const auto value = parse_number(item);
-      if (!value || !std::isfinite(*value))
-        throw InputError(file.string(), number, 0, "expected 11 numbers, found '" + item + "'");
-      v.push_back(*value);
-    }
-    if (v.size() != 11) throw InputError(file.string(), number, 0, "expected 11 columns, found " + std::to_string(v.size()));
-    if (v[0] < 0 || v[0] != std::floor(v[0]) || v[0] > 1)
-      throw InputError(file.string(), number, 0, "wire must be 0 or 1");
-    const auto wire = static_cast<std::size_t>(v[0]);
-    if (wire > stations_.size()) throw InputError(file.string(), number, 0, "wire 1 before wire 0");
-    if (wire == stations_.size()) stations_.emplace_back();
-    Station st;
-    st.arc_length = 1e-3 * v[1];
-    for (unsigned c = 0; c < 3; ++c) {
-      st.point[c] = 1e-3 * v[2 + c];
-      st.tangent[c] = v[5 + c];
-      st.curvature[c] = 1e3 * v[8 + c];
-    }
-    if (std::abs(st.tangent.norm() - 1.0) > 1e-6)
-      throw InputError(file.string(), number, 0, "the tangent is not a unit vector");
-    stations_[wire].push_back(st);
   }
   if (stations_.empty()) throw InputError(file.string(), "no stations");
-  for (const auto& w : stations_)
-    if (w.size() < 2) throw InputError(file.string(), "a wire with fewer than two stations");
 }
 
 AxisLocation WireAxes::locate(unsigned wire, const Point<3>& x) const {

@@ -17,25 +17,29 @@ namespace {
 bool is_coating(types::material_id id) { return (id - 1) % 10 >= 3; }  // region_ids.hpp: + 3 for the coating
 }  // namespace
 
-// Every steel quadrature point gets the state of its fibre bent from straight wire into the
-// wire's axis (forming_history.hpp); the PVC coating, if any, stays stress-free.
-void WireSolver::Impl::apply_forming_history() {
-  Timer timer;
-  const WireAxes axes(prm.forming.axis_file);
+void WireSolver::Impl::visit_steel_points(
+    const WireAxes& axes, const std::function<void(unsigned, const AxisLocation&, QuadraturePointRecord&)>& visit) {
   FEValues<3> values(fe, quadrature, update_quadrature_points);
   const unsigned n_q = quadrature.size();
   for (const auto& cell : dof_handler.active_cell_iterators()) {
     if (!cell->is_locally_owned() || is_coating(cell->material_id())) continue;
     values.reinit(cell);
     const unsigned wire = prm.geometry.double_twist ? static_cast<unsigned>(regions::wire_of_id(cell->material_id())) : 0;
-    for (unsigned q = 0; q < n_q; ++q) {
-      const AxisLocation at = axes.locate(wire, values.quadrature_point(q));
-      const double strain = prm.forming.scale * at.bending_strain;
-      auto& point = points[cell->active_cell_index() * n_q + q];
-      if (std::abs(strain) > 1e-12) point.committed = formed_state(material, at.tangent, strain, prm.forming.increments);
-      point.trial = point.committed;
-    }
+    for (unsigned q = 0; q < n_q; ++q)
+      visit(wire, axes.locate(wire, values.quadrature_point(q)), points[cell->active_cell_index() * n_q + q]);
   }
+}
+
+// Every steel quadrature point gets the state of its fibre bent from straight wire into the
+// wire's axis (forming_history.hpp).
+void WireSolver::Impl::apply_forming_history() {
+  Timer timer;
+  const WireAxes axes(prm.forming.axis_file);
+  visit_steel_points(axes, [&](unsigned, const AxisLocation& at, QuadraturePointRecord& point) {
+    const double strain = prm.forming.scale * at.bending_strain;
+    if (std::abs(strain) > 1e-12) point.committed = formed_state(material, at.tangent, strain, prm.forming.increments);
+    point.trial = point.committed;
+  });
   log << "as made: forming history of " << prm.forming.axis_file.filename().string() << " (scale "
       << prm.forming.scale << ") in " << timer.wall_time() << " s\n";
 }
@@ -138,24 +142,16 @@ void WireSolver::Impl::record_forming_profile() {
   for (unsigned w = 0; w < axes.wires(); ++w) first[w + 1] = first[w] + axes.stations(w);
   const unsigned n = first.back();
   std::vector<double> count(n), vm_sum(n), vm_max(n), ep_sum(n), ep_max(n), d_max(n);
-  FEValues<3> values(fe, quadrature, update_quadrature_points);
-  const unsigned n_q = quadrature.size();
-  for (const auto& cell : dof_handler.active_cell_iterators()) {
-    if (!cell->is_locally_owned() || is_coating(cell->material_id())) continue;
-    values.reinit(cell);
-    const unsigned wire = prm.geometry.double_twist ? static_cast<unsigned>(regions::wire_of_id(cell->material_id())) : 0;
-    for (unsigned q = 0; q < n_q; ++q) {
-      const unsigned k = first[wire] + axes.locate(wire, values.quadrature_point(q)).station;
-      const auto& point = points[cell->active_cell_index() * n_q + q];
-      const double vm = stress_invariants(point.cauchy).von_mises, ep = point.committed.equivalent_plastic_strain;
-      count[k] += 1.0;
-      vm_sum[k] += vm;
-      ep_sum[k] += ep;
-      vm_max[k] = std::max(vm_max[k], vm);
-      ep_max[k] = std::max(ep_max[k], ep);
-      d_max[k] = std::max(d_max[k], point.committed.damage);
-    }
-  }
+  visit_steel_points(axes, [&](unsigned wire, const AxisLocation& at, QuadraturePointRecord& point) {
+    const unsigned k = first[wire] + at.station;
+    const double vm = stress_invariants(point.cauchy).von_mises, ep = point.committed.equivalent_plastic_strain;
+    count[k] += 1.0;
+    vm_sum[k] += vm;
+    ep_sum[k] += ep;
+    vm_max[k] = std::max(vm_max[k], vm);
+    ep_max[k] = std::max(ep_max[k], ep);
+    d_max[k] = std::max(d_max[k], point.committed.damage);
+  });
   Utilities::MPI::sum(count, comm, count);
   Utilities::MPI::sum(vm_sum, comm, vm_sum);
   Utilities::MPI::sum(ep_sum, comm, ep_sum);

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <set>
 #include <string>
@@ -33,6 +34,9 @@
 namespace dtwire::fem {
 
 using namespace dealii;
+
+class WireAxes;
+struct AxisLocation;
 
 struct QuadraturePointRecord {
   PlasticState committed, trial;
@@ -147,6 +151,10 @@ struct WireSolver::Impl {
   void apply_forming_history();
   void release_forming();
   void record_forming_profile();
+  // Every owned steel quadrature point (the coating stays stress-free) with its wire and where it
+  // lies relative to that wire's axis.
+  void visit_steel_points(const WireAxes& axes,
+                          const std::function<void(unsigned, const AxisLocation&, QuadraturePointRecord&)>& visit);
 
   // Checkpoint / restart (binary, one file per rank; doubles written exactly).
   std::filesystem::path checkpoint_directory;
