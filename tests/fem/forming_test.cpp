@@ -152,7 +152,9 @@ TEST_P(BentWire, SpringbackIsTheBeamTheoryCurvature) {
   }
   const double inertia = M_PI * std::pow(R, 4) / 4.0, L = 50e-3;
   const double lost = moment / (kE * inertia);
-  if (over_yield < 1.0) EXPECT_NEAR(lost, kappa, 1e-4 * kappa);  // elastic: all of it
+  if (over_yield < 1.0) {
+    EXPECT_NEAR(lost, kappa, 1e-4 * kappa);  // elastic: all of it
+  }
   const double deflection_mm = 1e3 * (1.0 - std::cos(lost * L)) / lost;
   EXPECT_NEAR(s.springback.largest_displacement_mm, deflection_mm, 0.07 * deflection_mm);
   EXPECT_LT(s.springback.energy_balance, 0.005);
