@@ -5,7 +5,6 @@
 #include <limits>
 
 #include "dtwire/core/error.hpp"
-#include "dtwire/core/axis_csv.hpp"
 
 namespace dtwire::fem {
 
@@ -46,8 +45,8 @@ PlasticState formed_state(const J2LogPlasticity& material, const Tensor<1, 3>& t
   return formed;
 }
 
-WireAxes::WireAxes(const std::filesystem::path& file) {
-  for (const auto& wire : read_axis_csv(file)) {
+WireAxes::WireAxes(const std::vector<std::vector<AxisStation>>& wires) {
+  for (const auto& wire : wires) {
     auto& stations = stations_.emplace_back();
     for (const AxisStation& a : wire) {
       Station st;
@@ -60,7 +59,7 @@ WireAxes::WireAxes(const std::filesystem::path& file) {
       stations.push_back(st);
     }
   }
-  if (stations_.empty()) throw InputError(file.string(), "no stations");
+  if (stations_.empty()) throw InputError("As made/Axis file", "no stations");
 }
 
 AxisLocation WireAxes::locate(unsigned wire, const Point<3>& x) const {

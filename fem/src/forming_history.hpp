@@ -14,9 +14,9 @@
 #include <deal.II/base/point.h>
 #include <deal.II/base/tensor.h>
 
-#include <filesystem>
 #include <vector>
 
+#include "dtwire/core/axis_csv.hpp"
 #include "j2_log_plasticity.hpp"
 
 namespace dtwire::fem {
@@ -38,8 +38,8 @@ struct AxisLocation {
 // The wire axes of a mesh (`X.axis.csv`, written by `dtwire mesh`; mm in the file, m here).
 class WireAxes {
  public:
-  // Throws InputError naming the file and line of a bad row.
-  explicit WireAxes(const std::filesystem::path& file);
+  // From the stations of dtwire/core/axis_csv.hpp (read_axis_csv names a bad file's line).
+  explicit WireAxes(const std::vector<std::vector<AxisStation>>& wires);
   unsigned wires() const { return static_cast<unsigned>(stations_.size()); }
   unsigned stations(unsigned wire) const { return static_cast<unsigned>(stations_.at(wire).size()); }
   double arc_length(unsigned wire, unsigned station) const { return stations_.at(wire).at(station).arc_length; }

@@ -378,6 +378,7 @@ void read_forming(Source& source, Parameters& p) {
     source.require(std::filesystem::is_regular_file(f.axis_file), "As made", "Axis file",
                    "the mesh's axis file (cannot open " + f.axis_file.string() +
                        "; `dtwire mesh ... -o X.msh` writes X.axis.csv beside the mesh)");
+    f.axes = read_axis_csv(f.axis_file);  // a bad row is named file:line before any output
   }
   prm.leave_subsection();
 }

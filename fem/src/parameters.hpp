@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "contact/contact_parameters.hpp"  // contact (issue 5)
+#include "dtwire/core/axis_csv.hpp"
 #include "hardening.hpp"
 #include "j2_log_plasticity.hpp"
 
@@ -46,6 +47,7 @@ struct FormingParameters {
   bool enabled = false;
   double scale = 1.0;            // fraction of the bending strain taken (0: tight and stress-free)
   std::filesystem::path axis_file;  // the mesh's X.axis.csv
+  std::vector<std::vector<AxisStation>> axes;  // as read from it (per wire), checked with the .prm
   unsigned increments = 20;      // steps of each fibre's uniaxial forming path
   double initial_release_step = 0.25;  // fraction of the forming stress released in the first step
 };

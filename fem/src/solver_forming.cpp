@@ -34,7 +34,7 @@ void WireSolver::Impl::visit_steel_points(
 // wire's axis (forming_history.hpp).
 void WireSolver::Impl::apply_forming_history() {
   Timer timer;
-  const WireAxes axes(prm.forming.axis_file);
+  const WireAxes axes(prm.forming.axes);
   visit_steel_points(axes, [&](unsigned, const AxisLocation& at, QuadraturePointRecord& point) {
     const double strain = prm.forming.scale * at.bending_strain;
     if (std::abs(strain) > 1e-12) point.committed = formed_state(material, at.tangent, strain, prm.forming.increments);
@@ -137,7 +137,7 @@ void WireSolver::Impl::release_forming() {
 // Per wire and axis station: von Mises stress, equivalent plastic strain and damage over the
 // section's quadrature points (nearest station), gathered over the ranks.
 void WireSolver::Impl::record_forming_profile() {
-  const WireAxes axes(prm.forming.axis_file);
+  const WireAxes axes(prm.forming.axes);
   std::vector<unsigned> first(axes.wires() + 1, 0);
   for (unsigned w = 0; w < axes.wires(); ++w) first[w + 1] = first[w] + axes.stations(w);
   const unsigned n = first.back();
