@@ -86,6 +86,10 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Forming increments", "20", Patterns::Integer(1, 1000), "steps of each fibre's forming path");
   prm.declare_entry("Initial release step", "0.25", Patterns::Double(1e-4, 1.0),
                     "fraction of the forming stress released in the first springback step");
+  prm.declare_entry("State file", "", Patterns::Anything(),
+                    "start from the as-made state an earlier run wrote (its as_made_state.bin) instead of "
+                    "forming and springback again: same mesh, element, material and Forming scale; needs "
+                    "Forming history = true");
   prm.leave_subsection();
 
   prm.enter_subsection("Boundary conditions");
@@ -213,7 +217,8 @@ EndCondition end_condition(const std::string& s) {
 }
 
 // `Section/Sub/Entry=value` from the command line, set on top of the file; a relative
-// 'Mesh file' given this way is taken from the working directory, where the user typed it.
+// file (Mesh file, Axis file, State file) given this way is taken from the working directory,
+// where the user typed it.
 void apply_setting(ParameterHandler& prm, const std::string& setting) {
   const auto equals = setting.find('=');
   if (equals == std::string::npos || equals == 0)
@@ -224,7 +229,8 @@ void apply_setting(ParameterHandler& prm, const std::string& setting) {
     sections.push_back(path.substr(0, slash));
     path.erase(0, slash + 1);
   }
-  if (path == "Mesh file" && !value.empty()) value = std::filesystem::absolute(value).string();
+  const bool file_entry = path == "Mesh file" || path == "Axis file" || path == "State file";
+  if (file_entry && !value.empty()) value = std::filesystem::absolute(value).string();
   for (const auto& s : sections) prm.enter_subsection(s);
   try {
     prm.set(path, value);
@@ -380,6 +386,12 @@ void read_forming(Source& source, Parameters& p) {
                        "; `dtwire mesh ... -o X.msh` writes X.axis.csv beside the mesh)");
     f.axes = read_axis_csv(f.axis_file);  // a bad row is named file:line before any output
   }
+  if (!prm.get("State file").empty()) {
+    source.require(f.enabled, "As made", "State file", "empty unless Forming history = true");
+    f.state_file = source.file.parent_path() / prm.get("State file");
+    source.require(std::filesystem::is_regular_file(f.state_file), "As made", "State file",
+                   "the as_made_state.bin of a run with Forming history = true (cannot open " + f.state_file.string() + ")");
+  }
   prm.leave_subsection();
 }
 
@@ -456,6 +468,9 @@ void read_boundary_conditions(Source& source, Parameters& p) {
     if (p.load.bottom != EndCondition::clamped || p.load.top != EndCondition::clamped || p.load.force_control)
       throw InputError(name, "'Grip interface = bonded' needs Bottom end = clamped, Top end = clamped and "
                              "displacement control (the bond replaces the clamps)");
+    if (!p.forming.state_file.empty())
+      throw InputError(name, "'As made/State file' needs Grip interface = clamped (the bond's slip history is not "
+                             "part of the saved state)");
   }
   prm.leave_subsection();
 }

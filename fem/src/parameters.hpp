@@ -50,6 +50,7 @@ struct FormingParameters {
   std::vector<std::vector<AxisStation>> axes;  // as read from it (per wire), checked with the .prm
   unsigned increments = 20;      // steps of each fibre's uniaxial forming path
   double initial_release_step = 0.25;  // fraction of the forming stress released in the first step
+  std::filesystem::path state_file;  // start from this run's as_made_state.bin instead (empty: form here)
 };
 
 struct FormulationParameters {

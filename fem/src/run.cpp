@@ -292,6 +292,10 @@ RunSummary run_experiment(const RunOptions& options) {
     std::filesystem::create_directories(out);
     // Results of an earlier run in this folder would sit beside this run's log: remove them.
     for (const char* stale : {"curve.csv", "curve.partial.csv", "results.h5"}) std::filesystem::remove(out / stale);
+    const auto state = out / kAsMadeStateFile;  // stale too, unless this run reads it
+    const bool read_here = !parameters.forming.state_file.empty() && std::filesystem::exists(state) &&
+                           std::filesystem::equivalent(state, parameters.forming.state_file);
+    if (!read_here) std::filesystem::remove(state);
   }
   MPI_Barrier(MPI_COMM_WORLD);
 
@@ -320,6 +324,7 @@ RunSummary run_experiment(const RunOptions& options) {
   WireSolver& solver = *solver_owner;
   parameters.geometry = solver.geometry();  // as read from a mesh file (length, double twist)
   solver.set_checkpoints(out / "checkpoints", parameters.output.checkpoint_interval, options.restart_step);
+  if (parameters.forming.enabled && parameters.forming.state_file.empty()) solver.set_as_made_output(out / kAsMadeStateFile);
   std::vector<StepRecord> records;
   RunSummary summary;
   summary.root = root;
@@ -343,7 +348,7 @@ RunSummary run_experiment(const RunOptions& options) {
   summary.assembly_seconds = st.assembly_seconds;
   summary.solve_seconds = st.solve_seconds;
   if (st.forming.done)
-    summary.springback = {true, st.forming.energy_balance, st.forming.largest_displacement * 1e3,
+    summary.springback = {true, !st.forming.state_file.empty(), st.forming.energy_balance, st.forming.largest_displacement * 1e3,
                           st.forming.clearance_mean * 1e3, st.forming.clearance_largest * 1e3, st.forming.seconds};
   for (const auto& r : records)
     if (std::abs(r.force) > std::abs(summary.peak_force_N)) {  // largest magnitude, signed
@@ -415,6 +420,8 @@ RunSummary run_experiment(const RunOptions& options) {
     results.fields.emplace_back(i == 0 ? "pvd" : "step_" + std::to_string(i - 1), "fields/" + files[i]);
   std::vector<std::filesystem::path> inputs{options.parameter_file};
   if (!parameters.geometry.mesh_file.empty()) inputs.push_back(parameters.geometry.mesh_file);
+  if (parameters.forming.enabled) inputs.push_back(parameters.forming.axis_file);
+  if (!parameters.forming.state_file.empty()) inputs.push_back(parameters.forming.state_file);
   results.provenance = make_provenance(options.command_line, inputs);
   results.provenance.run_id = run_id;
   write_results(results, summary.results_h5);

@@ -26,6 +26,8 @@ std::vector<std::string> WireSolver::field_files() const {
   return files;
 }
 
+void WireSolver::set_as_made_output(const std::filesystem::path& file) { impl_->as_made_output = file; }
+
 void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
   Impl& s = *impl_;
   const auto& stepping = s.prm.stepping;
@@ -54,9 +56,12 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
     record = s.history.back();
     s.log << "restarted from the checkpoint of step " << step << " at t = " << t << "\n";
   } else {
-    if (s.prm.forming.enabled) {  // as made: formed, then sprung back (solver_forming.cpp)
+    if (!s.prm.forming.state_file.empty()) {  // as made, as an earlier run left it
+      s.read_as_made_state(s.prm.forming.state_file);
+    } else if (s.prm.forming.enabled) {  // as made: formed, then sprung back (solver_forming.cpp)
       s.apply_forming_history();
       s.release_forming();
+      if (!s.as_made_output.empty()) s.write_as_made_state(s.as_made_output);
     }
     s.assemble(false, s.homogeneous);  // initial state (stress-free unless as made), fills the field records
     s.commit();

@@ -38,6 +38,7 @@ struct FormingSummary {
   unsigned clearance_points = 0, points_in_contact = 0;
   double clearance_mean = 0.0, clearance_largest = 0.0;  // m, after the springback
   std::vector<FormingProfileRow> profile;
+  std::filesystem::path state_file;  // read from this file (As made/State file); empty: computed here
 };
 
 struct SolverStatistics {
@@ -66,6 +67,9 @@ class WireSolver {
   // rows up to it are replayed through on_step. Every part with state of its own (contact tools,
   // wire contact, bonded grips) is saved and restored with it.
   void set_checkpoints(const std::filesystem::path& directory, unsigned interval, int restart_step);
+  // As made: where to write the state the springback leaves (empty: nowhere), for later runs'
+  // As made/State file. Not written when the state was itself read from a file.
+  void set_as_made_output(const std::filesystem::path& file);
 
   const SolverStatistics& statistics() const;
   const GeometryParameters& geometry() const;  // after reading the mesh

@@ -9,6 +9,7 @@
 
 #include "contact/packed_state.hpp"
 #include "dtwire/core/error.hpp"
+#include "plastic_state_pack.hpp"
 #include "solver_impl.hpp"
 
 namespace dtwire::fem {
@@ -40,11 +41,7 @@ void WireSolver::Impl::write_checkpoint(const SteppingState& state, const PETScW
   std::vector<double> values;
   for (const auto i : owned) values.push_back(solution[i]);
   for (const auto i : owned) values.push_back(last_step[i]);
-  for (const auto& p : points) {
-    for (unsigned k = 0; k < 6; ++k) values.push_back(p.committed.plastic_metric_inverse.access_raw_entry(k));
-    values.insert(values.end(), {p.committed.equivalent_plastic_strain, p.committed.plastic_dissipation, p.committed.damage});
-    for (unsigned k = 0; k < 6; ++k) values.push_back(p.committed.backstress.access_raw_entry(k));
-  }
+  for (const auto& p : points) pack_plastic_state(p.committed, values);
   const auto temporary = file.string() + ".tmp";
   {
     std::ofstream out(temporary, std::ios::binary);
@@ -77,7 +74,7 @@ void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETS
                                         static_cast<double>(triangulation.n_active_cells()), static_cast<double>(quadrature.size())};
   if (header != expected)
     throw InputError(file.string(), "checkpoint from another mesh, element or number of MPI ranks");
-  const std::size_t n_values = 2 * owned.n_elements() + 15 * points.size();
+  const std::size_t n_values = 2 * owned.n_elements() + kPackedPlasticStateSize * points.size();
   if (stepping.size() != 8 || values.size() != n_values)
     throw InputError(file.string(), "checkpoint of another size than this run's state");
   state.step = static_cast<unsigned>(stepping[0]);
@@ -93,14 +90,8 @@ void WireSolver::Impl::read_checkpoint(unsigned step, SteppingState& state, PETS
   for (const auto i : owned) last_step[i] = values[k++];
   solution.compress(VectorOperation::insert);
   last_step.compress(VectorOperation::insert);
-  for (auto& p : points) {
-    for (unsigned j = 0; j < 6; ++j) p.committed.plastic_metric_inverse.access_raw_entry(j) = values[k++];
-    p.committed.equivalent_plastic_strain = values[k++];
-    p.committed.plastic_dissipation = values[k++];
-    p.committed.damage = values[k++];
-    for (unsigned j = 0; j < 6; ++j) p.committed.backstress.access_raw_entry(j) = values[k++];
-    p.trial = p.committed;
-  }
+  const double* packed = values.data() + k;
+  for (auto& p : points) p.trial = p.committed = unpack_plastic_state(packed);
   restore_part_states(names, parts, file.string());
 }
 

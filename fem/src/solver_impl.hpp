@@ -151,6 +151,12 @@ struct WireSolver::Impl {
   void apply_forming_history();
   void release_forming();
   void record_forming_profile();
+  // The as-made state file (solver_as_made_state.cpp): written after a springback when
+  // as_made_output is set, read instead of forming when As made/State file is.
+  std::filesystem::path as_made_output;
+  std::vector<double> as_made_header() const;
+  void write_as_made_state(const std::filesystem::path& file);
+  void read_as_made_state(const std::filesystem::path& file);
   // Every owned steel quadrature point (the coating stays stress-free) with its wire and where it
   // lies relative to that wire's axis.
   void visit_steel_points(const WireAxes& axes,

@@ -71,6 +71,10 @@ class ContactPart {
   virtual std::vector<double> saved_state() const = 0;
   // Throws std::invalid_argument when `values` do not fit this part.
   virtual void restore_state(const std::vector<double>& values) = 0;
+  // Called after an assembly at a configuration carried in from another run (the as-made state
+  // file): that configuration becomes the committed one, with no friction history (tractions,
+  // slip, multipliers, dissipation). false: the part cannot start this way.
+  virtual bool restart_here() { return false; }
 };
 
 }  // namespace dtwire::fem::contact

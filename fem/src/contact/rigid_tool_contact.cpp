@@ -182,6 +182,16 @@ void RigidToolContact::commit() {
   }
 }
 
+bool RigidToolContact::restart_here() {
+  for (auto& point : points_) point.committed_position = point.position;
+  for (auto& pair : pairs_) {
+    pair.committed = ContactHistory{};
+    pair.slip = 0.0;
+  }
+  dissipation_ = 0.0;
+  return true;
+}
+
 std::vector<double> RigidToolContact::saved_state() const {
   StateWriter out;
   for (const auto& p : points_) out.put(p.committed_position);

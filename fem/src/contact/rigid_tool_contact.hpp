@@ -47,6 +47,7 @@ class RigidToolContact final : public ContactPart {
   // friction history, the dissipation.
   std::vector<double> saved_state() const override;
   void restore_state(const std::vector<double>& values) override;
+  bool restart_here() override;
 
  private:
   ContactRecord totals(const dealii::PETScWrappers::MPI::Vector& internal_force, double force_scale,

@@ -458,6 +458,18 @@ void WireWireContact::restore_state(const std::vector<double>& values) {
   in.finish();
 }
 
+bool WireWireContact::restart_here() {
+  for (auto& p : points_) {
+    p.committed = ContactHistory{};
+    p.committed_pressure = 0.0;
+    p.committed_position = p.position;
+    p.committed_master = p.master;
+  }
+  committed_master_values_ = master_values_;
+  dissipation_ = 0.0;
+  return true;
+}
+
 void WireWireContact::record(const RecordScales& scales, StepRecord& record, std::ostream* log) const {
   record.wire_contact = totals(scales.energy);
   const WireContactRecord& r = record.wire_contact;

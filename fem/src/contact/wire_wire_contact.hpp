@@ -74,6 +74,7 @@ class WireWireContact final : public ContactPart {
   // displacements; the dissipation. After restore_state the caller rebuilds the matrix.
   std::vector<double> saved_state() const override;
   void restore_state(const std::vector<double>& values) override;
+  bool restart_here() override;
 
  private:
   WireContactRecord totals(double contact_scale) const;

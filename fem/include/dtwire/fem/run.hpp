@@ -17,9 +17,14 @@ struct RunOptions {
   int restart_step = -1;                   // >= 0: resume from output_directory/checkpoints/step_N
 };
 
+// Where an as-made run leaves the state its springback reached, for later runs' As made/State
+// file (fem/src/solver_as_made_state.cpp).
+inline constexpr const char* kAsMadeStateFile = "as_made_state.bin";
+
 // As made (As made/Forming history = true): the springback before the load path.
 struct SpringbackSummary {
   bool done = false;
+  bool from_state_file = false;  // read from As made/State file: the figures are that run's
   double energy_balance = 0.0;  // relative: |W0 + holding work - elastic - plastic - friction| / W0
   double largest_displacement_mm = 0.0, clearance_mean_mm = 0.0, clearance_largest_mm = 0.0, seconds = 0.0;
 };
