@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include "dtwire/core/closest_name.hpp"
@@ -16,10 +17,10 @@ namespace dtwire::app {
 
 namespace {
 
-const std::vector<std::string> kTopFields = {"name", "title", "step"};
+const std::vector<std::string> kTopFields = {"name", "title", "variables", "step"};
 const std::vector<std::string> kStepFields = {"name",    "description", "command", "inputs",
                                               "outputs", "report",      "summary"};
-const std::vector<std::string> kPlaceholders = {"out", "campaign"};
+const std::vector<std::string> kBuiltInPlaceholders = {"out", "campaign"};
 
 [[noreturn]] void fail(const std::string& file, const toml::node* node, const std::string& message) {
   if (node) {
@@ -46,8 +47,8 @@ void refuse_unknown_fields(const std::string& file, const toml::table& table,
   }
 }
 
-std::vector<std::string> string_list(const std::string& file, const toml::table& step,
-                                     const std::string& key, bool required) {
+std::vector<std::string> string_list(const std::string& file, const toml::table& step, const std::string& key,
+                                     bool required, const std::vector<std::string>& placeholders) {
   const toml::node* node = step.get(key);
   if (!node) {
     if (required) fail(file, &step, "step lacks '" + key + "', expected an array of strings");
@@ -68,13 +69,41 @@ std::vector<std::string> string_list(const std::string& file, const toml::table&
       const bool identifier = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
         return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
       });
-      if (identifier && std::find(kPlaceholders.begin(), kPlaceholders.end(), word) == kPlaceholders.end())
-        fail(file, &element, "'" + key + "': unknown placeholder '{" + word + "}'" +
-                                 suggestion(word, kPlaceholders) + ", expected {out} or {campaign}");
+      if (identifier && std::find(placeholders.begin(), placeholders.end(), word) == placeholders.end()) {
+        std::string expected;
+        for (const auto& p : placeholders) expected += (expected.empty() ? "{" : ", {") + p + "}";
+        fail(file, &element, "'" + key + "': unknown placeholder '{" + word + "}'" + suggestion(word, placeholders) +
+                                 ", expected one of " + expected);
+      }
     }
     out.push_back(value);
   }
   return out;
+}
+
+bool is_name(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+// [variables]: name = "default value".
+std::map<std::string, std::string> read_variables(const std::string& file, const toml::table& root) {
+  std::map<std::string, std::string> variables;
+  const toml::node* node = root.get("variables");
+  if (!node) return variables;
+  const toml::table* table = node->as_table();
+  if (!table) fail(file, node, "'variables' must be a table of name = \"value\"");
+  for (const auto& [key, value] : *table) {
+    const std::string name(key.str());
+    if (!is_name(name)) fail(file, &value, "variable name '" + name + "' may use only a-z, 0-9 and _");
+    if (std::find(kBuiltInPlaceholders.begin(), kBuiltInPlaceholders.end(), name) != kBuiltInPlaceholders.end())
+      fail(file, &value, "variable '" + name + "' would hide the built-in {" + name + "}");
+    const auto* text = value.as_string();
+    if (!text) fail(file, &value, "variable '" + name + "' must be a string (its default), e.g. \"false\"");
+    variables[name] = text->get();
+  }
+  return variables;
 }
 
 bool writes(const CampaignStep& step, const std::string& path) {
@@ -125,6 +154,9 @@ Campaign read_campaign(const std::filesystem::path& file) {
   campaign.file = file;
   campaign.name = root["name"].value_or(file.stem().string());
   campaign.title = root["title"].value_or(campaign.name);
+  campaign.variables = read_variables(source, root);
+  std::vector<std::string> placeholders = kBuiltInPlaceholders;
+  for (const auto& [name, value] : campaign.variables) placeholders.push_back(name);
   const toml::node* steps = root.get("step");
   if (!steps || !steps->is_array_of_tables())
     fail(source, steps, "expected one or more [[step]] tables");
@@ -135,9 +167,7 @@ Campaign read_campaign(const std::filesystem::path& file) {
     CampaignStep step;
     const auto name = table["name"].value<std::string>();
     if (!name || name->empty()) fail(source, &table, "step lacks 'name', expected a string");
-    for (char c : *name)
-      if (!(std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '_'))
-        fail(source, table.get("name"), "step name '" + *name + "' may use only a-z, 0-9 and _");
+    if (!is_name(*name)) fail(source, table.get("name"), "step name '" + *name + "' may use only a-z, 0-9 and _");
     if (!names.insert(*name).second)
       fail(source, table.get("name"), "duplicate step name '" + *name + "'");
     step.name = *name;
@@ -145,12 +175,12 @@ Campaign read_campaign(const std::filesystem::path& file) {
     for (const auto& [key, value] : table)
       step.field_lines[std::string(key.str())] = static_cast<int>(value.source().begin.line);
     step.description = table["description"].value_or(std::string());
-    step.command = string_list(source, table, "command", true);
+    step.command = string_list(source, table, "command", true, placeholders);
     if (step.command.empty()) fail(source, table.get("command"), "'command' must not be empty");
-    step.inputs = string_list(source, table, "inputs", false);
-    step.outputs = string_list(source, table, "outputs", false);
-    step.report = string_list(source, table, "report", false);
-    step.summary = string_list(source, table, "summary", false);
+    step.inputs = string_list(source, table, "inputs", false, placeholders);
+    step.outputs = string_list(source, table, "outputs", false, placeholders);
+    step.report = string_list(source, table, "report", false, placeholders);
+    step.summary = string_list(source, table, "summary", false, placeholders);
     campaign.steps.push_back(std::move(step));
   }
   check_graph(campaign);
@@ -166,6 +196,37 @@ void check_commands(const Campaign& campaign, const std::vector<std::string>& kn
     fail_at_step_field(campaign, step, "command",
                        "step '" + step.name + "': unknown dtwire command '" + command + "'" +
                            suggestion(command, known_commands) + ", expected one of: " + expected);
+  }
+}
+
+void apply_variables(Campaign& campaign, const std::vector<std::string>& settings) {
+  std::vector<std::string> names;
+  for (const auto& [name, value] : campaign.variables) names.push_back(name);
+  for (const auto& setting : settings) {
+    const auto equals = setting.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw InputError("--var", "'" + setting + "': expected NAME=VALUE");
+    const std::string name = setting.substr(0, equals);
+    if (!campaign.variables.count(name)) {
+      std::string expected;
+      for (const auto& n : names) expected += (expected.empty() ? "" : ", ") + n;
+      throw InputError("--var", "'" + name + "' is not a variable of " + campaign.file.string() +
+                                    suggestion(name, names) + (expected.empty() ? " (it declares none)" : ", expected one of: " + expected));
+    }
+    campaign.variables[name] = setting.substr(equals + 1);
+    campaign.overridden.push_back(name);
+  }
+  const auto substitute = [&](std::string& text) {
+    for (const auto& [name, value] : campaign.variables) {
+      const std::string key = "{" + name + "}";
+      for (auto pos = text.find(key); pos != std::string::npos; pos = text.find(key, pos + value.size()))
+        text.replace(pos, key.size(), value);
+    }
+  };
+  for (auto& step : campaign.steps) {
+    substitute(step.description);
+    for (auto* list : {&step.command, &step.inputs, &step.outputs, &step.report, &step.summary})
+      for (auto& text : *list) substitute(text);
   }
 }
 

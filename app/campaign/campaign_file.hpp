@@ -10,6 +10,8 @@
 //   outputs = ["{out}/meshes/sw.msh"]     # must exist after the step for it to count as done
 //   report = ["{out}/meshes/sw_check.md", "{out}/figures/sw.png"]  # embedded in the report
 //   summary = ["{out}/fit/parameters.json"]  # read by the report's summary (optional)
+//   [variables]                           # optional: {name} in any step string, value a string
+//   as_made = "false"                     # default; `dtwire campaign --var as_made=true` overrides
 //
 // {out} is the output directory, {campaign} the folder of the campaign file. The file is checked
 // completely before anything runs: unknown fields, unknown placeholders, unknown commands and
@@ -38,6 +40,8 @@ struct Campaign {
   std::string name;
   std::string title;
   std::vector<CampaignStep> steps;
+  std::map<std::string, std::string> variables;  // name -> value: the file's defaults, then --var
+  std::vector<std::string> overridden;           // the variables set by --var
 };
 
 // Reads and checks the file (fields, placeholders, graph); throws InputError naming
@@ -47,6 +51,11 @@ Campaign read_campaign(const std::filesystem::path& file);
 // Refuses a step whose command is not one of `known_commands` (a typo), naming file:line and
 // the closest known command.
 void check_commands(const Campaign& campaign, const std::vector<std::string>& known_commands);
+
+// `settings` (NAME=VALUE, from --var) replace the file's defaults; then every {name} of a
+// variable in the steps' strings is replaced by its value. Throws InputError("--var", ...) for
+// an unknown name or a setting without '='.
+void apply_variables(Campaign& campaign, const std::vector<std::string>& settings);
 
 // Replaces {out} and {campaign} in `text`.
 std::string expand(const std::string& text, const std::filesystem::path& out,

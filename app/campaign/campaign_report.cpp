@@ -48,6 +48,13 @@ std::filesystem::path write_campaign_report(const Campaign& campaign,
      << "Campaign `" << campaign.name << "` (" << campaign.file.string() << "), run with "
      << version_string() << " on " << now << ": " << outcomes.size() << " steps";
   for (const auto& [status, count] : counts) md << ", " << count << " " << status_name(status);
+  if (!campaign.variables.empty()) {
+    md << "; variables";
+    for (const auto& [name, value] : campaign.variables) {
+      const bool set = std::find(campaign.overridden.begin(), campaign.overridden.end(), name) != campaign.overridden.end();
+      md << " `" << name << " = " << value << "`" << (set ? " (--var)" : " (default)");
+    }
+  }
   md << ". The summary comes first; every step's details, files and console log follow "
         "([steps](#steps)).\n\n";
   md << summary_markdown(campaign, outcomes, out);

@@ -20,6 +20,7 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     std::string out;
     bool force = false;
     std::vector<std::string> only;
+    std::vector<std::string> variables;
   };
   auto options = std::make_shared<Options>();
   options->file = data_path("experiments/default/campaign.toml").string();
@@ -30,8 +31,12 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
                       "Output directory (default: campaign-out/<campaign name>)");
   command->add_flag("--force", options->force, "Re-run every step, even up-to-date ones");
   command->add_option("--only", options->only, "Run only these steps (names)");
+  command->add_option("--var", options->variables,
+                      "NAME=VALUE: a variable of the campaign file's [variables] (the default campaign: "
+                      "as_made=true starts every DT FE step from the as-made state)");
   commands.add(command, [options] {
-    const Campaign campaign = read_campaign(options->file);
+    Campaign campaign = read_campaign(options->file);
+    apply_variables(campaign, options->variables);
     CampaignOptions run_options;
     run_options.out = options->out.empty() ? std::filesystem::path("campaign-out") / campaign.name
                                            : std::filesystem::path(options->out);

@@ -146,6 +146,37 @@ TEST(Campaign, PlaceholderTypoIsRefusedNotMadeAFolder) {
                  5, "unknown placeholder '{ot}' (did you mean 'out'?)");
 }
 
+// [variables]: defaults from the file, --var overrides, placeholders checked against the names.
+TEST(Campaign, VariablesExpandWithDefaultsAndOverrides) {
+  const auto file = write_temp("dtwire_variables.toml",
+                               "name = \"v\"\n[variables]\nas_made = \"false\"\n[[step]]\nname = \"a\"\n"
+                               "command = [\"run\", \"x.prm\", \"--set\", \"As made/Forming history={as_made}\"]\n"
+                               "outputs = [\"{out}/a_{as_made}\"]\n");
+  Campaign defaults = read_campaign(file);
+  apply_variables(defaults, {});
+  EXPECT_EQ(defaults.steps[0].command[3], "As made/Forming history=false");
+  EXPECT_EQ(defaults.steps[0].outputs[0], "{out}/a_false");
+  Campaign set = read_campaign(file);
+  apply_variables(set, {"as_made=true"});
+  EXPECT_EQ(set.steps[0].command[3], "As made/Forming history=true");
+  EXPECT_EQ(set.overridden, std::vector<std::string>{"as_made"});
+  Campaign typo = read_campaign(file);
+  try {
+    apply_variables(typo, {"asmade=true"});
+    FAIL() << "accepted an unknown variable";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'as_made'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(apply_variables(typo, {"as_made"}), InputError);  // no '='
+  // A step that uses an undeclared variable is refused at its line.
+  expect_refused(write_temp("dtwire_undeclared.toml", "name = \"u\"\n[variables]\nas_made = \"false\"\n[[step]]\n"
+                                                      "name = \"a\"\ncommand = [\"run\", \"{as_mad}\"]\n"),
+                 6, "unknown placeholder '{as_mad}' (did you mean 'as_made'?)");
+  expect_refused(write_temp("dtwire_not_string.toml", "name = \"u\"\n[variables]\nas_made = false\n[[step]]\n"
+                                                      "name = \"a\"\ncommand = [\"run\"]\n"),
+                 3, "must be a string");
+}
+
 TEST(Campaign, OutInputThatNoEarlierStepWritesIsRefused) {
   expect_refused(write_temp("dtwire_graph.toml",
                             "name = \"g\"\n[[step]]\nname = \"a\"\ncommand = [\"campaign\", \"--help\"]\n"
