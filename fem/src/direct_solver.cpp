@@ -54,4 +54,8 @@ void DirectSolver::solve(const dealii::PETScWrappers::MPI::SparseMatrix& A, deal
   }
 }
 
+void DirectSolver::solve_again(dealii::PETScWrappers::MPI::Vector& x, const dealii::PETScWrappers::MPI::Vector& b) {
+  check(KSPSolve(ksp_, b, x), "KSPSolve");
+}
+
 }  // namespace dtwire::fem

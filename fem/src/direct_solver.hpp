@@ -20,6 +20,10 @@ class DirectSolver {
   // x = A^-1 b; throws std::runtime_error if the factorisation fails (e.g. a zero pivot).
   void solve(const dealii::PETScWrappers::MPI::SparseMatrix& A, dealii::PETScWrappers::MPI::Vector& x,
              const dealii::PETScWrappers::MPI::Vector& b);
+  // x = A^-1 b with the factors of the last solve (modified Newton): the matrix must not have
+  // been changed since. Only when factorised().
+  void solve_again(dealii::PETScWrappers::MPI::Vector& x, const dealii::PETScWrappers::MPI::Vector& b);
+  bool factorised() const { return ksp_ != nullptr; }
   void reset();
 
  private:

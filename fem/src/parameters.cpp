@@ -150,6 +150,10 @@ void declare(ParameterHandler& prm) {
                     "direct: MUMPS; gmres-amg: GMRES with PETSc GAMG and the rigid-body modes (large problems)");
   prm.declare_entry("Linear tolerance", "1e-12", Patterns::Double(0.0), "gmres-amg: relative residual");
   prm.declare_entry("Maximum linear iterations", "2000", Patterns::Integer(1), "gmres-amg");
+  prm.declare_entry("Tangent reuse contraction", "0", Patterns::Double(0.0, 1.0),
+                    "direct solver: keep the last factorisation (modified Newton) while each iteration "
+                    "reduced the residual below this fraction of the previous one; 0: a fresh tangent "
+                    "every iteration (full Newton)");
   prm.leave_subsection();
 
   prm.enter_subsection("Output");
@@ -504,6 +508,7 @@ void read_newton(Source& source, Parameters& p) {
   p.newton.linear_tolerance = prm.get_double("Linear tolerance");
   source.require(p.newton.relative_tolerance > 0.0, "Newton", "Relative tolerance", "a tolerance > 0");
   p.newton.maximum_linear_iterations = prm.get_integer("Maximum linear iterations");
+  p.newton.tangent_reuse_contraction = prm.get_double("Tangent reuse contraction");
   prm.leave_subsection();
 }
 

@@ -111,6 +111,9 @@ struct NewtonParameters {
   bool krylov = false;                 // GMRES + PETSc GAMG with rigid-body modes instead of MUMPS
   double linear_tolerance = 1e-12;     // Krylov: relative residual of each linear solve
   unsigned maximum_linear_iterations = 2000;
+  // Modified Newton (direct solver): the next iteration keeps the last factorisation while the
+  // residual fell below this fraction of the one before (0: a fresh tangent every iteration).
+  double tangent_reuse_contraction = 0.0;
 };
 
 struct OutputParameters {

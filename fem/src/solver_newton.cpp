@@ -17,6 +17,10 @@ using namespace dealii;
 // (`extrapolation`, within one load-path segment; boundary values set exactly), or the
 // linearised predictor: iteration 0 applies the boundary increment through inhomogeneous
 // constraints (as in deal.II step-44). Backtracking line search when the residual did not drop.
+// Modified Newton (Tangent reuse contraction c > 0, direct solver): after an iteration that
+// reduced the residual below c times the previous one, the next keeps the factorisation and
+// assembles the residual only; a kept tangent whose step does not reduce the residual is
+// abandoned (back to the step's start, fresh tangent there). Every load step starts fresh.
 bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                                   unsigned& iterations, std::string& reason) {
   applied_force = path_force(prm.load, t_new) / force_multiplier();
@@ -30,12 +34,21 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
   const double floor = 1e-14 * prm.material.young * prm.geometry.diameter * prm.geometry.diameter;
   PETScWrappers::MPI::Vector previous(owned, comm), previous_increment(owned, comm);
   double previous_residual = 0.0;
+  const double reuse_below = prm.newton.krylov ? 0.0 : prm.newton.tangent_reuse_contraction;
+  bool kept_tangent = false;  // this iteration solves with the last factorisation
   std::ostringstream history;
   history << std::scientific << std::setprecision(2);
   for (unsigned it = 0; it <= prm.newton.maximum_iterations; ++it) {
     const auto& constraints = it < first_free ? predictor : homogeneous;
-    AssemblyOutcome a = assemble(true, constraints);
-    if (it > first_free && prm.newton.line_search && (!a.ok || a.residual > (1.0 - 1e-4) * previous_residual)) {
+    const bool stale_step = kept_tangent;  // the step that led here came from a kept tangent
+    kept_tangent = kept_tangent && direct_solver.factorised();
+    AssemblyOutcome a = assemble(!kept_tangent, constraints);
+    if (stale_step && (!a.ok || a.residual > (1.0 - 1e-4) * previous_residual)) {
+      history << " [fresh tangent]";
+      solution = previous;
+      kept_tangent = false;
+      a = assemble(true, homogeneous);
+    } else if (it > first_free && prm.newton.line_search && (!a.ok || a.residual > (1.0 - 1e-4) * previous_residual)) {
       double step = 1.0;
       for (unsigned ls = 0; ls < prm.newton.maximum_line_search_steps; ++ls) {
         step *= 0.5;
@@ -68,6 +81,9 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
     try {
       if (prm.newton.krylov) {
         history << " (gmres " << solve_krylov() << ")";
+      } else if (kept_tangent) {
+        history << "*";
+        direct_solver.solve_again(increment, rhs);
       } else {
         direct_solver.solve(matrix, increment, rhs);
       }
@@ -78,6 +94,8 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
     }
     stats.solve_seconds += timer.wall_time();
     constraints.distribute(increment);
+    // Keep the tangent for the next iteration if this one contracted well enough.
+    kept_tangent = reuse_below > 0.0 && it > first_free && a.residual < reuse_below * previous_residual;
     previous = solution;
     previous_increment = increment;
     previous_residual = a.residual;
