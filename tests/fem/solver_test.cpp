@@ -376,6 +376,7 @@ TEST(Newton, ModifiedNewtonReproducesFullNewton) {
                                                         " set Maximum iterations = 40\nend\n");
   double scale = 0.0;
   const double difference = largest_force_difference(full, modified, scale);
+  std::cout << "modified vs full Newton: largest force difference " << difference / scale << " of the peak force\n";
   EXPECT_LT(difference, 1e-6 * scale);
   std::ifstream log(std::filesystem::temp_directory_path() / "dtwire_fem_test_newton_modified" / "out" / "run.log");
   std::string line;
