@@ -100,9 +100,10 @@ void validate(const MeshParameters& p, const FieldLocations& where) {
                             ", got " + mm(p.length));
     return;
   }
-  if (p.half_turns < 1)
+  if (p.half_turns < 0)
     throw_field_error(where, "half-turns",
-                      "expected at least 1 half turn, got " + std::to_string(p.half_turns));
+                      "expected 0 half turns (a straight pair, the start of a twisting run) or more, got " +
+                          std::to_string(p.half_turns));
   if (!(p.twist_length > 0))
     throw_field_error(where, "twist-length", "expected a length > 0 mm, got " + mm(p.twist_length));
   if (!(p.gap >= 0))
@@ -116,9 +117,11 @@ void validate(const MeshParameters& p, const FieldLocations& where) {
     throw_field_error(where, "bend-radius",
                       "expected a bend radius >= the outer wire diameter " + mm(outer_diameter) +
                           " (a tighter bend folds the wire onto itself), got " + mm(p.bend_radius));
-  if (!(p.arm_angle > 0 && p.arm_angle < kPi))
+  const bool straight_pair = p.half_turns == 0;  // arms may then go straight on (angle 0)
+  if (!((straight_pair ? p.arm_angle >= 0 : p.arm_angle > 0) && p.arm_angle < kPi))
     throw_field_error(where, "arm-angle",
-                      "expected an angle between 0 and 180 deg, got " + format(p.arm_angle * 180 / kPi) + " deg");
+                      std::string("expected an angle ") + (straight_pair ? "from 0" : "between 0") +
+                          " to 180 deg, got " + format(p.arm_angle * 180 / kPi) + " deg");
 }
 
 }  // namespace dtwire::meshes

@@ -56,7 +56,7 @@ TEST_F(MeshCommand, BadValuesExitTwoNamingTheOptionOrFileLine) {
   Result r = run("mesh sw --d 0 --check");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.output, "--d: expected a diameter > 0")) << r.output;
-  r = run("mesh dt --half-turns 0 --check");
+  r = run("mesh dt --half-turns -1 --check");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_TRUE(contains(r.output, "--half-turns")) << r.output;
   std::ofstream(path("bad.prm")) << "set gap = 1\n";

@@ -41,10 +41,33 @@ TEST(ParameterErrors, NonPositiveDiameterNamesD) {
   EXPECT_TRUE(contains(build_error(p), "d: expected a diameter > 0")) << build_error(p);
 }
 
-TEST(ParameterErrors, LessThanOneHalfTurn) {
+TEST(ParameterErrors, NegativeHalfTurns) {
+  MeshParameters p = default_parameters(WireKind::DoubleTwist);
+  p.half_turns = -1;
+  EXPECT_TRUE(contains(build_error(p), "half-turns")) << build_error(p);
+  p.half_turns = 1;
+  p.arm_angle = 0;  // arms straight on: only for a straight pair
+  EXPECT_TRUE(contains(build_error(p), "arm-angle")) << build_error(p);
+}
+
+// Zero half turns, arms straight on: two parallel straight wires d + gap apart (the start of a
+// twisting run), whose axis file has no curvature.
+TEST(StraightPair, TwoParallelStraightWires) {
   MeshParameters p = default_parameters(WireKind::DoubleTwist);
   p.half_turns = 0;
-  EXPECT_TRUE(contains(build_error(p), "half-turns")) << build_error(p);
+  p.arm_angle = 0;
+  p.level = 0;
+  const WireMesh m = build_wire_mesh(p);
+  ASSERT_EQ(m.axes.size(), 2u);
+  for (int wire = 0; wire < 2; ++wire)
+    for (const auto& s : m.axes[wire]) {
+      EXPECT_NEAR(std::abs(s.point.x), 0.5 * (p.diameter + p.gap), 1e-12);
+      EXPECT_NEAR(s.point.y, 0.0, 1e-12);
+      EXPECT_NEAR(s.curvature.x * s.curvature.x + s.curvature.y * s.curvature.y + s.curvature.z * s.curvature.z, 0.0,
+                  1e-18);
+    }
+  EXPECT_NEAR(m.axis_lengths[0], p.twist_length + 2 * p.arm_length, 1e-12);
+  EXPECT_NEAR(m.min_surface_distance, p.gap, 0.05 * p.diameter);
 }
 
 TEST(ParameterErrors, ArmsFoldingBackAcrossTheTwist) {
@@ -87,7 +110,7 @@ TEST(ParameterErrors, LevelOutsideZeroToThree) {
 TEST(ParameterErrors, ErrorsNameTheFileLineAndColumnOfTheValue) {
   MeshParameters p = default_parameters(WireKind::DoubleTwist);
   FieldLocations locations;
-  parse_parameter_text("# a DT\nset half turns = 0\n", "dt.prm", p, locations);
+  parse_parameter_text("# a DT\nset half turns = -1\n", "dt.prm", p, locations);
   try {
     build_wire_mesh(p, locations);
     FAIL() << "expected an InputError";
