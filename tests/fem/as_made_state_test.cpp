@@ -22,6 +22,7 @@
 #include <string>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "dtwire/core/csv.hpp"
 
@@ -29,9 +30,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// One per process: ctest runs each test in its own process, side by side.
 const fs::path& work_directory() {
   static const fs::path dir = [] {
-    const auto d = fs::temp_directory_path() / "dtwire_as_made_state_test";
+    const auto d = fs::temp_directory_path() / ("dtwire_as_made_state_test_" + std::to_string(getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
     return d;
