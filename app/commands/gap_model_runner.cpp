@@ -35,10 +35,10 @@ PrmDocument edit_prm(const PrmDocument& model, const PrmDocument& declared,
                      const GripBond& grip) {
   PrmDocument edited = model;
   edited.set("Output/Fields", "false");  // no VTU output in fits
-  if (const auto mesh = model.get("Geometry/Mesh file"); mesh && !mesh->empty() && std::filesystem::path(*mesh).is_relative())
-    edited.set("Geometry/Mesh file", (prm_directory / *mesh).string());
-  if (const auto axis = model.get("As made/Axis file"); axis && !axis->empty() && std::filesystem::path(*axis).is_relative())
-    edited.set("As made/Axis file", (prm_directory / *axis).string());
+  // The edited copy is run from elsewhere: the files the model names, relative to its folder.
+  for (const char* entry : {"Geometry/Mesh file", "As made/Axis file", "As made/State file"})
+    if (const auto file = model.get(entry); file && !file->empty() && std::filesystem::path(*file).is_relative())
+      edited.set(entry, (prm_directory / *file).string());
   const ModelContext context{model, declared, prm_directory, grip};
   for (const gap::AppliedEffect& a : effects) {
     const ModelEffect* effect = find_model_effect(a.effect->name);

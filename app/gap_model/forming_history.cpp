@@ -22,6 +22,7 @@ class FormingHistory : public ModelEffect {
   void apply(double p, const ModelContext&, PrmDocument& edited) const override {
     edited.set("As made/Forming history", p > 0.0 ? "true" : "false");
     edited.set("As made/Forming scale", number_text(p));
+    edited.set("As made/State file", "");  // formed anew at this scale, not read from a saved state
   }
 };
 

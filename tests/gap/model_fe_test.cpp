@@ -77,6 +77,10 @@ TEST(GapModelPrm, FormingHistorySetsTheAsMadeStart) {
   EXPECT_NE(on.find("set Forming scale = 0.8\n"), std::string::npos) << on;
   const std::string off = edited_text(dt, {{&gap::find_effect("forming_history"), {0.0}}}, ".");
   EXPECT_NE(off.find("set Forming history = false\n"), std::string::npos) << off;
+  // A model that starts from a saved state is formed anew at the effect's scale.
+  const std::string saved = edited_text(dt + "subsection As made\n  set State file = formed.bin\nend\n",
+                                        {{&gap::find_effect("forming_history"), {0.8}}}, ".");
+  EXPECT_EQ(saved.find("formed.bin"), std::string::npos) << saved;
   const FeModel model = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
                                       fs::temp_directory_path() / "dtwire_gap_fe_test_f");
   EXPECT_EQ(model.unsupported.count("forming_history"), 0u);
