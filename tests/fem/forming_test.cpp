@@ -13,6 +13,7 @@
 
 #include "dtwire/core/error.hpp"
 #include "dtwire/fem/run.hpp"
+#include "scratch_run.hpp"
 #include "forming_history.hpp"
 
 namespace {
@@ -61,10 +62,7 @@ TEST(FormingHistory, FibreCarriesTheUniaxialStressOfItsPath) {
 }
 
 std::filesystem::path scratch_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("dtwire_forming_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return dtwire::fem::testing::scratch_dir("dtwire_forming_test_", name);
 }
 
 // An axis along z with curvature vector (kappa, 0, 0) 1/mm at every station, wire 0 only.
@@ -104,12 +102,7 @@ TEST(FormingHistory, BadAxisFileIsNamedWithItsLine) {
   EXPECT_THROW(dtwire::read_axis_csv(dir / "missing.axis.csv"), dtwire::InputError);
 }
 
-std::filesystem::path make_mesh(const std::string& kind, const std::filesystem::path& dir, const std::string& options) {
-  const auto mesh = dir / (kind + ".msh");
-  const std::string command = std::string(DTWIRE_EXE) + " mesh " + kind + " " + options + " -o " + mesh.string() +
-                              " > /dev/null 2>&1";
-  return std::system(command.c_str()) == 0 ? mesh : std::filesystem::path();
-}
+using dtwire::fem::testing::make_mesh;
 
 // Springback of a bent wire: bent to a uniform curvature kappa and released as a cantilever, a
 // wire loses the curvature M / (E I), M the moment of the forming stress sigma(y) = clamp(E ln(1 -

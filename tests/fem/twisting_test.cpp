@@ -28,6 +28,7 @@
 
 #include "dtwire/core/csv.hpp"
 #include "dtwire/fem/run.hpp"
+#include "scratch_run.hpp"
 
 namespace {
 
@@ -36,18 +37,10 @@ using dtwire::fem::RunOptions;
 using dtwire::fem::RunSummary;
 
 std::filesystem::path scratch_dir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("dtwire_twisting_test_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
+  return dtwire::fem::testing::scratch_dir("dtwire_twisting_test_", name);
 }
 
-std::filesystem::path make_mesh(const std::string& kind, const std::filesystem::path& dir, const std::string& options) {
-  const auto mesh = dir / (kind + ".msh");
-  const std::string command = std::string(DTWIRE_EXE) + " mesh " + kind + " " + options + " -o " + mesh.string() +
-                              " > /dev/null 2>&1";
-  return std::system(command.c_str()) == 0 ? mesh : std::filesystem::path();
-}
+using dtwire::fem::testing::make_mesh;
 
 TEST(Torsion, FullyPlasticTorqueOfAWire) {
   const auto dir = scratch_dir("torsion");
