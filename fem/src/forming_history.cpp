@@ -83,6 +83,7 @@ AxisLocation WireAxes::locate(unsigned wire, const Point<3>& x) const {
   Tensor<1, 3> y = x - p;
   y -= (y * t) * t;
   AxisLocation location;
+  location.point = p;
   location.tangent = t;
   const double stretch = 1.0 - kappa * y;
   if (!(stretch > 0.0))

@@ -29,6 +29,7 @@ PlasticState formed_state(const J2LogPlasticity& material, const dealii::Tensor<
 
 // Where a material point lies relative to its wire's axis.
 struct AxisLocation {
+  dealii::Point<3> point;        // x's foot point on the axis
   dealii::Tensor<1, 3> tangent;  // unit
   double bending_strain = 0.0;   // ln(1 - k.y), the axial log strain of the fibre from straight
   double arc_length = 0.0;       // m along the wire's axis

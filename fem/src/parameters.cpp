@@ -90,6 +90,18 @@ void declare(ParameterHandler& prm) {
                     "start from the as-made state an earlier run wrote (its as_made_state.bin) instead of "
                     "forming and springback again: same mesh, element, material and Forming scale; needs "
                     "Forming history = true");
+  prm.declare_entry("Release after path", "false", Patterns::Bool(),
+                    "after the load and rotation paths the top grips let go: their forces fall to zero in steps "
+                    "(from Initial release step), the bottom grips held, as a twisting machine releases the "
+                    "twist; writes as_made.csv (the state along the Axis file's stations) and "
+                    "twisted_pair_state.csv (for another mesh's Twisted pair state); needs Top end = clamped "
+                    "and Forming history = false");
+  prm.declare_entry("Twisted pair state", "", Patterns::Anything(),
+                    "the twisted_pair_state.csv of a twisting run (Release after path = true on a straight "
+                    "pair, `dtwire mesh dt --half-turns 0`): inside the twist (between the heights where "
+                    "the wire axes leave the helix) each point takes the state of the pair's nearest point "
+                    "at the same relative height and offset from its wire's axis; the arms and junction "
+                    "bends are formed by bending as without it; needs Forming history = true");
   prm.leave_subsection();
 
   prm.enter_subsection("Boundary conditions");
@@ -233,7 +245,8 @@ void apply_setting(ParameterHandler& prm, const std::string& setting) {
     sections.push_back(path.substr(0, slash));
     path.erase(0, slash + 1);
   }
-  const bool file_entry = path == "Mesh file" || path == "Axis file" || path == "State file";
+  const bool file_entry =
+      path == "Mesh file" || path == "Axis file" || path == "State file" || path == "Twisted pair state";
   if (file_entry && !value.empty()) value = std::filesystem::absolute(value).string();
   for (const auto& s : sections) prm.enter_subsection(s);
   try {
@@ -380,9 +393,13 @@ void read_forming(Source& source, Parameters& p) {
   f.scale = prm.get_double("Forming scale");
   f.increments = static_cast<unsigned>(prm.get_integer("Forming increments"));
   f.initial_release_step = prm.get_double("Initial release step");
-  if (f.enabled) {
-    source.require(!p.geometry.mesh_file.empty(), "As made", "Forming history",
-                   "false without a mesh file (the forming bends wires into the axes of a `dtwire mesh` file)");
+  f.release_after_path = prm.get_bool("Release after path");
+  source.require(!(f.enabled && f.release_after_path), "As made", "Release after path",
+                 "false with Forming history = true (the release ends a twisting run; the forming has its own)");
+  if (f.enabled || f.release_after_path) {
+    source.require(!p.geometry.mesh_file.empty(), "As made", f.enabled ? "Forming history" : "Release after path",
+                   "false without a mesh file (the forming bends wires into the axes of a `dtwire mesh` file; the "
+                   "release records the state along them)");
     f.axis_file = prm.get("Axis file").empty() ? std::filesystem::path(p.geometry.mesh_file).replace_extension(".axis.csv")
                                                : source.file.parent_path() / prm.get("Axis file");
     source.require(std::filesystem::is_regular_file(f.axis_file), "As made", "Axis file",
@@ -395,6 +412,15 @@ void read_forming(Source& source, Parameters& p) {
     f.state_file = source.file.parent_path() / prm.get("State file");
     source.require(std::filesystem::is_regular_file(f.state_file), "As made", "State file",
                    "the as_made_state.bin of a run with Forming history = true (cannot open " + f.state_file.string() + ")");
+  }
+  if (!prm.get("Twisted pair state").empty()) {
+    source.require(f.enabled && f.state_file.empty(), "As made", "Twisted pair state",
+                   "empty unless Forming history = true and State file is empty (a state file already holds "
+                   "the twist's state)");
+    f.twisted_pair_state = source.file.parent_path() / prm.get("Twisted pair state");
+    source.require(std::filesystem::is_regular_file(f.twisted_pair_state), "As made", "Twisted pair state",
+                   "the twisted_pair_state.csv of a run with Release after path = true (cannot open " +
+                       f.twisted_pair_state.string() + ")");
   }
   prm.leave_subsection();
 }
@@ -458,6 +484,9 @@ void read_boundary_conditions(Source& source, Parameters& p) {
   if ((!p.load.pull_direction.empty() || !p.load.rotation_path.empty()) &&
       (p.load.top != EndCondition::clamped || p.load.force_control))
     throw InputError(name, "'Pull direction' and 'Rotation path (deg)' need Top end = clamped and displacement control");
+  if (p.forming.release_after_path && (p.load.top != EndCondition::clamped || p.load.force_control))
+    throw InputError(name, "'As made/Release after path' needs Top end = clamped and displacement control (the "
+                           "clamped top grips are what lets go)");
   if (prm.get("Grip interface") == "bonded") {
     auto& grip = p.load.grip;
     grip.bonded = true;
@@ -472,6 +501,8 @@ void read_boundary_conditions(Source& source, Parameters& p) {
     if (p.load.bottom != EndCondition::clamped || p.load.top != EndCondition::clamped || p.load.force_control)
       throw InputError(name, "'Grip interface = bonded' needs Bottom end = clamped, Top end = clamped and "
                              "displacement control (the bond replaces the clamps)");
+    if (p.forming.release_after_path)
+      throw InputError(name, "'As made/Release after path' needs Grip interface = clamped (the clamps let go)");
     if (!p.forming.state_file.empty())
       throw InputError(name, "'As made/State file' needs Grip interface = clamped (the bond's slip history is not "
                              "part of the saved state)");

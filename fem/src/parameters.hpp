@@ -51,6 +51,10 @@ struct FormingParameters {
   unsigned increments = 20;      // steps of each fibre's uniaxial forming path
   double initial_release_step = 0.25;  // fraction of the forming stress released in the first step
   std::filesystem::path state_file;  // start from this run's as_made_state.bin instead (empty: form here)
+  // A twisting run: after the paths the top grips let go (springback), and the pair's state is
+  // written for the twist of a DT mesh (solver_twisted_pair.cpp).
+  bool release_after_path = false;
+  std::filesystem::path twisted_pair_state;  // that file, mapped onto this mesh's twist (empty: bending only)
 };
 
 struct FormulationParameters {

@@ -291,7 +291,8 @@ RunSummary run_experiment(const RunOptions& options) {
   if (root) {
     std::filesystem::create_directories(out);
     // Results of an earlier run in this folder would sit beside this run's log: remove them.
-    for (const char* stale : {"curve.csv", "curve.partial.csv", "results.h5"}) std::filesystem::remove(out / stale);
+    for (const char* stale : {"curve.csv", "curve.partial.csv", "results.h5", kTwistedPairStateFile})
+      std::filesystem::remove(out / stale);
     const auto state = out / kAsMadeStateFile;  // stale too, unless this run reads it
     const bool read_here = !parameters.forming.state_file.empty() && std::filesystem::exists(state) &&
                            std::filesystem::equivalent(state, parameters.forming.state_file);
@@ -325,6 +326,7 @@ RunSummary run_experiment(const RunOptions& options) {
   parameters.geometry = solver.geometry();  // as read from a mesh file (length, double twist)
   solver.set_checkpoints(out / "checkpoints", parameters.output.checkpoint_interval, options.restart_step);
   if (parameters.forming.enabled && parameters.forming.state_file.empty()) solver.set_as_made_output(out / kAsMadeStateFile);
+  if (parameters.forming.release_after_path) solver.set_twisted_pair_output(out / kTwistedPairStateFile);
   std::vector<StepRecord> records;
   RunSummary summary;
   summary.root = root;
@@ -349,7 +351,8 @@ RunSummary run_experiment(const RunOptions& options) {
   summary.solve_seconds = st.solve_seconds;
   if (st.forming.done)
     summary.springback = {true, !st.forming.state_file.empty(), st.forming.energy_balance, st.forming.largest_displacement * 1e3,
-                          st.forming.clearance_mean * 1e3, st.forming.clearance_largest * 1e3, st.forming.seconds};
+                          st.forming.clearance_mean * 1e3, st.forming.clearance_largest * 1e3, st.forming.seconds,
+                          st.forming.top_rotation};
   for (const auto& r : records)
     if (std::abs(r.force) > std::abs(summary.peak_force_N)) {  // largest magnitude, signed
       summary.peak_force_N = r.force;
@@ -414,14 +417,20 @@ RunSummary run_experiment(const RunOptions& options) {
                               {"forming_elastic_energy", fm.initial_elastic_energy, "J"},
                               {"residual_elastic_energy", fm.elastic_energy, "J"}};
     for (const auto& figure : figures) results.parameters.push_back({figure.name, figure.value, figure.unit, std::nullopt});
+    if (fm.after_path) results.parameters.push_back({"release_top_rotation", fm.top_rotation, "rad", std::nullopt});
+    if (fm.mapped_points > 0) {
+      results.parameters.push_back({"twisted_pair_points", double(fm.mapped_points), "1", std::nullopt});
+      results.parameters.push_back({"twisted_pair_largest_distance", fm.largest_mapping_distance, "m", std::nullopt});
+    }
   }
   const auto files = solver.field_files();
   for (std::size_t i = 0; i < files.size(); ++i)
     results.fields.emplace_back(i == 0 ? "pvd" : "step_" + std::to_string(i - 1), "fields/" + files[i]);
   std::vector<std::filesystem::path> inputs{options.parameter_file};
   if (!parameters.geometry.mesh_file.empty()) inputs.push_back(parameters.geometry.mesh_file);
-  if (parameters.forming.enabled) inputs.push_back(parameters.forming.axis_file);
+  if (parameters.forming.enabled || parameters.forming.release_after_path) inputs.push_back(parameters.forming.axis_file);
   if (!parameters.forming.state_file.empty()) inputs.push_back(parameters.forming.state_file);
+  if (!parameters.forming.twisted_pair_state.empty()) inputs.push_back(parameters.forming.twisted_pair_state);
   results.provenance = make_provenance(options.command_line, inputs);
   results.provenance.run_id = run_id;
   write_results(results, summary.results_h5);

@@ -27,6 +27,7 @@ std::vector<std::string> WireSolver::field_files() const {
 }
 
 void WireSolver::set_as_made_output(const std::filesystem::path& file) { impl_->as_made_output = file; }
+void WireSolver::set_twisted_pair_output(const std::filesystem::path& file) { impl_->twisted_pair_output = file; }
 
 void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
   Impl& s = *impl_;
@@ -154,7 +155,16 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       dt = reduced;
     }
   }
-  if (s.prm.output.fields && (interval == 0 || step % interval != 0)) s.write_fields(step, t);
+  bool fields_due = interval == 0 || step % interval != 0;
+  if (s.prm.forming.release_after_path) {  // the twisting head lets go (solver_forming.cpp)
+    s.log << "release: the top grips let go (As made/Release after path)\n";
+    s.release_top_end();
+    s.stats.forming.after_path = true;
+    if (!s.twisted_pair_output.empty()) s.write_twisted_pair_state(s.twisted_pair_output);
+    if (interval > 0) s.write_fields(step + 1, t + 1.0);  // the released state, at pseudo-time t_end + 1
+    fields_due = false;
+  }
+  if (s.prm.output.fields && fields_due) s.write_fields(step, t);
 }
 
 }  // namespace dtwire::fem

@@ -35,10 +35,16 @@ struct FormingSummary {
          holding_work = 0.0;
   double energy_balance = 0.0;  // |initial + holding - elastic - plastic - friction| / initial
   double largest_displacement = 0.0;  // m, of the springback
+  double top_rotation = 0.0;  // rad, of the top end about the Rotation axis while it was let go
   unsigned clearance_points = 0, points_in_contact = 0;
   double clearance_mean = 0.0, clearance_largest = 0.0;  // m, after the springback
   std::vector<FormingProfileRow> profile;
   std::filesystem::path state_file;  // read from this file (As made/State file); empty: computed here
+  bool after_path = false;           // the release of a twisting run (As made/Release after path)
+  // Twisted pair state: the steel points that took the pair's state (the rest formed by bending)
+  // and the largest distance to the pair point they took it from (m, after the offset mapping).
+  std::size_t mapped_points = 0, steel_points = 0;
+  double largest_mapping_distance = 0.0;
 };
 
 struct SolverStatistics {
@@ -70,6 +76,8 @@ class WireSolver {
   // As made: where to write the state the springback leaves (empty: nowhere), for later runs'
   // As made/State file. Not written when the state was itself read from a file.
   void set_as_made_output(const std::filesystem::path& file);
+  // Release after path: where to write the twisted pair state the release leaves (empty: nowhere).
+  void set_twisted_pair_output(const std::filesystem::path& file);
 
   const SolverStatistics& statistics() const;
   const GeometryParameters& geometry() const;  // after reading the mesh

@@ -31,7 +31,8 @@ void WireSolver::Impl::visit_steel_points(
 }
 
 // Every steel quadrature point gets the state of its fibre bent from straight wire into the
-// wire's axis (forming_history.hpp).
+// wire's axis (forming_history.hpp); with a twisted pair state, the twist's points take the
+// state the twisting run left instead (twisted_pair_state.hpp).
 void WireSolver::Impl::apply_forming_history() {
   Timer timer;
   const WireAxes axes(prm.forming.axes);
@@ -42,21 +43,69 @@ void WireSolver::Impl::apply_forming_history() {
   });
   log << "as made: forming history of " << prm.forming.axis_file.filename().string() << " (scale "
       << prm.forming.scale << ") in " << timer.wall_time() << " s\n";
+  if (!prm.forming.twisted_pair_state.empty()) apply_twisted_pair_state(prm.forming.twisted_pair_state);
 }
 
-// Springback: the forming tools' forces (the internal forces of the held, formed mesh) fall to
-// zero in load steps with cut-back, the bottom grips held and the top end free; then the top
-// end is clamped where it came to rest and the load path starts from there.
+void WireSolver::Impl::set_top_released(bool released) {
+  top_released = released;
+  make_constraints(homogeneous, 0.0, 0.0);
+  make_constraints(predictor, 0.0, 0.0);
+  make_matrix();
+}
+
+// The current positions of the top end's support points (one per vertex), this rank's.
+std::vector<Point<3>> WireSolver::Impl::top_end_positions() const {
+  std::vector<Point<3>> x;
+  for (const auto& d : top_end_dofs)
+    if (d.component == 0) {
+      Point<3> p = d.reference;
+      for (unsigned c = 0; c < 3; ++c) p[c] += ghosted[d.vertex_dofs[c]];
+      x.push_back(p);
+    }
+  return x;
+}
+
+namespace {
+// The rotation about the unit `axis` that best carries the point set `from` onto `to` (least
+// squares, each about its own centroid): atan2(sum a.(r0 x r1), sum r0.r1) with r the offsets
+// from the centroid normal to the axis. Summed over the ranks.
+double rotation_about(const Tensor<1, 3>& axis, const std::vector<Point<3>>& from, const std::vector<Point<3>>& to,
+                      MPI_Comm comm) {
+  Tensor<1, 3> sum0, sum1;
+  for (std::size_t i = 0; i < from.size(); ++i) sum0 += from[i], sum1 += to[i];
+  const double n = Utilities::MPI::sum(static_cast<double>(from.size()), comm);
+  if (n == 0.0) return 0.0;
+  sum0 = Utilities::MPI::sum(sum0, comm) / n;
+  sum1 = Utilities::MPI::sum(sum1, comm) / n;
+  double sine = 0.0, cosine = 0.0;
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    Tensor<1, 3> r0 = from[i] - sum0, r1 = to[i] - sum1;
+    r0 -= (r0 * axis) * axis;
+    r1 -= (r1 * axis) * axis;
+    sine += axis * cross_product_3d(r0, r1);
+    cosine += r0 * r1;
+  }
+  return std::atan2(Utilities::MPI::sum(sine, comm), Utilities::MPI::sum(cosine, comm));
+}
+}  // namespace
+
+// Springback of the as-made wires: released, then the top end is clamped where it came to rest
+// and the load path starts from there.
 void WireSolver::Impl::release_forming() {
+  release_top_end();
+  set_top_released(false);
+  StepRecord reset;  // the top end's work counts from where it came to rest
+  record_end(reset);
+  end_work = tool_work = 0.0;
+}
+
+// The top end lets go: the forces that held it (the internal forces of the held mesh: the
+// forming tools' after a forming, the twisting head's after a twisting run) fall to zero in load
+// steps with cut-back, the bottom grips held and the top end free.
+void WireSolver::Impl::release_top_end() {
   Timer timer;
   auto& f = stats.forming;
-  const auto rebuild = [&](bool released) {
-    top_released = released;
-    make_constraints(homogeneous, 0.0, 0.0);
-    make_constraints(predictor, 0.0, 0.0);
-    make_matrix();
-  };
-  rebuild(true);
+  set_top_released(true);
   holding_factor = 0.0;
   assemble(false, homogeneous);
   holding_force = rhs;
@@ -70,6 +119,7 @@ void WireSolver::Impl::release_forming() {
   };
   const double friction_before = friction();
   const PETScWrappers::MPI::Vector formed = solution;
+  const std::vector<Point<3>> top_before = top_end_positions();
   PETScWrappers::MPI::Vector start(owned, comm), change(owned, comm);
   const auto& stepping = prm.stepping;
   double released = 0.0, step = prm.forming.initial_release_step;
@@ -118,18 +168,18 @@ void WireSolver::Impl::release_forming() {
     f.clearance_mean = c.mean;
     f.clearance_largest = c.largest;
   }
+  Tensor<1, 3> axis;
+  for (unsigned c = 0; c < 3; ++c) axis[c] = prm.load.rotation_axis[c];
+  f.top_rotation = rotation_about(axis / axis.norm(), top_before, top_end_positions(), comm);
   record_forming_profile();
-  rebuild(false);
-  StepRecord reset;  // the top end's work counts from where it came to rest
-  record_end(reset);
-  end_work = tool_work = 0.0;
   f.seconds = timer.wall_time();
   f.done = true;
   log << "springback: " << f.steps << " steps, " << f.newton_iterations << " Newton iterations, " << f.cutbacks
       << " cut-backs, " << f.seconds << " s; elastic energy " << f.initial_elastic_energy << " -> " << f.elastic_energy
       << " J, plastic work " << f.plastic_work << " J, friction " << f.friction_work << " J, holding forces "
       << f.holding_work << " J: balance " << 100.0 * f.energy_balance << " %; largest displacement "
-      << f.largest_displacement * 1e3 << " mm; clearance mean " << f.clearance_mean * 1e3 << " mm, largest "
+      << f.largest_displacement * 1e3 << " mm, top end turned " << f.top_rotation * 180 / M_PI
+      << " deg; clearance mean " << f.clearance_mean * 1e3 << " mm, largest "
       << f.clearance_largest * 1e3 << " mm (" << f.points_in_contact << " of " << f.clearance_points
       << " points in contact)\n";
 }

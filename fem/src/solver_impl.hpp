@@ -144,16 +144,24 @@ struct WireSolver::Impl {
 
   // As made (solver_forming.cpp): the forming history put into every quadrature point, then
   // released by letting the holding forces (the initial internal forces, scaled by
-  // holding_factor) fall to zero with the top end free.
+  // holding_factor) fall to zero with the top end free; the same release ends a twisting run.
   bool top_released = false;
   double holding_factor = 0.0;
   PETScWrappers::MPI::Vector holding_force;
   void apply_forming_history();
   void release_forming();
+  void release_top_end();
+  void set_top_released(bool released);
+  std::vector<Point<3>> top_end_positions() const;
   void record_forming_profile();
+  // A twisting run's end (solver_twisted_pair.cpp): the state of every steel point for the
+  // twist of a DT mesh; and that state mapped onto this mesh's twist (the other points keep
+  // what apply_forming_history gave them).
+  void write_twisted_pair_state(const std::filesystem::path& file);
+  void apply_twisted_pair_state(const std::filesystem::path& file);
   // The as-made state file (solver_as_made_state.cpp): written after a springback when
   // as_made_output is set, read instead of forming when As made/State file is.
-  std::filesystem::path as_made_output;
+  std::filesystem::path as_made_output, twisted_pair_output;
   std::vector<double> as_made_header() const;
   void write_as_made_state(const std::filesystem::path& file);
   void read_as_made_state(const std::filesystem::path& file);

@@ -20,13 +20,17 @@ struct RunOptions {
 // Where an as-made run leaves the state its springback reached, for later runs' As made/State
 // file (fem/src/solver_as_made_state.cpp).
 inline constexpr const char* kAsMadeStateFile = "as_made_state.bin";
+// What a twisting run's release leaves (As made/Release after path), for a DT mesh's twist.
+inline constexpr const char* kTwistedPairStateFile = "twisted_pair_state.csv";
 
-// As made (As made/Forming history = true): the springback before the load path.
+// As made (As made/Forming history = true): the springback before the load path; or the release
+// after it (As made/Release after path = true).
 struct SpringbackSummary {
   bool done = false;
   bool from_state_file = false;  // read from As made/State file: the figures are that run's
   double energy_balance = 0.0;  // relative: |W0 + holding work - elastic - plastic - friction| / W0
   double largest_displacement_mm = 0.0, clearance_mean_mm = 0.0, clearance_largest_mm = 0.0, seconds = 0.0;
+  double top_rotation_rad = 0.0;  // of the top end about the Rotation axis while it was let go
 };
 
 struct RunSummary {
