@@ -36,7 +36,7 @@ PrmDocument edit_prm(const PrmDocument& model, const PrmDocument& declared,
   PrmDocument edited = model;
   edited.set("Output/Fields", "false");  // no VTU output in fits
   // The edited copy is run from elsewhere: the files the model names, relative to its folder.
-  for (const char* entry : {"Geometry/Mesh file", "As made/Axis file", "As made/State file"})
+  for (const char* entry : {"Geometry/Mesh file", "As made/Axis file", "As made/State file", "As made/Twisted pair state"})
     if (const auto file = model.get(entry); file && !file->empty() && std::filesystem::path(*file).is_relative())
       edited.set(entry, (prm_directory / *file).string());
   const ModelContext context{model, declared, prm_directory, grip};

@@ -23,6 +23,7 @@ class FormingHistory : public ModelEffect {
     edited.set("As made/Forming history", p > 0.0 ? "true" : "false");
     edited.set("As made/Forming scale", number_text(p));
     edited.set("As made/State file", "");  // formed anew at this scale, not read from a saved state
+    edited.set("As made/Twisted pair state", "");  // the scale is the bending forming's, everywhere
   }
 };
 

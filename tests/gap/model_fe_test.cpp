@@ -68,7 +68,8 @@ TEST(GapModelPrm, DoubleTwistEffectsEditTheWireContact) {
   EXPECT_EQ(column.unsupported.count("wire_friction"), 1u);
 }
 
-// forming_history (issue 19) switches the as-made start on at scale p; p = 0 is the tight model.
+// forming_history (issue 19) switches the as-made start on at scale p (bending forming, read from
+// no saved or twisted state); p = 0 is the tight model.
 // The bundled DT has its axis file beside the mesh; a DT .prm whose mesh has none cannot.
 TEST(GapModelPrm, FormingHistorySetsTheAsMadeStart) {
   const std::string dt = "subsection Wire contact\n  set Enabled = true\nend\n";
@@ -81,6 +82,10 @@ TEST(GapModelPrm, FormingHistorySetsTheAsMadeStart) {
   const std::string saved = edited_text(dt + "subsection As made\n  set State file = formed.bin\nend\n",
                                         {{&gap::find_effect("forming_history"), {0.8}}}, ".");
   EXPECT_EQ(saved.find("formed.bin"), std::string::npos) << saved;
+  // and by bending alone: the effect's scale has no meaning for a twisting run's state.
+  const std::string twisted = edited_text(dt + "subsection As made\n  set Twisted pair state = pair.csv\nend\n",
+                                          {{&gap::find_effect("forming_history"), {0.8}}}, ".");
+  EXPECT_EQ(twisted.find("pair.csv"), std::string::npos) << twisted;
   const FeModel model = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
                                       fs::temp_directory_path() / "dtwire_gap_fe_test_f");
   EXPECT_EQ(model.unsupported.count("forming_history"), 0u);
