@@ -13,10 +13,6 @@ namespace dtwire::fem {
 
 using namespace dealii;
 
-namespace {
-bool is_coating(types::material_id id) { return (id - 1) % 10 >= 3; }  // region_ids.hpp: + 3 for the coating
-}  // namespace
-
 void WireSolver::Impl::visit_steel_points(
     const WireAxes& axes, const std::function<void(unsigned, const AxisLocation&, QuadraturePointRecord&)>& visit) {
   FEValues<3> values(fe, quadrature, update_quadrature_points);

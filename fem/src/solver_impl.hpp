@@ -38,6 +38,9 @@ using namespace dealii;
 class WireAxes;
 struct AxisLocation;
 
+// The coating's cells (region_ids.hpp: material id + 3) stay stress-free in the forming.
+inline bool is_coating(types::material_id id) { return (id - 1) % 10 >= 3; }
+
 struct QuadraturePointRecord {
   PlasticState committed, trial;
   SymTensor2 cauchy;

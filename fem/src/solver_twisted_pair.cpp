@@ -19,7 +19,6 @@ namespace dtwire::fem {
 using namespace dealii;
 
 namespace {
-bool is_coating(types::material_id id) { return (id - 1) % 10 >= 3; }  // region_ids.hpp: + 3 for the coating
 bool is_free_part(types::material_id id) {
   return (id - 1) % 10 == static_cast<int>(regions::WirePart::Free);
 }

@@ -2,12 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <iomanip>
 #include <limits>
-#include <sstream>
 #include <string>
 
+#include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/prm_document.hpp"
 
@@ -17,12 +15,30 @@ using namespace dealii;
 
 namespace {
 
-constexpr const char* kHeader =
-    "wire,station_z_ref_mm,axis_x_mm,axis_y_mm,axis_z_mm,x_mm,y_mm,z_mm,b_e_xx,b_e_yy,b_e_zz,b_e_xy,b_e_xz,b_e_yz,"
-    "equivalent_plastic_strain,plastic_dissipation_MJ_per_m3,damage,backstress_xx_MPa,backstress_yy_MPa,"
-    "backstress_zz_MPa,backstress_xy_MPa,backstress_xz_MPa,backstress_yz_MPa";
-constexpr unsigned kColumns = 23;
-constexpr const char* kLengthKey = "# twisted_length_z_ref_mm,";
+// The file's columns (dtwire/core/csv.hpp: <quantity>_<unit>): quantity, dimension, unit written.
+struct Column {
+  const char* quantity;
+  Dimension dimension;
+  const char* unit;
+};
+const std::vector<Column>& columns() {
+  static const std::vector<Column> list = [] {
+    std::vector<Column> c{{"wire", Dimension::Dimensionless, "1"},     {"station_z_ref", Dimension::Length, "mm"},
+                          {"axis_x", Dimension::Length, "mm"},         {"axis_y", Dimension::Length, "mm"},
+                          {"axis_z", Dimension::Length, "mm"},         {"x", Dimension::Length, "mm"},
+                          {"y", Dimension::Length, "mm"},              {"z", Dimension::Length, "mm"}};
+    for (const char* k : {"b_e_xx", "b_e_yy", "b_e_zz", "b_e_xy", "b_e_xz", "b_e_yz"}) c.push_back({k, Dimension::Dimensionless, "1"});
+    c.push_back({"equivalent_plastic_strain", Dimension::Dimensionless, "1"});
+    c.push_back({"plastic_dissipation_density", Dimension::Stress, "MPa"});  // J/m3 = Pa
+    c.push_back({"damage", Dimension::Dimensionless, "1"});
+    for (const char* k : {"backstress_xx", "backstress_yy", "backstress_zz", "backstress_xy", "backstress_xz", "backstress_yz"})
+      c.push_back({k, Dimension::Stress, "MPa"});
+    return c;
+  }();
+  return list;
+}
+constexpr const char* kBottomKey = "twisted_from_z_ref_mm";
+constexpr const char* kTopKey = "twisted_to_z_ref_mm";
 // Symmetric tensor entries in the file's order: xx, yy, zz, xy, xz, yz.
 constexpr unsigned kRow[6] = {0, 1, 2, 0, 0, 1}, kCol[6] = {0, 1, 2, 1, 2, 2};
 
@@ -42,84 +58,62 @@ SymTensor2 rotated_back(const SymTensor2& t, double angle) {
 
 void write_twisted_pair_csv(const std::filesystem::path& file, double z0, double z1,
                             const std::vector<TwistedPairPoint>& points) {
-  auto temporary = file;
-  temporary += ".partial";
-  {
-    std::ofstream out(temporary);
-    if (!out) throw ComputationError("cannot write " + temporary.string());
-    out << "# dtwire twisted pair state (As made/Release after path): one row per steel quadrature point of the\n"
-           "# pair after its release; read by another run's As made/Twisted pair state (fem/src/twisted_pair_state.hpp)\n"
-        << std::setprecision(12) << kLengthKey << 1e3 * z0 << ',' << 1e3 * z1 << '\n'
-        << kHeader << '\n';
-    for (const auto& p : points) {
-      out << p.wire << ',' << 1e3 * p.station_z_ref;
-      for (unsigned c = 0; c < 3; ++c) out << ',' << 1e3 * p.axis[c];
-      for (unsigned c = 0; c < 3; ++c) out << ',' << 1e3 * p.position[c];
-      for (unsigned k = 0; k < 6; ++k) out << ',' << p.state.plastic_metric_inverse[kRow[k]][kCol[k]];
-      out << ',' << p.state.equivalent_plastic_strain << ',' << 1e-6 * p.state.plastic_dissipation << ','
-          << p.state.damage;
-      for (unsigned k = 0; k < 6; ++k) out << ',' << 1e-6 * p.state.backstress[kRow[k]][kCol[k]];
-      out << '\n';
-    }
-    if (!out) throw ComputationError("cannot write " + temporary.string());
+  std::vector<std::vector<double>> si(columns().size());  // per column, SI
+  for (const auto& p : points) {
+    std::vector<double> row{double(p.wire), p.station_z_ref, p.axis[0], p.axis[1], p.axis[2],
+                            p.position[0], p.position[1], p.position[2]};
+    for (unsigned k = 0; k < 6; ++k) row.push_back(p.state.plastic_metric_inverse[kRow[k]][kCol[k]]);
+    row.insert(row.end(), {p.state.equivalent_plastic_strain, p.state.plastic_dissipation, p.state.damage});
+    for (unsigned k = 0; k < 6; ++k) row.push_back(p.state.backstress[kRow[k]][kCol[k]]);
+    for (std::size_t c = 0; c < row.size(); ++c) si[c].push_back(row[c]);
   }
-  std::filesystem::rename(temporary, file);
+  Curve curve;
+  curve.set_metadata("content", "dtwire twisted pair state (As made/Release after path), one row per steel "
+                                "quadrature point after the release; read by As made/Twisted pair state");
+  curve.set_metadata(kBottomKey, format_number(1e3 * z0));
+  curve.set_metadata(kTopKey, format_number(1e3 * z1));
+  for (std::size_t c = 0; c < columns().size(); ++c)
+    curve.add_channel_si(columns()[c].quantity, columns()[c].dimension, si[c], *find_unit(columns()[c].unit));
+  write_csv(curve, file);
 }
 
 TwistedPairState::TwistedPairState(const std::filesystem::path& file,
                                    const std::vector<std::vector<AxisStation>>& mesh_axes)
     : file_(file), points_(2), stations_(2), mesh_axes_(mesh_axes) {
   const std::string name = file.string();
-  std::ifstream in(file);
-  if (!in) throw InputError(name, "cannot open the twisted pair state");
-  std::string line;
-  int number = 0;
-  bool header = false, length = false;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.rfind(kLengthKey, 0) == 0) {
-      std::stringstream s(line.substr(std::string(kLengthKey).size()));
-      std::string a, b;
-      std::getline(s, a, ',');
-      std::getline(s, b, ',');
-      const auto v0 = parse_number(a), v1 = parse_number(b);
-      if (!v0 || !v1 || !(*v1 > *v0)) throw InputError(name, number, 0, "expected two rising heights in mm");
-      z0_ = 1e-3 * *v0;
-      z1_ = 1e-3 * *v1;
-      length = true;
-      continue;
-    }
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      if (line != kHeader) throw InputError(name, number, 0, "expected the header '" + std::string(kHeader) + "'");
-      header = true;
-      continue;
-    }
-    std::stringstream s(line);
-    std::vector<double> v;
-    for (std::string item; std::getline(s, item, ',');) {
-      const auto value = parse_number(item);
-      if (!value || !std::isfinite(*value)) throw InputError(name, number, 0, "expected a number, found '" + item + "'");
-      v.push_back(*value);
-    }
-    if (v.size() != kColumns)
-      throw InputError(name, number, 0, "expected " + std::to_string(kColumns) + " columns, found " + std::to_string(v.size()));
-    if (v[0] != 0.0 && v[0] != 1.0) throw InputError(name, number, 0, "wire must be 0 or 1");
+  const Curve curve = read_csv(file);  // names file:line of a malformed row
+  std::vector<std::vector<double>> si;
+  for (const auto& column : columns()) {
+    const Channel* channel = curve.find(column.quantity);
+    if (!channel || channel->unit.dimension != column.dimension)
+      throw InputError(name, std::string("not a twisted pair state: expected a column ") + column.quantity + "_" +
+                                 column.unit + " (or another unit of its dimension)");
+    si.push_back(channel->si());
+  }
+  const auto height = [&](const char* key) {
+    const auto value = parse_number(curve.metadata(key));
+    if (!value) throw InputError(name, std::string("expected a metadata line '# ") + key + ": <number>'");
+    return 1e-3 * *value;
+  };
+  z0_ = height(kBottomKey);
+  z1_ = height(kTopKey);
+  if (!(z1_ > z0_)) throw InputError(name, std::string(kTopKey) + " must lie above " + kBottomKey);
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    const auto v = [&](std::size_t c) { return si[c][i]; };
+    if (v(0) != 0.0 && v(0) != 1.0) throw InputError(name, "row " + std::to_string(i + 1) + ": wire must be 0 or 1");
     TwistedPairPoint p;
-    p.wire = static_cast<unsigned>(v[0]);
-    p.station_z_ref = 1e-3 * v[1];
-    for (unsigned c = 0; c < 3; ++c) p.axis[c] = 1e-3 * v[2 + c], p.position[c] = 1e-3 * v[5 + c];
-    for (unsigned k = 0; k < 6; ++k) p.state.plastic_metric_inverse[kRow[k]][kCol[k]] = v[8 + k];
+    p.wire = static_cast<unsigned>(v(0));
+    p.station_z_ref = v(1);
+    for (unsigned c = 0; c < 3; ++c) p.axis[c] = v(2 + c), p.position[c] = v(5 + c);
+    for (unsigned k = 0; k < 6; ++k) p.state.plastic_metric_inverse[kRow[k]][kCol[k]] = v(8 + k);
     if (!(determinant(p.state.plastic_metric_inverse) > 0.0))
-      throw InputError(name, number, 0, "b_e is not positive definite");
-    p.state.equivalent_plastic_strain = v[14];
-    p.state.plastic_dissipation = 1e6 * v[15];
-    p.state.damage = v[16];
-    for (unsigned k = 0; k < 6; ++k) p.state.backstress[kRow[k]][kCol[k]] = 1e6 * v[17 + k];
+      throw InputError(name, "row " + std::to_string(i + 1) + ": b_e is not positive definite");
+    p.state.equivalent_plastic_strain = v(14);
+    p.state.plastic_dissipation = v(15);
+    p.state.damage = v(16);
+    for (unsigned k = 0; k < 6; ++k) p.state.backstress[kRow[k]][kCol[k]] = v(17 + k);
     points_[p.wire].push_back(p);
   }
-  if (!header) throw InputError(name, "not a twisted pair state: no header line '" + std::string(kHeader) + "'");
-  if (!length) throw InputError(name, "no line '" + std::string(kLengthKey) + "Z0,Z1'");
   for (unsigned w = 0; w < 2; ++w) {
     auto& p = points_[w];
     if (p.empty()) throw InputError(name, "no points of wire " + std::to_string(w) + " (a pair has two wires)");

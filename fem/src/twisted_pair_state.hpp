@@ -2,14 +2,14 @@
 // The state a twisting run leaves in a straight pair of wires (As made/Release after path), and
 // its transfer onto the twist of a double-twist mesh (As made/Twisted pair state), issue 19.
 //
-// The file (`twisted_pair_state.csv`, written by the run, read here): '#' comments, then one
-// `# twisted_length_z_ref_mm,Z0,Z1` line (the reference heights between the pair's grips),
-// a header and one row per steel quadrature point:
-//   wire, station_z_ref_mm (mean reference height of the point's axis station),
+// The file (`twisted_pair_state.csv`, written by the run, read here) is a dtwire curve CSV
+// (dtwire/core/csv.hpp) with metadata `twisted_from_z_ref_mm` and `twisted_to_z_ref_mm` (the
+// reference heights between the pair's grips) and one row per steel quadrature point:
+//   wire_1, station_z_ref_mm (mean reference height of the point's axis station),
 //   axis_x_mm, axis_y_mm, axis_z_mm (that station's deformed centroid),
-//   x_mm, y_mm, z_mm (the point, deformed), b_e_xx, b_e_yy, b_e_zz, b_e_xy, b_e_xz, b_e_yz
-//   (elastic left Cauchy-Green tensor F Cp^-1 F^T), equivalent_plastic_strain,
-//   plastic_dissipation_MJ_per_m3, damage, backstress_xx_MPa ... backstress_yz_MPa.
+//   x_mm, y_mm, z_mm (the point, deformed), b_e_xx_1 ... b_e_yz_1 (elastic left Cauchy-Green
+//   tensor F Cp^-1 F^T), equivalent_plastic_strain_1, plastic_dissipation_density_MPa (J/m3 in
+//   MPa), damage_1, backstress_xx_MPa ... backstress_yz_MPa.
 // With the deformed pair as the new reference, b_e is the plastic metric that reproduces its
 // stress (Simo 1992, CMAME 99: b_e is the elastic state of multiplicative plasticity) and the
 // backstress is spatial already, so a point of the DT mesh takes them rotated into its frame.
@@ -41,7 +41,7 @@ struct TwistedPairPoint {
   PlasticState state;  // plastic metric = b_e, backstress spatial
 };
 
-// Writes the file under a temporary name and renames it. Units as in the header above.
+// Writes the file (temporary name, then renamed). Units as in the header above.
 void write_twisted_pair_csv(const std::filesystem::path& file, double z0, double z1,
                             const std::vector<TwistedPairPoint>& points);
 

@@ -161,10 +161,10 @@ TEST(TwistedPairState, EntriesAndFilesAreCheckedByName) {
   EXPECT_NE(message.find("Top end = clamped"), std::string::npos) << message;
 
   const auto garbage = std::filesystem::temp_directory_path() / "dtwire_twisted_pair_garbage.csv";
-  std::ofstream(garbage) << "# twisted_length_z_ref_mm,0,40\nwire,x\n";
+  std::ofstream(garbage) << "displacement_mm,force_N\n0,0\n1,1\n2,2\n";  // a curve, not a pair state
   message = refusal([&] { TwistedPairState(garbage, mesh_axes()); });
   EXPECT_NE(message.find(garbage.string()), std::string::npos) << message;
-  EXPECT_NE(message.find("expected the header"), std::string::npos) << message;
+  EXPECT_NE(message.find("not a twisted pair state"), std::string::npos) << message;
 }
 
 }  // namespace
