@@ -13,12 +13,16 @@ void check(PetscErrorCode code, const char* what) {
 }  // namespace
 
 void DirectSolver::reset() {
+  if (gmres_) KSPDestroy(&gmres_);
+  gmres_ = nullptr;
   if (ksp_) KSPDestroy(&ksp_);
   ksp_ = nullptr;
+  pattern_changed_ = false;
 }
 
 void DirectSolver::solve(const dealii::PETScWrappers::MPI::SparseMatrix& A, dealii::PETScWrappers::MPI::Vector& x,
                          const dealii::PETScWrappers::MPI::Vector& b) {
+  if (pattern_changed_) reset();  // PETSc would take the new pattern's matrix for the old one
   if (!ksp_) {
     check(KSPCreate(comm_, &ksp_), "KSPCreate");
     check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
@@ -44,8 +48,10 @@ void DirectSolver::solve(const dealii::PETScWrappers::MPI::SparseMatrix& A, deal
     check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
   }
   // Same Mat object with the same nonzero state: PETSc keeps the symbolic factorisation.
+  check(KSPSetReusePreconditioner(ksp_, PETSC_FALSE), "KSPSetReusePreconditioner");
   check(KSPSetOperators(ksp_, A, A), "KSPSetOperators");
   check(KSPSolve(ksp_, b, x), "KSPSolve");
+  ++factorisations_;
   KSPConvergedReason reason;
   check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
   if (reason < 0) {
@@ -55,7 +61,52 @@ void DirectSolver::solve(const dealii::PETScWrappers::MPI::SparseMatrix& A, deal
 }
 
 void DirectSolver::solve_again(dealii::PETScWrappers::MPI::Vector& x, const dealii::PETScWrappers::MPI::Vector& b) {
+  // The matrix the factors came from may have been reassembled since: keep the factors.
+  check(KSPSetReusePreconditioner(ksp_, PETSC_TRUE), "KSPSetReusePreconditioner");
   check(KSPSolve(ksp_, b, x), "KSPSolve");
+}
+
+// PETSc's GMRES, not deal.II's: deal.II's solvers keep a global pool of PETSc vectors that the
+// command line's static MPI_InitFinalize would release after the pool is gone (a crash at exit).
+unsigned DirectSolver::solve_lagged(const dealii::PETScWrappers::MPI::SparseMatrix& A,
+                                    dealii::PETScWrappers::MPI::Vector& x, const dealii::PETScWrappers::MPI::Vector& b,
+                                    double relative_tolerance, unsigned maximum_iterations) {
+  if (factorised()) {
+    if (!gmres_) {
+      check(KSPCreate(comm_, &gmres_), "KSPCreate");
+      check(KSPSetType(gmres_, KSPGMRES), "KSPSetType");
+      // Right preconditioning: the criterion is on the true residual b - A x.
+      check(KSPSetPCSide(gmres_, PC_RIGHT), "KSPSetPCSide");
+      check(KSPSetNormType(gmres_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+      PC pc;
+      check(KSPGetPC(gmres_, &pc), "KSPGetPC");
+      check(PCSetType(pc, PCSHELL), "PCSetType");
+      check(PCShellSetContext(pc, this), "PCShellSetContext");
+      check(PCShellSetApply(pc, &DirectSolver::apply_factors), "PCShellSetApply");
+    }
+    check(KSPGMRESSetRestart(gmres_, static_cast<PetscInt>(maximum_iterations) + 1), "KSPGMRESSetRestart");
+    check(KSPSetTolerances(gmres_, relative_tolerance, 0.0, PETSC_DEFAULT, static_cast<PetscInt>(maximum_iterations)),
+          "KSPSetTolerances");
+    check(KSPSetOperators(gmres_, A, A), "KSPSetOperators");
+    check(KSPSolve(gmres_, b, x), "KSPSolve");
+    KSPConvergedReason reason;
+    PetscInt iterations = 0;
+    check(KSPGetConvergedReason(gmres_, &reason), "KSPGetConvergedReason");
+    check(KSPGetIterationNumber(gmres_, &iterations), "KSPGetIterationNumber");
+    if (reason > 0) return std::max<unsigned>(1, static_cast<unsigned>(iterations));
+    // the factors are too old for this tangent: a new factorisation below
+  }
+  solve(A, x, b);
+  return 0;
+}
+
+PetscErrorCode DirectSolver::apply_factors(PC pc, Vec x, Vec y) {
+  void* context = nullptr;
+  PetscErrorCode code = PCShellGetContext(pc, &context);
+  if (code != 0) return code;
+  KSP factors = static_cast<DirectSolver*>(context)->ksp_;
+  code = KSPSetReusePreconditioner(factors, PETSC_TRUE);
+  return code != 0 ? code : KSPSolve(factors, x, y);
 }
 
 }  // namespace dtwire::fem

@@ -158,8 +158,12 @@ void declare(ParameterHandler& prm) {
   prm.declare_entry("Relative tolerance", "1e-10", Patterns::Double(0.0), "");
   prm.declare_entry("Line search", "true", Patterns::Bool(), "");
   prm.declare_entry("Maximum line search steps", "5", Patterns::Integer(0), "");
-  prm.declare_entry("Linear solver", "direct", Patterns::Selection("direct|gmres-amg"),
-                    "direct: MUMPS; gmres-amg: GMRES with PETSc GAMG and the rigid-body modes (large problems)");
+  prm.declare_entry("Linear solver", "direct", Patterns::Selection("direct|gmres-amg|lagged-lu"),
+                    "direct: MUMPS; gmres-amg: GMRES with PETSc GAMG and the rigid-body modes (large problems); "
+                    "lagged-lu: GMRES preconditioned by the MUMPS factors of an earlier tangent, factorised anew "
+                    "when GMRES needs more than Lagged LU iterations");
+  prm.declare_entry("Lagged LU iterations", "15", Patterns::Integer(1, 200),
+                    "lagged-lu: GMRES iterations before the tangent is factorised anew");
   prm.declare_entry("Linear tolerance", "1e-12", Patterns::Double(0.0), "gmres-amg: relative residual");
   prm.declare_entry("Maximum linear iterations", "2000", Patterns::Integer(1), "gmres-amg");
   prm.declare_entry("Tangent reuse contraction", "0", Patterns::Double(0.0, 1.0),
@@ -536,6 +540,7 @@ void read_newton(Source& source, Parameters& p) {
   p.newton.line_search = prm.get_bool("Line search");
   p.newton.maximum_line_search_steps = prm.get_integer("Maximum line search steps");
   p.newton.krylov = prm.get("Linear solver") == "gmres-amg";
+  if (prm.get("Linear solver") == "lagged-lu") p.newton.lagged_lu_iterations = prm.get_integer("Lagged LU iterations");
   p.newton.linear_tolerance = prm.get_double("Linear tolerance");
   source.require(p.newton.relative_tolerance > 0.0, "Newton", "Relative tolerance", "a tolerance > 0");
   p.newton.maximum_linear_iterations = prm.get_integer("Maximum linear iterations");

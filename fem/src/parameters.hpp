@@ -113,6 +113,9 @@ struct NewtonParameters {
   bool line_search = true;
   unsigned maximum_line_search_steps = 5;
   bool krylov = false;                 // GMRES + PETSc GAMG with rigid-body modes instead of MUMPS
+  // GMRES preconditioned by the last MUMPS factors, factorised anew when GMRES needs more than
+  // this many iterations (0: a factorisation every iteration, the plain direct solver).
+  unsigned lagged_lu_iterations = 0;  // the .prm default is 15
   double linear_tolerance = 1e-12;     // Krylov: relative residual of each linear solve
   unsigned maximum_linear_iterations = 2000;
   // Modified Newton (direct solver): the next iteration keeps the last factorisation while the

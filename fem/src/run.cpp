@@ -360,7 +360,7 @@ RunSummary run_experiment(const RunOptions& options) {
     }
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   log << "done: " << st.steps << " steps, " << st.newton_iterations << " Newton iterations, " << st.cutbacks
-      << " cut-backs, " << st.assemblies << " assemblies; peak force " << summary.peak_force_N << " N at "
+      << " cut-backs, " << st.assemblies << " assemblies, " << st.factorisations << " factorisations; peak force " << summary.peak_force_N << " N at "
       << summary.displacement_at_peak_mm << " mm; wall " << summary.wall_seconds << " s (assembly "
       << st.assembly_seconds << " s, solve " << st.solve_seconds << " s)\n";
   log.flush();

@@ -51,6 +51,7 @@ struct SolverStatistics {
   std::size_t dofs = 0, cells = 0;
   unsigned ranks = 1;
   std::size_t steps = 0, newton_iterations = 0, cutbacks = 0, assemblies = 0;
+  std::size_t factorisations = 0;  // direct and lagged-lu solvers (this run, not counting a restart's past)
   double assembly_seconds = 0.0, solve_seconds = 0.0;
   FormingSummary forming;
 };

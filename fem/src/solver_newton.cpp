@@ -81,6 +81,15 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
     try {
       if (prm.newton.krylov) {
         history << " (gmres " << solve_krylov() << ")";
+      } else if (prm.newton.lagged_lu_iterations > 0) {
+        // Forcing term a hundredth of the relative residual (an inexact Newton step keeps the
+        // quadratic convergence, Dembo, Eisenstat & Steihaug 1982), no tighter than reaching the
+        // Newton tolerance at the next iteration needs.
+        const double relative = a.residual / std::max(a.force_scale, floor);
+        const double forcing =
+            std::min(1e-2, std::max(1e-2 * relative, 0.1 * prm.newton.relative_tolerance / relative));
+        const unsigned gmres = direct_solver.solve_lagged(matrix, increment, rhs, forcing, prm.newton.lagged_lu_iterations);
+        if (gmres > 0) history << "~" << gmres;
       } else if (kept_tangent) {
         history << "*";
         direct_solver.solve_again(increment, rhs);
@@ -93,6 +102,7 @@ bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrapper
       return false;
     }
     stats.solve_seconds += timer.wall_time();
+    stats.factorisations = direct_solver.factorisations();
     constraints.distribute(increment);
     // Keep the tangent for the next iteration if this one contracted well enough.
     kept_tangent = reuse_below > 0.0 && it > first_free && a.residual < reuse_below * previous_residual;

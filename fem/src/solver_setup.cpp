@@ -165,7 +165,7 @@ void WireSolver::Impl::make_matrix() {
   DoFTools::make_sparsity_pattern(dof_handler, dsp, predictor, false);
   for (const auto& part : contact_parts) part->add_sparsity(dsp, predictor);
   SparsityTools::distribute_sparsity_pattern(dsp, owned, comm, relevant);
-  direct_solver.reset();
+  direct_solver.pattern_changed();
   matrix.reinit(owned, owned, dsp, comm);
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -384,6 +385,38 @@ TEST(Newton, ModifiedNewtonReproducesFullNewton) {
   while (std::getline(log, line))
     if (line.find("newton (relative residual):") != std::string::npos) kept += std::count(line.begin(), line.end(), '*');
   EXPECT_GT(kept, 5) << "no factorisation was kept";
+}
+
+// Lagged LU (GMRES preconditioned by an earlier tangent's factors): the same converged curve as
+// the direct solver over the same load steps, both to the Newton tolerance 1e-10, so 1e-6 of the
+// peak force is far above their difference; GMRES steps (marked ~ in the Newton history) used,
+// and fewer factorisations than Newton iterations.
+TEST(LinearSolver, LaggedLuReproducesTheDirectSolverCurve) {
+  const std::string fixed_steps = imperfect_bar_prm() + "subsection Load stepping\n set Maximum step = 0.05\nend\n";
+  const Curve direct = run_prm("linear_direct_fixed", fixed_steps);
+  const Curve lagged = run_prm("linear_lagged", fixed_steps + "subsection Newton\n set Linear solver = lagged-lu\nend\n");
+  double scale = 0.0;
+  const double difference = largest_force_difference(direct, lagged, scale);
+  std::cout << "lagged-lu vs direct: largest force difference " << difference / scale << " of the peak force\n";
+  EXPECT_LT(difference, 1e-6 * scale);
+  std::ifstream log(std::filesystem::temp_directory_path() / "dtwire_fem_test_linear_lagged" / "out" / "run.log");
+  std::string line;
+  int gmres_steps = 0;
+  std::size_t iterations = 0, factorisations = 0;
+  while (std::getline(log, line)) {
+    if (line.find("newton (relative residual):") != std::string::npos)
+      gmres_steps += std::count(line.begin(), line.end(), '~');
+    if (line.rfind("done:", 0) == 0) {
+      std::sscanf(line.c_str(), "done: %*u steps, %zu Newton iterations", &iterations);
+      const auto at = line.find(" factorisations");
+      ASSERT_NE(at, std::string::npos) << line;
+      factorisations = std::stoul(line.substr(line.rfind(' ', at - 1) + 1));
+    }
+  }
+  std::cout << "lagged-lu: " << gmres_steps << " GMRES steps, " << factorisations << " factorisations in "
+            << iterations << " Newton iterations\n";
+  EXPECT_GT(gmres_steps, 5) << "the lagged factors were never used";
+  EXPECT_LT(factorisations, iterations);
 }
 
 // Virtual extensometer: on an elastic bar stretched uniformly (bottom axial, top pulled, free
