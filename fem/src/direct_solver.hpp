@@ -4,8 +4,8 @@
 // analysis (ordering and symbolic factorisation), which on the small contact problems here
 // costs as much as the factorisation itself. `pattern_changed()` when the matrix is rebuilt.
 //
-// Lagged factors (Newton-Krylov with a frozen preconditioner, e.g. Knoll & Keyes 2004, J.
-// Comput. Phys. 193, sec. 3.2): GMRES on the current tangent, preconditioned by the LU factors of
+// Lagged factors (Newton-Krylov with a lagged preconditioner; Knoll & Keyes 2004, J. Comput.
+// Phys. 193, 357-397): GMRES on the current tangent, preconditioned by the LU factors of
 // an earlier one. A forward and a backward substitution cost about 1/20 of a factorisation on the
 // level-1 double twist (42k dofs), so a few GMRES iterations replace a factorisation while the
 // tangent changes little; when GMRES does not converge within its budget, the tangent is

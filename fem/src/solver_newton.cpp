@@ -21,6 +21,8 @@ using namespace dealii;
 // reduced the residual below c times the previous one, the next keeps the factorisation and
 // assembles the residual only; a kept tangent whose step does not reduce the residual is
 // abandoned (back to the step's start, fresh tangent there). Every load step starts fresh.
+// Lagged LU (Linear solver = lagged-lu): every iteration assembles the tangent and solves with
+// GMRES preconditioned by the last factorisation (direct_solver.hpp), an inexact Newton step.
 bool WireSolver::Impl::solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                                   unsigned& iterations, std::string& reason) {
   applied_force = path_force(prm.load, t_new) / force_multiplier();
