@@ -22,12 +22,13 @@ struct RunCommandOptions {
   bool no_frames = false;
   int threads = 0;
   std::vector<std::string> set_params;
+  std::vector<std::string> set_entries;
   std::string plot;
   std::vector<std::string> compare;
 };
 
 int run_dem_run(const RunCommandOptions& o) {
-  dem::RunInput input = dem::read_run_input(o.file);
+  dem::RunInput input = dem::read_run_input(o.file, o.set_entries);
   for (const std::string& entry : o.set_params) {
     const auto equals = entry.find('=');
     if (equals == std::string::npos) throw InputError("--set-params", "expected TAG=FILE, found '" + entry + "'");
@@ -47,6 +48,7 @@ int run_dem_run(const RunCommandOptions& o) {
   dem::RunOptions options;
   options.out = out;
   options.command_line = "dtwire dem run " + o.file;
+  for (const std::string& entry : o.set_entries) options.command_line += " --set '" + entry + "'";
   for (const std::string& entry : o.set_params) options.command_line += " --set-params " + entry;
   if (o.threads > 0) options.command_line += " --threads " + std::to_string(o.threads);
   options.threads = o.threads;
@@ -80,6 +82,8 @@ void add_dem_run_command(CLI::App& dem, CommandSet& commands) {
   run->add_option("--yade-script", o->yade_script, "Also write the run as a YADE script (WirePM punch only)");
   run->add_flag("--export-only", o->export_only, "Write the YADE script and stop");
   run->add_flag("--no-frames", o->no_frames, "No VTU frames");
+  run->add_option("--set", o->set_entries,
+                  "Replace or add an input entry, TABLE.KEY=VALUE with a TOML value (boundary.support=\"slider\"); checked as the file's");
   run->add_option("--set-params", o->set_params,
                   "TAG=FILE: take the sw, dt or selvedge law set from FILE (e.g. sw={out}/export/single_wire_parameters.json)");
   run->add_option("--plot", o->plot, "Plot tool force against displacement (PNG)");

@@ -53,7 +53,6 @@ struct LinkState {
   Vector3 transverse = Vector3::UnitX();  // local y axis t1
   double length = 0.0;
   Vector3 force_on_a = Vector3::Zero(), moment_on_a = Vector3::Zero(), moment_on_b = Vector3::Zero();
-  double elastic = 0.0, plastic = 0.0, damage = 0.0;
   bool broken = false;
 };
 
@@ -80,11 +79,20 @@ struct RollerState {
   std::size_t contacts = 0;
 };
 
-// The velocity of a free node after its held components are zeroed (slider supports).
+// The velocity of a free node after its held components are set to the support's velocity
+// (slider supports: zero, or the support's prescribed motion, e.g. edges pulled apart).
 void hold(const NetNode& node, Vector3& v, Vector3& w) {
   for (int c = 0; c < 3; ++c)
-    if (node.held_translation[c]) v[c] = 0.0;
+    if (node.held_translation[c]) v[c] = node.guided_velocity[c];
   if (node.held_rotation) w.setZero();
+}
+
+// The components of a vector a node's slider support leaves free.
+Vector3 free_components(const NetNode& node, const Vector3& v) {
+  Vector3 out = v;
+  for (int c = 0; c < 3; ++c)
+    if (node.held_translation[c]) out[c] = 0.0;
+  return out;
 }
 
 }  // namespace
@@ -93,8 +101,9 @@ struct Engine::State {
   std::vector<NetNode> nodes;
   std::vector<Vector3> x, x_previous, v, w;
   std::vector<double> inverse_mass, inverse_inertia;  // inertial (scaled); 0 for held nodes
+  std::vector<double> radius;  // contact radius against tools, contiguous for the tool loop
   std::vector<Vector3> force, moment, damping_previous, damping_moment_previous, reaction_previous;
-  std::vector<double> node_damping_work, node_kinetic;
+  std::vector<double> node_damping_work, node_support_work, node_kinetic;
   std::vector<EngineLink> links;
   std::vector<LinkState> link_state;
   std::vector<std::vector<std::pair<int, bool>>> node_links;  // (link, node is end a)
@@ -118,11 +127,13 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
   s.w.assign(n, Vector3::Zero());
   s.inverse_mass.resize(n);
   s.inverse_inertia.resize(n);
+  s.radius.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const NetNode& node = s.nodes[i];
     if (!(node.mass > 0.0) || !(node.rotational_inertia > 0.0) || !(node.radius >= 0.0))
       throw std::invalid_argument("node " + std::to_string(i) + ": mass and rotational inertia must be positive");
     s.x[i] = node.position;
+    s.radius[i] = node.radius;
     const bool free = node.fixity == NodeFixity::Free;
     s.inverse_mass[i] = free ? 1.0 / (node.mass * options_.mass_scale) : 0.0;
     s.inverse_inertia[i] = free ? 1.0 / (node.rotational_inertia * options_.mass_scale) : 0.0;
@@ -135,6 +146,7 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
   s.damping_moment_previous.assign(n, Vector3::Zero());
   s.reaction_previous.assign(n, Vector3::Zero());
   s.node_damping_work.assign(n, 0.0);
+  s.node_support_work.assign(n, 0.0);
   s.node_kinetic.assign(n, 0.0);
   s.links = std::move(links);
   s.link_state.resize(s.links.size());
@@ -277,9 +289,31 @@ void Engine::set_time_step(double dt) {
 
 void Engine::set_guided_velocity(std::size_t i, const Vector3& velocity) {
   NetNode& node = s_->nodes.at(i);
-  if (node.fixity != NodeFixity::Guided)
-    throw std::invalid_argument("node " + std::to_string(i) + " is not guided: its velocity is not prescribed");
+  const bool slider = node.fixity == NodeFixity::Free &&
+                      (node.held_translation[0] || node.held_translation[1] || node.held_translation[2]);
+  if (node.fixity != NodeFixity::Guided && !slider)
+    throw std::invalid_argument("node " + std::to_string(i) + " is neither guided nor on a slider support: its velocity is not prescribed");
   node.guided_velocity = velocity;
+}
+
+void Engine::set_support(std::size_t i, const std::array<bool, 3>& held_translation, bool held_rotation) {
+  State& s = *s_;
+  NetNode& node = s.nodes.at(i);
+  if (node.fixity != NodeFixity::Free)
+    throw std::invalid_argument("node " + std::to_string(i) + " is not free: its support cannot change");
+  for (int c = 0; c < 3; ++c) {
+    if (held_translation[c] && !node.held_translation[c]) {
+      energy_.boundary_work -= 0.5 * s.v[i][c] * s.v[i][c] / s.inverse_mass[i];
+      s.v[i][c] = 0.0;
+    }
+    node.guided_velocity[c] = 0.0;
+  }
+  if (held_rotation && !node.held_rotation) {
+    energy_.boundary_work -= 0.5 * s.w[i].squaredNorm() / s.inverse_inertia[i];
+    s.w[i].setZero();
+  }
+  node.held_translation = held_translation;
+  node.held_rotation = held_rotation;
 }
 
 void Engine::step() {
@@ -318,25 +352,25 @@ void Engine::step() {
     state.force_on_a = q[0] * axis + shear;
     state.moment_on_a = couple + half * axis.cross(shear);
     state.moment_on_b = -couple + half * axis.cross(shear);
-    const EnergyAccount e = law.energy();
-    state.elastic = e.elastic;
-    state.plastic = e.plastic;
-    state.damage = e.damage;
   }
 
   // 2. Tools: every node against every tool (each node writes its own slot).
   for (ToolState& t : s.tools) {
     const Tool& tool = *t.tool;
     const double kn = tool.contact.normal_stiffness, ks = tool.contact.shear_stiffness, mu = tool.contact.friction;
+    const double bounding = tool.bounding_radius();
 #pragma omp parallel for num_threads(threads) schedule(static) if (n >= options_.parallel_threshold)
     for (std::size_t i = 0; i < n; ++i) {
-      const double r = s.nodes[i].radius;
+      const double r = s.radius[i];
       SurfacePoint surface;
       t.force_on_node[i].setZero();
       t.moment_on_node[i].setZero();
       t.contact_energy[i] = 0.0;
       t.friction_increment[i] = 0.0;
-      if (!tool.nearest(s.x[i], r, surface) || surface.distance >= r) {
+      // Most nodes are far from the tool: its bounding sphere rejects them before the surface search.
+      const double reach = bounding + r;
+      if ((s.x[i] - tool.position).squaredNorm() > reach * reach || !tool.nearest(s.x[i], r, surface) ||
+          surface.distance >= r) {
         t.shear[i].setZero();
         t.touching[i] = 0;
         continue;
@@ -455,7 +489,13 @@ void Engine::step() {
       s.node_kinetic[i] = fixity == NodeFixity::Guided ? 0.5 * s.nodes[i].mass * options_.mass_scale * s.v[i].squaredNorm() : 0.0;
       continue;
     }
-    const Vector3 fd = damping_force(f, s.v[i], s.inverse_mass[i], dt, alpha);
+    // A slider support takes the held components: its reaction -f does the support's work (its
+    // velocity may be prescribed), and nothing there is damped or counted as kinetic energy.
+    const NetNode& node = s.nodes[i];
+    const Vector3 reaction = free_components(node, f) - f;
+    s.node_support_work[i] = 0.5 * (s.reaction_previous[i] + reaction).dot(dx);
+    s.reaction_previous[i] = reaction;
+    const Vector3 fd = free_components(node, damping_force(f, s.v[i], s.inverse_mass[i], dt, alpha));
     const Vector3 md = damping_force(m, s.w[i], s.inverse_inertia[i], dt, alpha);
     const Vector3 dtheta = imposed ? Vector3::Zero() : Vector3(dt * s.w[i]);
     s.node_damping_work[i] = -(0.5 * (s.damping_previous[i] + fd).dot(dx) +
@@ -465,8 +505,9 @@ void Engine::step() {
     const Vector3 v_old = s.v[i], w_old = s.w[i];
     s.v[i] += dt * (f + fd) * s.inverse_mass[i];
     s.w[i] += dt * (m + md) * s.inverse_inertia[i];
-    hold(s.nodes[i], s.v[i], s.w[i]);
-    s.node_kinetic[i] = 0.5 * v_old.dot(s.v[i]) / s.inverse_mass[i] + 0.5 * w_old.dot(s.w[i]) / s.inverse_inertia[i];
+    hold(node, s.v[i], s.w[i]);
+    s.node_kinetic[i] = 0.5 * free_components(node, v_old).dot(s.v[i]) / s.inverse_mass[i] +
+                        0.5 * w_old.dot(s.w[i]) / s.inverse_inertia[i];
   }
 
   // Serial sums (fixed order: deterministic).
@@ -475,28 +516,19 @@ void Engine::step() {
     kinetic += s.node_kinetic[i];
     if (s.nodes[i].fixity == NodeFixity::Free) {
       energy_.damping += s.node_damping_work[i];
+      energy_.boundary_work += s.node_support_work[i];
       if (!imposed) gravity_work += s.nodes[i].mass * gravity.dot(s.x[i] - s.x_previous[i]);
     } else {
       energy_.boundary_work += s.node_damping_work[i];
     }
   }
   energy_.gravity_work += gravity_work;
-  double elastic = 0.0, plastic = 0.0, damage = 0.0;
-  for (const LinkState& state : s.link_state) {
-    elastic += state.elastic;
-    plastic += state.plastic;
-    damage += state.damage;
+  // The stored energies are state functions: summed when energy() is read, not every step.
+  energy_stale_ = true;
+  if (imposed) {
+    const EnergySplit& stored = energy();  // the links were unloaded before the jump
+    energy_.boundary_work += stored.link_elastic + stored.link_plastic + stored.link_damage;
   }
-  if (imposed) energy_.boundary_work += elastic + plastic + damage;
-  energy_.link_elastic = elastic;
-  energy_.link_plastic = plastic;
-  energy_.link_damage = damage;
-  double contact = 0.0;
-  for (const ToolState& t : s.tools)
-    for (double e : t.contact_energy) contact += e;
-  for (const RollerState& r : s.rollers)
-    for (double e : r.contact_energy) contact += e;
-  energy_.contact_elastic = contact;
 
   // Rigid tools: free bodies integrate their own motion, kinematic ones move as prescribed.
   for (ToolState& t : s.tools) {
@@ -563,6 +595,29 @@ RelaxResult Engine::relax(double tolerance, long max_steps) {
   }
   for (std::size_t j = 0; j < s_->tools.size(); ++j) s_->tools[j].tool->velocity = held[j];
   return result;
+}
+
+const EnergySplit& Engine::energy() const {
+  if (!energy_stale_) return energy_;
+  const State& s = *s_;
+  double elastic = 0.0, plastic = 0.0, damage = 0.0;
+  for (const EngineLink& link : s.links) {  // fixed order: deterministic
+    const EnergyAccount e = link.law->energy();
+    elastic += e.elastic;
+    plastic += e.plastic;
+    damage += e.damage;
+  }
+  energy_.link_elastic = elastic;
+  energy_.link_plastic = plastic;
+  energy_.link_damage = damage;
+  double contact = 0.0;
+  for (const ToolState& t : s.tools)
+    for (double e : t.contact_energy) contact += e;
+  for (const RollerState& r : s.rollers)
+    for (double e : r.contact_energy) contact += e;
+  energy_.contact_elastic = contact;
+  energy_stale_ = false;
+  return energy_;
 }
 
 std::size_t Engine::node_count() const { return s_->nodes.size(); }

@@ -9,8 +9,10 @@
 #include <limits>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/dem/length_rescaling.hpp"
 #include "dtwire/dem/wirepm.hpp"
 #include "run_outputs.hpp"
+#include "supports.hpp"
 
 namespace dtwire::dem {
 namespace {
@@ -62,14 +64,15 @@ BuiltNet build_net(const RunInput& in) {
   } catch (const std::invalid_argument& e) {
     throw InputError(in.file.string(), std::string("mesh.") + e.what());
   }
-  for (std::size_t n = 0; n < built.mesh.net.nodes.size(); ++n)
-    if (built.mesh.sides[n] & in.pinned_sides) built.mesh.net.nodes[n].fixity = NodeFixity::Pinned;
+  apply_supports(built.mesh, in, in.wall_below > 0.0);
   for (std::size_t l = 0; l < built.mesh.net.links.size(); ++l) {
     const NetLink& link = built.mesh.net.links[l];
     const std::string tag = link_tag_name(link.tag);
     const auto set = in.link_sets.find(link.tag);
     if (set == in.link_sets.end()) throw InputError(in.file.string(), "links." + tag + ": missing: no law set for the " + tag + " links");
     ParameterMap parameters = set->second.parameters;
+    const double link_length = (built.mesh.net.nodes[link.b].position - built.mesh.net.nodes[link.a].position).norm();
+    if (set->second.length == "link") parameters = rescale_to_link_length(parameters, link_length);
     if (set->second.law == "wirepm") {
       // As YADE: the reference length is the link's own length; each link its own seed.
       parameters["reference_length_m"] =
@@ -96,8 +99,63 @@ std::vector<Vector3> pretensioned_positions(const RunInput& in, const HexMesh& m
   return positions;
 }
 
-RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
+namespace {
+
+// The lowest node after settling under gravity with the input's pre-tension [m below z = 0].
+double settled_sag(const RunInput& in, const RunOptions& options) {
+  BuiltNet built = build_net(in);
+  EngineOptions engine_options = in.engine;
+  if (options.threads > 0) engine_options.threads = options.threads;
+  const HexMesh mesh = built.mesh;
+  Engine engine(built.mesh.net.nodes, std::move(built.links), engine_options);
+  if (in.pretension_strain > 0.0) engine.impose_positions(pretensioned_positions(in, mesh));
+  while (engine.time() < in.settle_time) engine.step();
+  double lowest = 0.0;
+  for (std::size_t i = 0; i < engine.node_count(); ++i) lowest = std::min(lowest, engine.position(i).z());
+  return -lowest;
+}
+
+// Thesis pre-load (Previtali ch. 3.4): the edges pulled apart until the centre sags `presag`.
+// The settled sag falls with the stretch roughly as 1/sag grows linearly with it (a membrane's
+// tension), so a secant on 1/sag finds it in a few settles; each try is logged.
+RunInput with_preload(const RunInput& input, const RunOptions& options) {
+  RunInput in = input;
+  if (!(input.presag > 0.0)) return in;
+  const double target = input.presag, tolerance = 0.02 * target;
+  auto log = [&](double strain, double sag) {
+    if (!options.quiet)
+      std::cerr << "[dem run] pre-load: stretch " << strain << " -> sag " << 1000.0 * sag << " mm (target "
+                << 1000.0 * target << " mm)\n";
+  };
+  double e0 = 0.0;
+  in.pretension_strain = e0;
+  double s0 = settled_sag(in, options);
+  log(e0, s0);
+  if (s0 <= target + tolerance) return in;  // already as taut as asked without any stretch
+  double e1 = 2e-4;
+  in.pretension_strain = e1;
+  double s1 = settled_sag(in, options);
+  log(e1, s1);
+  for (int attempt = 0; attempt < 6 && std::abs(s1 - target) > tolerance; ++attempt) {
+    const double slope = (1.0 / s1 - 1.0 / s0) / (e1 - e0);
+    double next = slope > 0.0 ? e1 + (1.0 / target - 1.0 / s1) / slope : 2.0 * e1;
+    next = std::clamp(next, 0.0, 0.05);
+    e0 = e1, s0 = s1, e1 = next;
+    in.pretension_strain = e1;
+    s1 = settled_sag(in, options);
+    log(e1, s1);
+  }
+  if (std::abs(s1 - target) > tolerance)
+    throw ComputationError("dem run: the pre-load found no stretch that sags the net " + std::to_string(1000.0 * target) +
+                           " mm (last: stretch " + std::to_string(e1) + ", sag " + std::to_string(1000.0 * s1) + " mm)");
+  return in;
+}
+
+}  // namespace
+
+RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   const auto wall_start = std::chrono::steady_clock::now();
+  const RunInput in = with_preload(input, options);
   BuiltNet built = build_net(in);
   EngineOptions engine_options = in.engine;
   if (options.threads > 0) engine_options.threads = options.threads;
@@ -114,6 +172,13 @@ RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
       tool->position.z() += in.tool == "platter" ? -10.0 : 10.0;
       tool->velocity.setZero();
       engine->add_tool(std::move(tool));
+    }
+    if (in.wall_below > 0.0) {
+      // The slack state's wall (tool 1): its surface wall_below under the nodes' lowest surface.
+      auto wall = std::make_unique<PlaneWall>(Vector3::UnitZ());
+      wall->position = Vector3(centre.x(), centre.y(), -in.mesh.node_radius - in.wall_below);
+      wall->contact = in.contact;
+      engine->add_tool(std::move(wall));
     }
   } catch (const std::invalid_argument& e) {
     throw InputError(in.file.string(), std::string(in.engine.time_step > 0.0 ? "dynamics.time_step_s: " : "") + e.what());
@@ -135,6 +200,9 @@ RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
     highest = std::max(highest, engine->position(i).z());
   }
   summary.sag = -lowest;
+  summary.pretension_strain = in.pretension_strain;
+  summary.kinetic_after_settling = engine->energy().kinetic;
+  if (in.wall_below > 0.0) hold_supports_in_place(*engine, mesh_copy, in);
 
   // Phase 2: the tool.
   Vector3 start = Vector3::Zero(), direction = Vector3::UnitZ();
@@ -169,6 +237,9 @@ RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
     const bool done = in.tool == "platter" ? (displacement >= in.travel || (!in.force_levels.empty() && level >= in.force_levels.size()))
                                             : elapsed >= in.duration;
     if (engine->time() >= next_output || done) {
+      // A non-finite state stays non-finite: checked once per output interval.
+      if (!std::isfinite(engine->energy().kinetic) || !std::isfinite(force))
+        throw ComputationError("dem run: the state became non-finite at t = " + std::to_string(engine->time()) + " s");
       // The mean over the interval: node-platter impacts make the instantaneous force chatter.
       const Vector3 mean = steps_in_interval > 0 ? Vector3(impulse / steps_in_interval) : (in.tool == "none" ? Vector3(Vector3::Zero()) : Vector3(-engine->tool_force(0)));
       recorder.record(*engine, elapsed, displacement, tool_velocity.dot(direction), mean);
@@ -196,8 +267,6 @@ RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
       impulse -= engine->tool_force(0);
       ++steps_in_interval;
     }
-    if (!std::isfinite(engine->energy().kinetic))
-      throw ComputationError("dem run: the state became non-finite at t = " + std::to_string(engine->time()) + " s");
     const auto now = std::chrono::steady_clock::now();
     if (!options.quiet && now - last_progress > std::chrono::seconds(2)) {
       last_progress = now;

@@ -2,10 +2,12 @@
 // file:line and the field.
 #include <toml++/toml.h>
 
+#include <cmath>
 #include <set>
 
 #include "dtwire/core/error.hpp"
 #include "dtwire/dem/export_params.hpp"
+#include "dtwire/dem/law_schema.hpp"
 #include "dtwire/dem/run.hpp"
 
 namespace dtwire::dem {
@@ -18,6 +20,7 @@ class Reader {
   [[noreturn]] void fail(const toml::node* node, const std::string& field, const std::string& message) const {
     if (node) {
       const auto& where = node->source().begin;
+      if (where.line == 0) throw InputError("--set", field + ": " + message);  // no source: given on the command line
       throw InputError(file_.string(), static_cast<int>(where.line), static_cast<int>(where.column), field + ": " + message);
     }
     throw InputError(file_.string(), field + ": " + message);
@@ -74,7 +77,7 @@ class Reader {
 };
 
 LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std::string& prefix) {
-  r.check_keys(table, prefix, {"law", "params", "wire_type", "backbone"});
+  r.check_keys(table, prefix, {"law", "params", "wire_type", "backbone", "parameters", "length"});
   LinkSetInput set;
   const std::string params = r.text(table, prefix, "params", "");
   if (params.empty()) r.fail(&table, prefix + "params", "missing: the parameter file (.json) of this link type");
@@ -96,6 +99,26 @@ LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std:
   if (!chosen.law.empty() && chosen.law != set.law)
     r.fail(table.get("law"), prefix + "law", "'" + set.law + "' but the parameter file says '" + chosen.law + "'");
   set.parameters = chosen.map();
+  set.length = r.text(table, prefix, "length", "set");
+  if (set.length != "set" && set.length != "link")
+    r.fail(table.get("length"), prefix + "length", "expected \"set\" (the set as calibrated, as the PFC7 plugin) or \"link\" (rescaled to the link's length)");
+  if (set.length == "link" && set.law == "wirepm")
+    r.fail(table.get("length"), prefix + "length", "WirePM links always take the link's own length (a strain law, as YADE); remove the key");
+  if (set.length == "link" && !(chosen.map().count("reference_length_m")))
+    r.fail(table.get("length"), prefix + "length", "\"link\" needs the set's reference_length_m (the length it was calibrated on)");
+  // Values that replace or add to the file's set for this run only (set-up studies, e.g. the
+  // PFC7 plugin's damage mode: parameters = { damage_scales_forces = 0 }).
+  if (const toml::table* overrides = r.table(table, "parameters")) {
+    for (const auto& [key, node] : *overrides) {
+      const std::string name(key.str());
+      if (!is_law_parameter(set.law, name))
+        r.fail(&node, prefix + "parameters." + name, "not a parameter of the " + set.law + " law");
+      const auto value = node.value<double>();
+      if (!value || !std::isfinite(*value)) r.fail(&node, prefix + "parameters." + name, "expected a number");
+      set.parameters[name] = *value;
+      set.overrides[name] = *value;
+    }
+  }
   try {
     check_parameter_names(chosen, set.law, params_path);
     ParameterMap probe = set.parameters;
@@ -107,9 +130,35 @@ LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std:
   return set;
 }
 
+// `--set table.key=value`: the value is TOML ("slider" with its quotes, 0.01, [1, 2]); the
+// entry replaces or adds to the file's, and is then checked as the file's are.
+void apply_override(toml::table& root, const std::string& entry) {
+  const auto equals = entry.find('=');
+  if (equals == std::string::npos || equals == 0)
+    throw InputError("--set", "expected TABLE.KEY=VALUE (e.g. boundary.support=\"slider\"), found '" + entry + "'");
+  const std::string path = entry.substr(0, equals);
+  toml::table parsed;
+  try {
+    parsed = toml::parse("value = " + entry.substr(equals + 1));
+  } catch (const toml::parse_error& e) {
+    throw InputError("--set", path + ": the value is not TOML (" + std::string(e.description()) +
+                                  "); strings need quotes: " + path + "=\"text\"");
+  }
+  toml::table* table = &root;
+  std::size_t start = 0;
+  for (std::size_t dot = path.find('.'); dot != std::string::npos; dot = path.find('.', start)) {
+    const std::string key = path.substr(start, dot - start);
+    if (!table->contains(key)) table->insert(key, toml::table{});
+    table = (*table)[key].as_table();
+    if (!table) throw InputError("--set", path + ": '" + key + "' is not a table");
+    start = dot + 1;
+  }
+  table->insert_or_assign(path.substr(start), *parsed.get("value"));
+}
+
 }  // namespace
 
-RunInput read_run_input(const std::filesystem::path& file) {
+RunInput read_run_input(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
   toml::table root;
   try {
     root = toml::parse_file(file.string());
@@ -117,6 +166,7 @@ RunInput read_run_input(const std::filesystem::path& file) {
     throw InputError(file.string(), static_cast<int>(e.source().begin.line), static_cast<int>(e.source().begin.column),
                      std::string(e.description()));
   }
+  for (const std::string& entry : overrides) apply_override(root, entry);
   Reader r(file);
   RunInput in;
   in.file = file;
@@ -159,7 +209,7 @@ RunInput read_run_input(const std::filesystem::path& file) {
   }
 
   if (const toml::table* boundary = r.table(root, "boundary")) {
-    r.check_keys(*boundary, "boundary.", {"pinned", "pretension_strain"});
+    r.check_keys(*boundary, "boundary.", {"pinned", "support", "pretension_strain", "presag_m", "wall_below_m"});
     if (const toml::node* pinned = boundary->get("pinned")) {
       const toml::array* sides = pinned->as_array();
       if (!sides) r.fail(pinned, "boundary.pinned", "expected an array of sides");
@@ -171,9 +221,29 @@ RunInput read_run_input(const std::filesystem::path& file) {
         in.pinned_sides |= known.at(*name);
       }
     }
+    try {
+      in.support = parse_edge_support(r.text(*boundary, "boundary.", "support", "pinned"));
+    } catch (const std::invalid_argument& e) {
+      r.fail(boundary->get("support"), "boundary.support", e.what());
+    }
     in.pretension_strain = r.number(*boundary, "boundary.", "pretension_strain", 0.0);
     if (in.pretension_strain < 0.0 || in.pretension_strain > 0.05)
       r.fail(boundary->get("pretension_strain"), "boundary.pretension_strain", "expected a value in [0, 0.05]");
+    in.presag = r.number(*boundary, "boundary.", "presag_m", 0.0);
+    if (in.presag < 0.0 || in.presag > 0.5)
+      r.fail(boundary->get("presag_m"), "boundary.presag_m", "expected a sag in [0, 0.5] m (0: none)");
+    in.wall_below = r.number(*boundary, "boundary.", "wall_below_m", 0.0);
+    if (in.wall_below < 0.0 || in.wall_below > 2.0)
+      r.fail(boundary->get("wall_below_m"), "boundary.wall_below_m", "expected a depth in [0, 2] m (0: no wall)");
+    if (in.presag > 0.0 && in.pretension_strain > 0.0)
+      r.fail(boundary->get("presag_m"), "boundary.presag_m",
+             "given with pretension_strain: the pre-load searches the pre-tension that gives this sag; give one of the two");
+    if (in.presag > 0.0 && in.wall_below > 0.0)
+      r.fail(boundary->get("wall_below_m"), "boundary.wall_below_m",
+             "given with presag_m: the net either is pre-loaded taut or settles slack onto the wall; give one of the two");
+    if (in.wall_below > 0.0 && in.pretension_strain > 0.0)
+      r.fail(boundary->get("wall_below_m"), "boundary.wall_below_m",
+             "given with pretension_strain: a net settling slack onto the wall has no pre-tension");
   }
 
   if (const toml::table* dynamics = r.table(root, "dynamics")) {
@@ -190,6 +260,10 @@ RunInput read_run_input(const std::filesystem::path& file) {
     in.engine.threads = static_cast<int>(r.number(*dynamics, "dynamics.", "threads", 1.0, true));
     in.settle_time = r.number(*dynamics, "dynamics.", "settle_s", 0.0);
   }
+
+  if ((in.presag > 0.0 || in.wall_below > 0.0) && !(in.settle_time > 0.0))
+    r.fail(root.get("boundary"), in.presag > 0.0 ? "boundary.presag_m" : "boundary.wall_below_m",
+           "needs dynamics.settle_s > 0: the net reaches this state while it settles under gravity");
 
   const toml::table* tool = r.table(root, "tool");
   if (!tool) r.fail(nullptr, "tool", "missing table");
@@ -244,6 +318,7 @@ void override_link_set(RunInput& input, const std::string& tag, const std::files
   if (!chosen.law.empty()) set.law = chosen.law;
   if (set.law.empty()) throw InputError(option, params.string() + " names no law and the input has none for " + tag);
   set.parameters = chosen.map();
+  for (const auto& [name, value] : set.overrides) set.parameters[name] = value;
   set.files = {params};
   try {
     check_parameter_names(chosen, set.law, params);

@@ -13,6 +13,7 @@
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/core/results_store.hpp"
+#include "dtwire/dem/punch_figures.hpp"
 
 namespace dtwire::dem {
 namespace {
@@ -173,6 +174,11 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
     if (force[r] > force[peak]) peak = r;
   summary.peak_force = force.empty() ? 0.0 : force[peak];
   summary.displacement_at_peak = force.empty() ? 0.0 : displacement[peak] / 1000.0;
+  std::vector<double> displacement_m;
+  for (double mm : displacement) displacement_m.push_back(mm / 1000.0);
+  const PunchFigures figures = punch_figures(displacement_m, force);
+  summary.onset = figures.onset;
+  summary.force_at_420mm = figures.force_at_probe;
   const auto& gravity = columns_[14];
   const auto& tool = columns_[15];
   const auto& boundary = columns_[16];
@@ -220,17 +226,26 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   parameter("displacement_at_peak_m", summary.displacement_at_peak, "m");
   parameter("largest_balance_error_1", summary.largest_balance_error, "1");
   parameter("broken_links", static_cast<double>(summary.broken_links), "1");
+  parameter("pretension_strain_1", summary.pretension_strain, "1");
+  parameter("kinetic_energy_after_settling_J", summary.kinetic_after_settling, "J");
+  if (input_.tool == "platter") {
+    parameter("onset_displacement_m", summary.onset, "m");
+    parameter("force_at_420mm_N", summary.force_at_420mm, "N");
+  }
   results.fields.emplace_back("frames", frames_.empty() ? "none" : "net.pvd (frames/net_<k>.vtu)");
   results.fields.emplace_back("title", input_.title);
   results.provenance = provenance;
   write_results(results, options_.out / "results.h5");
 
   // The headline figures for reports (the campaign's validation table), SI-named columns.
-  const nlohmann::json headline = {
+  nlohmann::json headline = {
       {"title", input_.title},
       {"peak_force_N", summary.peak_force},
       {"displacement_at_peak_mm", 1000.0 * summary.displacement_at_peak},
       {"sag_after_settling_mm", 1000.0 * summary.sag},
+      {"pretension_strain", summary.pretension_strain},
+      {"support", edge_support_name(input_.support)},
+      {"kinetic_energy_after_settling_J", summary.kinetic_after_settling},
       {"broken_links", summary.broken_links},
       {"links", summary.links},
       {"largest_balance_error_percent", 100.0 * summary.largest_balance_error},
@@ -239,6 +254,11 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
       {"wall_seconds", summary.wall_seconds},
       {"command", options_.command_line},
       {"run_id", provenance.run_id}};
+  if (input_.tool == "platter") {
+    headline["onset_displacement_mm"] = summary.onset < 0.0 ? nlohmann::json() : nlohmann::json(1000.0 * summary.onset);
+    headline["onset_force_N"] = 1000.0;
+    headline["force_at_420mm_N"] = summary.force_at_420mm;
+  }
   write_file_atomically(options_.out / "summary.json", [&](std::ostream& os) { os << headline.dump(2) << "\n"; });
 }
 

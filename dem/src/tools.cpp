@@ -7,6 +7,8 @@
 
 namespace dtwire::dem {
 
+double PlaneWall::bounding_radius() const { return std::numeric_limits<double>::infinity(); }
+
 Eigen::Vector2d nearest_on_ellipse(double A, double B, double x, double y) {
   // The nearest point is (A^2 x/(t + A^2), B^2 y/(t + B^2)) with t the largest root of
   // F(t) = (A x/(t + A^2))^2 + (B y/(t + B^2))^2 - 1 (Eberly, "Distance from a point to an

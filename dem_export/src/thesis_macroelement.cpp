@@ -25,6 +25,13 @@ ThesisMacroElement::ThesisMacroElement(const ParameterMap& p) {
   settings_.tolerance = detail::checked(law_name, "rk_tolerance",
                                         detail::optional_parameter(p, "rk_tolerance", 1e-6));
   settings_.drift_correction = false;  // the published integration has none
+  // The PFC7 plugin (macroelement_v1.cpp, forceDisplacementLaw) transmits the undamaged force and
+  // only deletes the bond when the damage factor reaches 0.01; 1 (default) softens the forces.
+  const double scales = detail::optional_parameter(p, "damage_scales_forces", 1.0);
+  if (scales != 0.0 && scales != 1.0)
+    throw std::invalid_argument("thesis: damage_scales_forces must be 0 (as the PFC7 plugin) or 1, got " +
+                                std::to_string(scales));
+  damage_scales_forces_ = scales == 1.0;
 
   stiffness_.axial = positive_parameter(p, law_name, "EA_N");
   stiffness_.moment = positive_parameter(p, law_name, "EI_Nm2_per_deg_convention");
@@ -75,7 +82,8 @@ void ThesisMacroElement::update(const Vector6& increment) {
     // Thesis convention: moment work in N m deg drives the damage.
     damage_work_ += N_mean * dup + M_mean * dwp_deg;
     const double d1 = damage_.factor(damage_work_);
-    energy_.book({damage_factor_, d1, damaged_effective_energy(before), damaged_effective_energy(after),
+    const double softened0 = transmitted_factor(), softened1 = damage_scales_forces_ ? d1 : 1.0;
+    energy_.book({softened0, softened1, damaged_effective_energy(before), damaged_effective_energy(after),
                   N_mean * dt * increment[0] + M_mean * dt * increment[4],
                   N_mean * dup + M_mean * dwp_deg / degrees_per_radian});
     damage_factor_ = d1;
@@ -85,7 +93,7 @@ void ThesisMacroElement::update(const Vector6& increment) {
   last_substeps_ = detail::integrate_increment(surface_, stiffness_, settings_, plastic_, dq, on_substep);
   if (broken_) {
     // The bond is deleted: the energy still stored is released.
-    energy_.damage += damage_factor_ * damaged_effective_energy(plastic_) + undamaged_elastic_energy();
+    energy_.damage += transmitted_factor() * damaged_effective_energy(plastic_) + undamaged_elastic_energy();
     shear_y_ = shear_z_ = torque_ = moment_z_ = 0.0;
     damage_factor_ = 0.0;
   }
@@ -94,7 +102,8 @@ void ThesisMacroElement::update(const Vector6& increment) {
 Vector6 ThesisMacroElement::forces() const {
   Vector6 q = Vector6::Zero();
   if (broken_) return q;
-  q << damage_factor_ * plastic_.y[0], shear_y_, shear_z_, torque_, damage_factor_ * plastic_.y[1], moment_z_;
+  const double d = transmitted_factor();
+  q << d * plastic_.y[0], shear_y_, shear_z_, torque_, d * plastic_.y[1], moment_z_;
   return q;
 }
 
@@ -103,7 +112,7 @@ EnergyAccount ThesisMacroElement::energy() const {
   account.external = energy_.external;
   account.plastic = energy_.plastic;
   account.damage = energy_.damage;
-  account.elastic = broken_ ? 0.0 : damage_factor_ * damaged_effective_energy(plastic_) + undamaged_elastic_energy();
+  account.elastic = broken_ ? 0.0 : transmitted_factor() * damaged_effective_energy(plastic_) + undamaged_elastic_energy();
   return account;
 }
 

@@ -239,5 +239,70 @@ TEST(DemEngine, GuidedVelocityCanChangeAndMomentsAreReported) {
   EXPECT_THROW(other.set_guided_velocity(1, Vector3::Zero()), std::invalid_argument);
 }
 
+// A slider support (the thesis's pre-load edges): held along the pull and free along the edge.
+// Node 1 is held in x and z and free in y; gravity along -y pulls it down the slider until the
+// string link's tension balances it: T y / l = m g with T = k (l - L), l = sqrt(L^2 + y^2).
+// Then the slider is moved along x at a prescribed speed and stopped: the support's work is
+// booked (boundary work) and the energy balance closes; the held components never move but
+// with the support.
+TEST(DemEngine, SliderSupportIsFreeAlongTheEdgeAndItsPrescribedMotionDoesWork) {
+  const double length = 0.05, mass = 0.004, g = 9.81;
+  std::vector<NetNode> nodes{make_node(Vector3::Zero(), mass, NodeFixity::Pinned), make_node(Vector3(length, 0.0, 0.0), mass)};
+  nodes[1].held_translation = {true, false, true};
+  std::vector<EngineLink> links;
+  links.push_back({NetLink{0, 1}, string_link(length)});
+  EngineOptions options;
+  options.gravity = Vector3(0.0, -g, 0.0);
+  options.local_damping = 0.7;
+  Engine engine(nodes, std::move(links), options);
+  ASSERT_TRUE(engine.relax(1e-9, 4000000).converged);
+  const double k = string_stiffness(length);
+  double low = 0.0, high = length;  // y where k (l - L) y / l = m g (bisection)
+  for (int i = 0; i < 200; ++i) {
+    const double y = 0.5 * (low + high), l = std::hypot(length, y);
+    (k * (l - length) * y / l > mass * g ? high : low) = y;
+  }
+  EXPECT_NEAR(-engine.position(1).y() / low, 1.0, 1e-5);  // relaxed to 1e-9 of the link force
+  EXPECT_EQ(engine.position(1).x(), length);
+  EXPECT_EQ(engine.position(1).z(), 0.0);
+
+  // The slider pulled 0.1 mm along x, then held; the support's reaction did the work.
+  const double pull = 1e-4, speed = 1e-3;
+  engine.set_guided_velocity(1, Vector3(speed, 0.0, 0.0));
+  const long pull_steps = std::lround(pull / speed / engine.time_step());
+  for (long i = 0; i < pull_steps; ++i) engine.step();
+  engine.set_guided_velocity(1, Vector3::Zero());
+  ASSERT_TRUE(engine.relax(1e-9, 4000000).converged);
+  EXPECT_NEAR(engine.position(1).x(), length + pull_steps * speed * engine.time_step(), 1e-13);  // round-off of the steps
+  const EnergySplit& e = engine.energy();
+  EXPECT_GT(e.boundary_work, 0.0);
+  // tol: the trapezoidal support work against the law's exact energy, second order in the step
+  EXPECT_LT(std::abs(e.balance_error()), 1e-4 * e.external());
+  EXPECT_THROW(engine.set_guided_velocity(0, Vector3::Zero()), std::invalid_argument);  // pinned: no slider
+}
+
+// set_support holds a falling node where it is: the kinetic energy of the held components is
+// taken out by the support and booked, so the balance still closes.
+TEST(DemEngine, HoldingAMovingNodeBooksItsKineticEnergy) {
+  std::vector<NetNode> nodes{make_node(Vector3::Zero(), 0.004, NodeFixity::Pinned), make_node(Vector3(0.05, 0.0, 0.0), 0.004)};
+  std::vector<EngineLink> links;
+  links.push_back({NetLink{0, 1}, string_link(0.05)});
+  EngineOptions options;
+  Engine engine(nodes, std::move(links), options);
+  for (int i = 0; i < 2000; ++i) engine.step();  // swings down
+  ASSERT_GT(engine.energy().kinetic, 0.0);
+  engine.set_support(1, {true, true, true}, true);
+  for (int i = 0; i < 100; ++i) engine.step();
+  const Vector3 held = engine.position(1);
+  for (int i = 0; i < 100; ++i) engine.step();
+  EXPECT_EQ(engine.position(1), held);
+  EXPECT_EQ(engine.energy().kinetic, 0.0);
+  // The support took the fall's kinetic energy (boundary work about minus the gravity work):
+  // the balance is judged against the gravity work.
+  EXPECT_LT(engine.energy().boundary_work, 0.0);
+  EXPECT_LT(std::abs(engine.energy().balance_error()), 1e-3 * engine.energy().gravity_work);
+  EXPECT_THROW(engine.set_support(0, {true, true, true}, true), std::invalid_argument);  // pinned
+}
+
 }  // namespace
 }  // namespace dtwire::dem

@@ -78,6 +78,36 @@ TEST(DemRun, BadInputsExitTwoNamingTheField) {
   expect_bad_input("inside.toml", small_punch("gap_m = 0.002", "gap_m = -0.01"), "tool.gap_m");
   expect_bad_input("law.toml", small_punch("[links.sw]\n", "[links.sw]\nlaw = \"thesis\"\n"), "links.sw.law");
   expect_bad_input("key.toml", small_punch("frames = 2", "frames = 2\nfrmes = 3"), "output.frmes");
+  // Supports and initial state (docs/dem_engine.md, "Supports and initial state").
+  expect_bad_input("support.toml", small_punch("pretension_strain = 1e-4", "support = \"rollers\""), "boundary.support");
+  expect_bad_input("presag.toml", small_punch("pretension_strain = 1e-4", "presag_m = -0.01"), "boundary.presag_m");
+  expect_bad_input("presag2.toml", small_punch("pretension_strain = 1e-4", "pretension_strain = 1e-4\npresag_m = 0.01"), "boundary.presag_m");
+  expect_bad_input("wall.toml", small_punch("pretension_strain = 1e-4", "pretension_strain = 1e-4\nwall_below_m = 0.1"), "boundary.wall_below_m");
+  {
+    std::string text = small_punch("pretension_strain = 1e-4", "wall_below_m = 0.1");
+    text.replace(text.find("settle_s = 0.05"), 15, "settle_s = 0.0");
+    expect_bad_input("nosettle.toml", text, "dynamics.settle_s");
+  }
+  // Per-link-set options: the length mode, parameter overrides checked against the law's names.
+  expect_bad_input("length.toml", small_punch("[links.dt]\n", "[links.dt]\nlength = \"link\"\n"), "links.dt.length");
+  expect_bad_input("override.toml", small_punch("[links.dt]\n", "[links.dt]\nparameters = { slideb = 1.0 }\n"),
+                   "links.dt.parameters.slideb");
+}
+
+// `dem run --set TABLE.KEY=VALUE` replaces an entry; the value is TOML and is checked as the
+// file's; a malformed entry names --set.
+TEST(DemRun, SetEntriesOverrideTheFileAndAreChecked) {
+  const auto path = write_input("set.toml", small_punch());
+  const RunInput in = read_run_input(path, {"boundary.support=\"slider\"", "boundary.pinned=[\"bottom\", \"top\"]",
+                                            "links.dt.parameters.poisson_1=0.3", "tool.speed_m_per_s=0.25"});
+  EXPECT_EQ(in.support, EdgeSupport::Slider);
+  EXPECT_EQ(in.pinned_sides, unsigned(kBottom | kTop));
+  EXPECT_DOUBLE_EQ(in.speed, 0.25);
+  for (const char* bad : {"boundary.support=slider", "nokey", "boundary.support=\"rollers\"", "tool.sped_m_per_s=1.0"}) {
+    const Outcome o = run_cli("dem run " + path.string() + " -q --set '" + bad + "' -o " + (path.parent_path() / "out_set").string());
+    EXPECT_EQ(o.code, 2) << bad << ": " << o.output;
+    EXPECT_NE(o.output.find("--set"), std::string::npos) << bad << ": " << o.output;
+  }
 }
 
 TEST(DemRun, SmallPunchWritesItsFilesBalancesEnergyAndIsThreadIndependent) {

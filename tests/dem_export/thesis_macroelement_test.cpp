@@ -192,6 +192,46 @@ TEST_F(ThesisFixture, DamageStartsAtW1AndBreaksByW2) {
   EXPECT_EQ(law.forces().norm(), 0.0);
 }
 
+// As the PFC7 plugin (damage_scales_forces = 0): the damage factor is tracked exactly as in the
+// softening mode, but the transmitted force stays the undamaged one until the bond is deleted at
+// the same plastic work; the energy account still closes (external = elastic + plastic + damage).
+TEST_F(ThesisFixture, PluginDamageModeTransmitsUndamagedForceAndBreaksAtTheSameWork) {
+  ParameterMap plugin = p;
+  plugin["damage_scales_forces"] = 0.0;
+  ThesisMacroElement softening(p), transmitting(plugin);
+  bool damaged = false;
+  int step = 0;
+  for (; step < 10000 && !softening.broken(); ++step) {
+    softening.update(test::generalised(1e-5, 0.0));
+    transmitting.update(test::generalised(1e-5, 0.0));
+    ASSERT_EQ(softening.broken(), transmitting.broken()) << "step " << step;
+    if (softening.broken()) break;
+    EXPECT_EQ(transmitting.damage_factor(), softening.damage_factor());
+    // tol 1e-5: drift of the uncorrected RK (as DamageStartsAtW1AndBreaksByW2)
+    if (transmitting.plastic_elongation() > 0.0) {
+      EXPECT_NEAR(transmitting.forces()[0], transmitting.yield_strength(), 1e-5 * p.at("Nult_N"));
+    }
+    if (softening.damage_factor() < 1.0) {
+      damaged = true;
+      // tol: round-off; both modes integrate the same effective state
+      EXPECT_NEAR(softening.forces()[0], softening.damage_factor() * transmitting.forces()[0], 1e-9 * p.at("Nult_N"));
+      EXPECT_GT(transmitting.forces()[0], softening.forces()[0]);
+    }
+    const EnergyAccount e = transmitting.energy();
+    // tol: round-off relative to the work done
+    EXPECT_NEAR(e.external, e.elastic + e.plastic + e.damage, 1e-9 * std::max(1.0, e.external));
+    EXPECT_EQ(e.damage, 0.0);  // nothing is softened before the bond is deleted
+  }
+  EXPECT_TRUE(damaged);
+  ASSERT_TRUE(transmitting.broken());
+  EXPECT_EQ(transmitting.forces().norm(), 0.0);
+  const EnergyAccount e = transmitting.energy();
+  EXPECT_GT(e.damage, 0.0);  // the stored energy is released at the deletion
+  EXPECT_NEAR(e.external, e.plastic + e.damage, 1e-9 * e.external);
+  EXPECT_THROW(ThesisMacroElement([&] { ParameterMap bad = p; bad["damage_scales_forces"] = 0.5; return bad; }()),
+               std::invalid_argument);
+}
+
 // (e) Free oscillation of a node on the bond (axial and rotational, symplectic Euler): the first
 // swing yields; the forces always follow the sign of the elastic displacement (no spurious sign
 // inversion), the mechanical energy never grows, and the late elastic swings are symmetric.

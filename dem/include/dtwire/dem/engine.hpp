@@ -13,6 +13,7 @@
 //      v_{n+1/2} = v_{n-1/2} + dt (F + F_d)/m_inertial, x_{n+1} = x_n + dt v_{n+1/2}.
 // Links are updated in parallel (OpenMP), each writing its own slot; nodes then gather their
 // links in a fixed order, so 1 and N threads give bit-identical results.
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -93,9 +94,15 @@ class Engine {
   void set_time_step(double dt);  // throws if above critical (unless allowed)
 
   // Changes the prescribed velocity of guided node i from the next step on (e.g. grips moved
-  // by a load increment, then held while the net relaxes). Throws std::invalid_argument if the
-  // node is not guided.
+  // by a load increment, then held while the net relaxes); for a free node on a slider support
+  // only its held components follow it (e.g. edges pulled apart along their normal, free along
+  // the edge; the support's work is booked as boundary work). Throws std::invalid_argument if the
+  // node is neither guided nor on a slider.
   void set_guided_velocity(std::size_t i, const Vector3& velocity);
+
+  // Changes the slider support of free node i: components newly held stop (their kinetic energy
+  // is taken out by the support, booked as boundary work), released ones move freely.
+  void set_support(std::size_t i, const std::array<bool, 3>& held_translation, bool held_rotation);
 
   void step();
   // Dynamic relaxation: steps with kinematic tools held until the largest unbalanced force on a
@@ -104,7 +111,8 @@ class Engine {
 
   double time() const { return time_; }
   long steps_taken() const { return steps_; }
-  const EnergySplit& energy() const { return energy_; }
+  // The energy split; the stored parts (link and contact energies) are summed on reading.
+  const EnergySplit& energy() const;
   std::size_t node_count() const;
   std::size_t link_count() const;
   const NetNode& node(std::size_t i) const;
@@ -139,7 +147,8 @@ class Engine {
   EngineOptions options_;
   double dt_ = 0.0, time_ = 0.0;
   long steps_ = 0;
-  EnergySplit energy_;
+  mutable EnergySplit energy_;
+  mutable bool energy_stale_ = true;
 };
 
 }  // namespace dtwire::dem

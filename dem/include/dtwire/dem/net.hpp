@@ -21,7 +21,7 @@ struct NetNode {
   double rotational_inertia = 0.0;  // [kg m^2], sphere-like (isotropic)
   double radius = 0.0;              // contact radius against tools [m]
   NodeFixity fixity = NodeFixity::Free;
-  Vector3 guided_velocity = Vector3::Zero();  // [m/s], Guided nodes only
+  Vector3 guided_velocity = Vector3::Zero();  // [m/s], Guided nodes; held components of sliders
   // Free nodes only: translation components (x, y, z) and rotations held at zero velocity, a
   // slider support (e.g. a grip guided in x and z, free along y); the engine's unbalanced force
   // of a held component is minus the support's reaction.

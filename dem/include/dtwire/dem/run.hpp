@@ -14,9 +14,18 @@ namespace dtwire::dem {
 
 struct LinkSetInput {
   std::string law;
-  ParameterMap parameters;  // from the parameter file (+ backbone)
+  ParameterMap parameters;  // from the parameter file (+ backbone), with the overrides applied
+  ParameterMap overrides;   // the input's `parameters` table (kept when --set-params swaps the file)
+  // "set": used as calibrated (the PFC7 plugin); "link": rescaled to each link's length at equal
+  // strain (dtwire/dem/length_rescaling.hpp).
+  std::string length = "set";
   std::vector<std::filesystem::path> files;
 };
+
+// How the supported edges hold their nodes (docs/dem_engine.md, "Supports and initial state").
+enum class EdgeSupport { Pinned, Hinged, Slider };
+EdgeSupport parse_edge_support(const std::string& name);  // throws std::invalid_argument
+std::string edge_support_name(EdgeSupport support);
 
 struct RunInput {
   std::filesystem::path file;
@@ -25,7 +34,14 @@ struct RunInput {
   HexMeshSpec mesh;
   std::map<LinkTag, LinkSetInput> link_sets;
   unsigned pinned_sides = kLeft | kRight | kBottom | kTop;
+  EdgeSupport support = EdgeSupport::Pinned;
   double pretension_strain = 0.0;  // in-plane stretch of the whole net, imposed at t = 0
+  // Thesis pre-load: the pre-tension stretch is searched so that the settled net sags this much
+  // (0: the given pretension_strain) [m].
+  double presag = 0.0;
+  // Slack state of the thesis's cyclic tests: a horizontal wall this far below the net's base,
+  // on which the net settles with its supported edges free in the plane (0: none) [m].
+  double wall_below = 0.0;
   EngineOptions engine;
   double settle_time = 0.0;  // [s] gravity only, before the tool moves
   // Tool: "platter", "boulder" or "none".
@@ -44,7 +60,9 @@ struct RunInput {
 };
 
 // Throws InputError naming file:line and the field for anything malformed or missing.
-RunInput read_run_input(const std::filesystem::path& file);
+// `overrides`: TABLE.KEY=VALUE entries (VALUE in TOML) applied to the file before it is read
+// (`dem run --set`); an entry that is not TOML or not a key of the format is an error.
+RunInput read_run_input(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
 // Replaces the parameter set of one link type ("sw", "dt", "selvedge") by the only set (or the
 // set `wire_type`) of `params`; the law is the file's, else the input's. Throws InputError
@@ -74,8 +92,11 @@ struct RunOptions {
 struct RunSummary {
   Curve history;
   double peak_force = 0.0, displacement_at_peak = 0.0;  // [N], [m]
+  double onset = -1.0, force_at_420mm = 0.0;  // punch_figures.hpp: [m] (-1: no onset), [N]
   double largest_balance_error = 0.0;  // |error| / work on the mesh, largest over the run
   double sag = 0.0;  // largest downward displacement after settling [m]
+  double pretension_strain = 0.0;  // the stretch used (searched for a pre-load's sag)
+  double kinetic_after_settling = 0.0;  // [J], the quasi-static check of the settled state
   double time_step = 0.0, critical_time_step = 0.0;
   std::size_t nodes = 0, links = 0, broken_links = 0;
   long steps = 0;

@@ -6,6 +6,9 @@
 // ks capped by Coulomb friction (Cundall & Strack 1979), evaluated by the engine.
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -30,6 +33,9 @@ class Tool {
   // `reach` from the tool (no contact possible).
   virtual bool nearest(const Eigen::Vector3d& point, double reach, SurfacePoint& out) const = 0;
   virtual std::string kind() const = 0;
+  // Radius of a sphere about `position` that holds the whole tool (infinite for a wall): the
+  // engine skips the surface search for nodes farther than it.
+  virtual double bounding_radius() const = 0;
 
   // Rigid-body state (world frame).
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // reference point (centre)
@@ -52,6 +58,7 @@ class PlaneWall final : public Tool {
   explicit PlaneWall(const Eigen::Vector3d& outward_normal);
   bool nearest(const Eigen::Vector3d& point, double reach, SurfacePoint& out) const override;
   std::string kind() const override { return "wall"; }
+  double bounding_radius() const override;
 
  private:
   Eigen::Vector3d normal_;
@@ -64,6 +71,7 @@ class SemiSpheroidPlatter final : public Tool {
   SemiSpheroidPlatter(double base_radius, double height);
   bool nearest(const Eigen::Vector3d& point, double reach, SurfacePoint& out) const override;
   std::string kind() const override { return "platter"; }
+  double bounding_radius() const override { return std::max(a_, h_); }  // position: the base centre
   double base_radius() const { return a_; }
   double height() const { return h_; }
 
@@ -80,6 +88,7 @@ class TruncatedCube final : public Tool {
   TruncatedCube(double side, double corner_plane);
   bool nearest(const Eigen::Vector3d& point, double reach, SurfacePoint& out) const override;
   std::string kind() const override { return "boulder"; }
+  double bounding_radius() const override { return 0.5 * std::sqrt(3.0) * side_; }  // the cube's corners
   double side() const { return side_; }
   double corner_plane() const { return corner_; }
 

@@ -10,7 +10,9 @@
 //   D_m, EA_N (axial stiffness, N per m of elongation), EI_Nm2_per_deg_convention (moment per
 //   degree), N0_N, Nult_N, Nc_N, m_f, beta_f, k_F (1/m), k_M (1/deg), m_g, alpha_g, beta_g,
 //   W1_J, W2_J, alpha_d; optional: slide_a (must be 0: the sliding spring is not implemented),
-//   slide_b, reference_length_m (ignored), rk_tolerance (default 1e-6).
+//   slide_b, reference_length_m (ignored), rk_tolerance (default 1e-6), damage_scales_forces (1:
+//   beyond W1 the axial force and moment are d times the effective ones, default; 0: as the PFC7
+//   plugin, which tracks d but transmits the undamaged forces until the bond is deleted at d <= 0.01).
 #include "dtwire/dem/contact_law.hpp"
 #include "dtwire/dem/detail/macroelement_damage.hpp"
 #include "dtwire/dem/detail/macroelement_integrator.hpp"
@@ -31,13 +33,14 @@ class ThesisMacroElement final : public ContactLaw {
   // Internal variables, for verification.
   double yield_strength() const { return plastic_.Ny; }     // N_y [N]
   double damage_work() const { return damage_work_; }        // W_p (thesis convention) [J]
-  double damage_factor() const { return damage_factor_; }    // 1 before W1
+  double damage_factor() const { return damage_factor_; }    // 1 before W1 (tracked in both modes)
   double normalised_yield_function() const;                  // 0 on the surface, < 0 inside
   double plastic_elongation() const { return plastic_.y[3]; }  // signed u_p [m]
   double plastic_rotation() const;                           // signed omega_p [rad]
   int last_substeps() const { return last_substeps_; }       // RK substeps of the last update
 
  private:
+  double transmitted_factor() const { return damage_scales_forces_ ? damage_factor_ : 1.0; }
   double undamaged_elastic_energy() const;
   double damaged_effective_energy(const detail::PlasticState& s) const;
 
@@ -54,6 +57,7 @@ class ThesisMacroElement final : public ContactLaw {
   double damage_factor_ = 1.0;
   detail::EnergyTotals energy_;
   bool broken_ = false;
+  bool damage_scales_forces_ = true;
   int last_substeps_ = 0;
 };
 
