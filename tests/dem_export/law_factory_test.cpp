@@ -3,6 +3,7 @@
 
 #include "dtwire/dem/contact_law.hpp"
 #include "dtwire/dem/law_schema.hpp"
+#include "dtwire/dem/length_rescaling.hpp"
 #include "dtwire_contact.h"
 #include "law_test_support.hpp"
 
@@ -89,6 +90,31 @@ TEST(LawSchema, TheCAbiRefusesTheSameNames) {
   dtwire_bond* bond = dtwire_bond_create("parallel_bond", names, values, 3);
   EXPECT_NE(bond, nullptr);
   dtwire_bond_destroy(bond);
+}
+
+// A set calibrated on a 0.06 m bond carried to a 0.05 m link at equal strain: stiffnesses and
+// k_F x 1.2, damage works / 1.2, forces kept; a pull to the same strain then gives the same
+// force (the elastic branch: N = EA' u' = EA (L_ref/L) (eps L) = EA eps L_ref).
+TEST(LengthRescaling, EqualStrainGivesEqualForceAndWorkPerLength) {
+  const ParameterMap set = test::thesis_parameters("single_wire");
+  const ParameterMap link = rescale_to_link_length(set, 0.05);
+  EXPECT_DOUBLE_EQ(link.at("EA_N"), set.at("EA_N") * 1.2);
+  EXPECT_DOUBLE_EQ(link.at("EI_Nm2_per_deg_convention"), set.at("EI_Nm2_per_deg_convention") * 1.2);
+  EXPECT_DOUBLE_EQ(link.at("k_F"), set.at("k_F") * 1.2);
+  EXPECT_DOUBLE_EQ(link.at("W1_J"), set.at("W1_J") / 1.2);
+  EXPECT_DOUBLE_EQ(link.at("N0_N"), set.at("N0_N"));
+  EXPECT_DOUBLE_EQ(link.at("reference_length_m"), 0.05);
+  const double strain = 1e-4;  // elastic
+  auto force = [&](const ParameterMap& p, double length) {
+    auto law = make_contact_law("thesis", p);
+    law->update(test::generalised(strain * length, 0.0));
+    return law->forces()[0];
+  };
+  EXPECT_NEAR(force(link, 0.05), force(set, 0.06), 1e-9 * force(set, 0.06));
+  ParameterMap no_length = set;
+  no_length.erase("reference_length_m");
+  EXPECT_THROW(rescale_to_link_length(no_length, 0.05), std::invalid_argument);
+  EXPECT_THROW(rescale_to_link_length(set, 0.0), std::invalid_argument);
 }
 
 }  // namespace
