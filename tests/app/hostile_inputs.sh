@@ -101,6 +101,10 @@ case_ "no wire type 'dt' in the --params files; choose one of: double_twist, sin
 case_ "slideb.json:22: wire type 'single_wire': unknown parameter 'slideb' for law thesis (did you mean 'slide_b'?)" export --params slideb.json --out export
 case_ "did you mean 'slide_b'" dem driver --law thesis --params slideb.json --out driver
 case_ "slideb.json:22: wire type 'single_wire': unknown parameter 'slideb'" dem run "$src/experiments/dem/punch_macro.toml" --set-params sw=slideb.json -o dem_out -q
+case_ "--set: boundary.support: expected pinned, hinged or slider" dem run "$src/experiments/dem/punch_macro.toml" --set 'boundary.support="rollers"' -o dem_out -q
+case_ "--set: boundary.support: the value is not TOML" dem run "$src/experiments/dem/punch_macro.toml" --set 'boundary.support=slider' -o dem_out -q
+case_ "boundary.presag_m: given with pretension_strain" dem run "$src/experiments/dem/punch_macro.toml" --set 'boundary.presag_m=0.01' -o dem_out -q
+case_ "links.sw.parameters.slideb: not a parameter of the thesis law" dem run "$src/experiments/dem/punch_macro.toml" --set 'links.sw.parameters.slideb=1.0' -o dem_out -q
 case_ "empty_mesh.prm: no 'set <name> = <value>' line" mesh dt --prm empty_mesh.prm -o mesh.msh
 case_ "typo_mesh.prm:7:5: unknown parameter 'twist-lenght' (did you mean 'twist-length'?)" mesh dt --prm typo_mesh.prm -o mesh.msh
 case_ "parameter[6].name': the thesis simulator reads no parameter 'm_ff' (did you mean 'm_f'?)" fit m_ff.toml --synthesize synthesized
