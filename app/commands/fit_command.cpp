@@ -126,7 +126,11 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     for (std::size_t i = 0; i < result.values.size(); ++i)
       std::cout << "  " << result.parameters[i].name << " = " << result.values[i]
                 << (result.sigma.empty() ? std::string() : " +- " + std::to_string(result.sigma[i])) << " "
-                << result.parameters[i].unit << "\n";
+                << result.parameters[i].unit
+                << (i < result.identification.size() && !result.identification[i].identified
+                        ? "  NOT IDENTIFIED: " + result.identification[i].reason
+                        : std::string())
+                << "\n";
     if (options->plot) {
       try {
         run_plot_script("plot_fit.py", {out.string()});

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cctype>
 #include <exception>
+#include <iterator>
 #include <thread>
 
 #include "dtwire/core/csv.hpp"
@@ -30,6 +32,32 @@ void parallel_for(std::size_t count, unsigned threads, const Task& task) {
 }
 
 }  // namespace
+
+std::string failure_kind(const std::string& message) {
+  // The experiment's name is kept as it is (it may hold digits: pull_angle_47deg).
+  const std::size_t body = message.rfind("experiment '", 0) == 0 ? message.find("': ") : std::string::npos;
+  std::string out = body == std::string::npos ? "" : message.substr(0, body + 3);
+  const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+  for (std::size_t i = out.size(); i < message.size();) {
+    const bool sign = (message[i] == '-' || message[i] == '+') && i + 1 < message.size() && digit(message[i + 1]) &&
+                      (i == 0 || !std::isalnum(static_cast<unsigned char>(message[i - 1])));
+    if (!digit(message[i]) && !sign) {
+      out += message[i++];
+      continue;
+    }
+    // A number: sign, digits, fraction, exponent.
+    i += sign ? 1 : 0;
+    while (i < message.size() && (digit(message[i]) || message[i] == '.')) ++i;
+    if (i + 1 < message.size() && (message[i] == 'e' || message[i] == 'E') &&
+        (digit(message[i + 1]) || ((message[i + 1] == '-' || message[i + 1] == '+') && i + 2 < message.size() &&
+                                   digit(message[i + 2])))) {
+      i += 2;
+      while (i < message.size() && digit(message[i])) ++i;
+    }
+    out += '#';
+  }
+  return out;
+}
 
 std::string evaluation_key(const Simulator& simulator, const ParameterValues& parameters) {
   std::string text = simulator.identity();
@@ -85,13 +113,13 @@ ProblemEvaluator::ProblemEvaluator(std::vector<Experiment> experiments,
 
 std::vector<double> ProblemEvaluator::to_scaled(const std::vector<double>& values) const {
   std::vector<double> z(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) z[i] = values[i] / parameters_[i].effective_scale();
+  for (std::size_t i = 0; i < values.size(); ++i) z[i] = parameters_[i].to_coordinate(values[i]);
   return z;
 }
 
 std::vector<double> ProblemEvaluator::from_scaled(const std::vector<double>& z) const {
   std::vector<double> x(z.size());
-  for (std::size_t i = 0; i < z.size(); ++i) x[i] = z[i] * parameters_[i].effective_scale();
+  for (std::size_t i = 0; i < z.size(); ++i) x[i] = parameters_[i].from_coordinate(z[i]);
   return x;
 }
 
@@ -114,6 +142,10 @@ Curve ProblemEvaluator::run(std::size_t experiment, const ParameterValues& value
   } catch (const ComputationError& error) {
     ++failures_;
     const std::string message = "experiment '" + experiments_[experiment].name + "': " + error.what();
+    {
+      std::lock_guard<std::mutex> lock(failure_kinds_mutex_);
+      ++failure_kinds_[failure_kind(message)];
+    }
     cache_.store(key, {std::nullopt, message});
     throw ComputationError(message);
   }
@@ -161,11 +193,17 @@ void ProblemEvaluator::residuals_and_jacobian(const std::vector<double>& z,
   const std::size_t n = z.size(), m = residual_count_;
   std::vector<double> lower(n), upper(n), h(n);
   for (std::size_t j = 0; j < n; ++j) {
-    const double s = parameters_[j].effective_scale();
-    lower[j] = parameters_[j].lower / s;
-    upper[j] = parameters_[j].upper / s;
+    lower[j] = parameters_[j].to_coordinate(parameters_[j].lower);
+    upper[j] = parameters_[j].to_coordinate(parameters_[j].upper);
     h[j] = options_.relative_step * std::max(std::abs(z[j]), 1.0);
   }
+  // The base point first: where it fails (e.g. a set the law rejects, Nult < N0, which the
+  // bounds alone do not exclude) there is no Jacobian to take, and running its stencil would
+  // only add n failed runs per experiment.
+  auto base = evaluate_points({z});
+  if (!base[0].failure.empty()) throw ComputationError(base[0].failure);
+  residuals = std::move(base[0].residuals);
+
   // Step directions per column: forward (or central), away from a bound it would cross.
   std::vector<std::vector<double>> points{z};
   std::vector<std::pair<std::size_t, double>> columns;  // (column, signed step) per point
@@ -182,9 +220,17 @@ void ProblemEvaluator::residuals_and_jacobian(const std::vector<double>& z,
       columns.emplace_back(j, -h[j]);
     }
   }
-  auto outcomes = evaluate_points(points);
-  if (!outcomes[0].failure.empty()) throw ComputationError(outcomes[0].failure);
-  residuals = outcomes[0].residuals;
+  std::vector<Outcome> outcomes(1);
+  {
+    auto perturbed = evaluate_points(std::vector<std::vector<double>>(points.begin() + 1, points.end()));
+    std::move(perturbed.begin(), perturbed.end(), std::back_inserter(outcomes));
+  }
+
+  last_jacobian_point_ = z;
+  last_step_failures_.assign(n, "");
+  for (std::size_t k = 1; k < points.size(); ++k)
+    if (!outcomes[k].failure.empty() && last_step_failures_[columns[k].first].empty())
+      last_step_failures_[columns[k].first] = outcomes[k].failure;
 
   // Retry failed perturbed runs: opposite direction, then a tenth of the step.
   for (int attempt = 0; attempt < 2; ++attempt) {
@@ -231,7 +277,8 @@ std::vector<Curve> ProblemEvaluator::simulate(const std::vector<double>& values)
 }
 
 EvaluationStatistics ProblemEvaluator::statistics() const {
-  return {simulations_.load(), cache_hits_.load(), failures_.load()};
+  std::lock_guard<std::mutex> lock(failure_kinds_mutex_);
+  return {simulations_.load(), cache_hits_.load(), failures_.load(), failure_kinds_};
 }
 
 }  // namespace dtwire::calibrate

@@ -393,18 +393,23 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     def.law = "voce_bar";
   }
 
+  bool log_parameters = false;  // [fit] log_parameters: applied to the parameters read below
   if (root.contains("fit")) {
     const Table fit(table_at(root, "fit", name), "fit", name);
-    fit.only({"loss", "loss_scale", "starts", "seed", "max_iterations", "relative_step",
+    fit.only({"loss", "loss_scale", "starts", "log_parameters", "seed", "max_iterations", "relative_step",
               "central_differences", "threads", "function_tolerance", "parameter_tolerance",
-              "gradient_tolerance", "disk_cache"});
+              "gradient_tolerance", "disk_cache", "identification_tolerance"});
     def.disk_cache = fit.boolean("disk_cache", false);
     def.fit.loss = loss_kind(fit);
     def.fit.loss_scale = fit.number("loss_scale", 1.0);
     if (!(def.fit.loss_scale > 0)) fit.fail(fit.get("loss_scale"), "loss_scale", "expected a number > 0");
     def.fit.starts = static_cast<int>(fit.integer("starts", 1, 1));
+    log_parameters = fit.boolean("log_parameters", false);
     def.fit.seed = static_cast<std::uint64_t>(fit.integer("seed", 1, 0));
     def.fit.max_iterations = static_cast<int>(fit.integer("max_iterations", 50, 1));
+    def.fit.identification_tolerance = fit.number("identification_tolerance", def.fit.identification_tolerance);
+    if (!(def.fit.identification_tolerance > 0))
+      fit.fail(fit.get("identification_tolerance"), "identification_tolerance", "expected a number > 0");
     def.fit.function_tolerance = fit.number("function_tolerance", def.fit.function_tolerance);
     def.fit.parameter_tolerance = fit.number("parameter_tolerance", def.fit.parameter_tolerance);
     def.fit.gradient_tolerance = fit.number("gradient_tolerance", def.fit.gradient_tolerance);
@@ -437,6 +442,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     if (d.initial < d.lower || d.initial > d.upper)
       p.fail(p.get("initial"), "initial", "expected a value within [lower, upper]");
     if (d.scale < 0) p.fail(p.get("scale"), "scale", "expected a number > 0");
+    d.logarithmic = log_parameters && d.lower > 0 && d.upper >= 10 * d.lower;
     for (const auto& other : def.parameters)
       if (other.name == d.name) p.fail(p.get("name"), "name", "parameter '" + d.name + "' defined twice");
     def.parameters.push_back(d);

@@ -94,6 +94,11 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
     json entry = {{"name", p.name}, {"value", result.values[i]}, {"unit", p.unit},
                   {"sigma", result.sigma.empty() ? json(nullptr) : finite_or_null(result.sigma[i])},
                   {"lower", p.lower}, {"upper", p.upper}, {"initial", p.initial}, {"fitted", true}};
+    if (i < result.identification.size()) {
+      entry["identified"] = result.identification[i].identified;
+      entry["relative_sigma"] = finite_or_null(result.identification[i].relative_sigma);
+      if (!result.identification[i].identified) entry["not_identified_because"] = result.identification[i].reason;
+    }
     if (p.reference) entry["reference"] = *p.reference;
     parameters.push_back(entry);
     store.parameters.push_back({p.name, result.values[i], p.unit,
@@ -124,6 +129,9 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
   for (const auto& p : result.parameters) root["covariance_parameters"].push_back(p.name);
   root["fit_quality"] = quality;
   root["singular_values"] = result.singular_values;
+  root["not_identified"] = json::array();
+  for (std::size_t i = 0; i < result.identification.size(); ++i)
+    if (!result.identification[i].identified) root["not_identified"].push_back(result.parameters[i].name);
   root["warnings"] = result.warnings;
   root["cost"] = result.cost;
   root["residual_variance"] = result.residual_variance;
@@ -133,6 +141,7 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
   root["statistics"] = {{"simulations", result.statistics.simulations},
                         {"cache_hits", result.statistics.cache_hits},
                         {"failed_simulations", result.statistics.failures},
+                        {"failure_kinds", result.statistics.failure_kinds},
                         {"wall_seconds", result.wall_seconds}};
   root["provenance"] = provenance_json(provenance);
   write_file_atomically(out / "parameters.json", [&](std::ostream& s) { s << root.dump(2) << "\n"; });
@@ -149,13 +158,15 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
       << result.best_start + 1 << "); " << result.statistics.simulations << " simulation runs ("
       << result.statistics.cache_hits << " cache hits, " << result.statistics.failures
       << " failed), wall time " << number(result.wall_seconds, 3) << " s; run " << provenance.run_id << ".\n\n";
-    s << "| parameter | value | sigma | unit | bounds | reference |\n|---|---|---|---|---|---|\n";
+    s << "| parameter | value | sigma | unit | bounds | reference | identified |\n|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < n; ++i) {
       const auto& p = result.parameters[i];
       s << "| " << p.name << " | " << number(result.values[i], 5) << " | "
         << (result.sigma.empty() ? std::string("n/a") : number(result.sigma[i], 2)) << " | " << p.unit
         << " | [" << number(p.lower) << ", " << number(p.upper) << "] | "
-        << (p.reference ? number(*p.reference, 5) : std::string("")) << " |\n";
+        << (p.reference ? number(*p.reference, 5) : std::string("")) << " | "
+        << (i >= result.identification.size() ? std::string("") : result.identification[i].identified ? "yes" : "**NO**")
+        << " |\n";
     }
     s << "\n| curve | channel | points | RMSE | NRMSE | R^2 |\n|---|---|---|---|---|---|\n";
     for (const auto& q : result.quality)

@@ -28,8 +28,8 @@ lsq::Problem engine_problem(ProblemEvaluator& evaluator) {
   problem.parameter_count = evaluator.parameters().size();
   problem.residual_count = evaluator.residual_count();
   for (const auto& p : evaluator.parameters()) {
-    problem.lower.push_back(p.lower / p.effective_scale());
-    problem.upper.push_back(p.upper / p.effective_scale());
+    problem.lower.push_back(p.to_coordinate(p.lower));
+    problem.upper.push_back(p.to_coordinate(p.upper));
   }
   problem.residuals = [&evaluator](const std::vector<double>& z, std::vector<double>& r) {
     r = evaluator.residuals(z);
@@ -131,7 +131,7 @@ std::string fit_identity(const ProblemEvaluator& evaluator, const FitOptions& op
   }
   for (const auto& p : evaluator.parameters())
     text << "parameter " << p.name << " " << p.initial << " " << p.lower << " " << p.upper << " "
-         << p.effective_scale() << "\n";
+         << p.effective_scale() << (p.logarithmic ? " log" : "") << "\n";
   text << "options " << options.max_iterations << " " << static_cast<int>(options.loss) << " "
        << options.loss_scale << " " << options.starts << " " << options.seed << " "
        << options.function_tolerance << " " << options.parameter_tolerance << " "
@@ -155,14 +155,16 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   }
   if (starts.empty()) {
     std::vector<double> initial, lower, upper;
+    std::vector<bool> logarithmic;
     for (const auto& p : parameters) {
       initial.push_back(p.initial);
       lower.push_back(p.lower);
       upper.push_back(p.upper);
+      logarithmic.push_back(p.logarithmic);
     }
     std::vector<std::vector<double>> points{evaluator.to_scaled(initial)};
-    for (const auto& point :
-         latin_hypercube(static_cast<std::size_t>(options.starts - 1), lower, upper, options.seed))
+    for (const auto& point : latin_hypercube(static_cast<std::size_t>(options.starts - 1), lower, upper,
+                                             logarithmic, options.seed))
       points.push_back(evaluator.to_scaled(point));
     starts = lsq::starts_at(points);
   }
@@ -229,7 +231,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
       for (std::size_t j = 0; j < n; ++j)
         cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
             (*u.covariance)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
-            parameters[i].effective_scale() * parameters[j].effective_scale();
+            parameters[i].derivative(summary.x[i]) * parameters[j].derivative(summary.x[j]);
     for (std::size_t i = 0; i < n; ++i) result.sigma.push_back(std::sqrt(std::max(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 0.0)));
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) {
@@ -277,6 +279,22 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
       result.warnings.push_back("parameter '" + p.name + "' ended at a bound; its sigma is not meaningful");
   }
 
+  // Which parameters the data identify (the Jacobian's covariance, the bounds and the other
+  // starts' ends); the others are named.
+  std::vector<StartEnd> ends;
+  for (const auto& st : result.starts) ends.push_back({st.state == "done" ? st.end : std::vector<double>{}, st.cost});
+  const bool stepped_here = evaluator.last_jacobian_point() == summary.x;  // uncertainty_at's Jacobian
+  result.identification = identify(parameters, result.values, result.sigma,
+                                   stepped_here ? evaluator.last_step_failures() : std::vector<std::string>{},
+                                   result.cost, result.residual_variance, ends, options.identification_tolerance);
+  for (std::size_t i = 0; i < n; ++i)
+    if (!result.identification[i].identified) {
+      std::ostringstream text;
+      text << "parameter '" << parameters[i].name << "' is NOT IDENTIFIED by the data (to "
+           << 100 * options.identification_tolerance << " %): " << result.identification[i].reason;
+      result.warnings.push_back(text.str());
+    }
+
   // Fitted curves and per-curve quality.
   const auto curves = evaluator.simulate(result.values);
   for (std::size_t e = 0; e < curves.size(); ++e) {
@@ -290,6 +308,8 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
     *options.progress << "fit done: cost " << result.cost << " at [" << join(result.values)
                       << "] after " << result.statistics.simulations << " simulation runs, "
                       << result.wall_seconds << " s\n";
+    for (const auto& [kind, count] : result.statistics.failure_kinds)
+      *options.progress << "failed runs: " << count << " x " << kind << "\n";
     for (const auto& w : result.warnings) *options.progress << "warning: " << w << "\n";
   }
   return result;

@@ -13,6 +13,16 @@ double ParameterDefinition::effective_scale() const {
   return 1.0;
 }
 
+double ParameterDefinition::to_coordinate(double value) const {
+  return logarithmic ? std::log(value / effective_scale()) : value / effective_scale();
+}
+
+double ParameterDefinition::from_coordinate(double z) const {
+  return logarithmic ? effective_scale() * std::exp(z) : z * effective_scale();
+}
+
+double ParameterDefinition::derivative(double z) const { return logarithmic ? from_coordinate(z) : effective_scale(); }
+
 void validate(const std::vector<ParameterDefinition>& parameters) {
   if (parameters.empty()) throw std::invalid_argument("no parameters to fit");
   std::set<std::string> names;
@@ -28,6 +38,7 @@ void validate(const std::vector<ParameterDefinition>& parameters) {
     if (p.initial < p.lower || p.initial > p.upper)
       throw std::invalid_argument(where + "initial value outside [lower, upper]");
     if (p.scale < 0) throw std::invalid_argument(where + "scale must be > 0");
+    if (p.logarithmic && !(p.lower > 0)) throw std::invalid_argument(where + "logarithmic needs lower > 0");
   }
 }
 

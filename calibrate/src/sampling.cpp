@@ -1,5 +1,6 @@
 #include "dtwire/calibrate/sampling.hpp"
 
+#include <cmath>
 #include <random>
 #include <stdexcept>
 
@@ -8,7 +9,17 @@ namespace dtwire::calibrate {
 std::vector<std::vector<double>> latin_hypercube(std::size_t count, const std::vector<double>& lower,
                                                  const std::vector<double>& upper,
                                                  std::uint64_t seed) {
-  if (lower.size() != upper.size()) throw std::invalid_argument("latin_hypercube: bound sizes differ");
+  return latin_hypercube(count, lower, upper, std::vector<bool>(lower.size(), false), seed);
+}
+
+std::vector<std::vector<double>> latin_hypercube(std::size_t count, const std::vector<double>& lower,
+                                                 const std::vector<double>& upper,
+                                                 const std::vector<bool>& logarithmic, std::uint64_t seed) {
+  if (lower.size() != upper.size() || logarithmic.size() != lower.size())
+    throw std::invalid_argument("latin_hypercube: bound sizes differ");
+  for (std::size_t d = 0; d < lower.size(); ++d)
+    if (logarithmic[d] && !(lower[d] > 0.0 && upper[d] > 0.0))
+      throw std::invalid_argument("latin_hypercube: a logarithmic dimension needs bounds > 0");
   std::mt19937_64 generator(seed);
   const auto uniform = [&] { return static_cast<double>(generator() >> 11) * 0x1.0p-53; };
   std::vector<std::vector<double>> points(count, std::vector<double>(lower.size()));
@@ -22,7 +33,7 @@ std::vector<std::vector<double>> latin_hypercube(std::size_t count, const std::v
     }
     for (std::size_t i = 0; i < count; ++i) {
       const double u = (static_cast<double>(strata[i]) + uniform()) / static_cast<double>(count);
-      points[i][d] = lower[d] + u * (upper[d] - lower[d]);
+      points[i][d] = logarithmic[d] ? lower[d] * std::pow(upper[d] / lower[d], u) : lower[d] + u * (upper[d] - lower[d]);
     }
   }
   return points;

@@ -113,5 +113,23 @@ TEST(LatinHypercube, OnePointPerStratumAndDeterministic) {
   EXPECT_NE(latin_hypercube(8, lo, hi, 43), a);
 }
 
+// Logarithmic dimensions: one point per stratum of log(value), i.e. one per decade for bounds
+// 1e1-1e9 with 8 points; a linear dimension beside it is unchanged by the other's mapping.
+TEST(LatinHypercube, LogarithmicDimensionsHaveOnePointPerDecade) {
+  const std::vector<double> lo{10.0, 0.0}, hi{1e9, 1.0};
+  const auto a = latin_hypercube(8, lo, hi, {true, false}, 42);
+  EXPECT_EQ(a, latin_hypercube(8, lo, hi, {true, false}, 42));
+  std::set<int> decades;
+  for (const auto& p : a) {
+    ASSERT_GE(p[0], 10.0);
+    ASSERT_LT(p[0], 1e9);
+    decades.insert(static_cast<int>(std::floor(std::log10(p[0]))));
+  }
+  EXPECT_EQ(decades.size(), 8u);  // 1, 2, ..., 8
+  const auto linear = latin_hypercube(8, lo, hi, 42);
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i][1], linear[i][1]);
+  EXPECT_THROW(latin_hypercube(2, {0.0}, {1.0}, {true}, 1), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace dtwire::calibrate

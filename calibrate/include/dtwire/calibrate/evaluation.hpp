@@ -50,7 +50,14 @@ struct EvaluationStatistics {
   std::size_t simulations = 0;  // simulator runs
   std::size_t cache_hits = 0;
   std::size_t failures = 0;     // runs that threw ComputationError
+  // Failed runs by kind: the error message with its numbers replaced by '#'
+  // ("experiment 'tension': dem_specimen: not converged at grip displacement # mm ...").
+  std::map<std::string, std::size_t> failure_kinds;
 };
+
+// A failure message with every number replaced by '#', so that failures of one kind count
+// together.
+std::string failure_kind(const std::string& message);
 
 class ProblemEvaluator {
  public:
@@ -66,11 +73,18 @@ class ProblemEvaluator {
 
   // Residuals at z. Throws ComputationError if a simulation fails.
   std::vector<double> residuals(const std::vector<double>& z);
-  // Residuals and the Jacobian d r / d z (row-major, residual_count x n). A perturbed run that
-  // fails is retried with the opposite step, then with a tenth of the step; throws
-  // ComputationError if all fail.
+  // Residuals and the Jacobian d r / d z (row-major, residual_count x n). The point itself runs
+  // first: if it fails, throws ComputationError without running the perturbed points. A
+  // perturbed run that fails is retried with the opposite step, then with a tenth of the step;
+  // throws ComputationError if all fail.
   void residuals_and_jacobian(const std::vector<double>& z, std::vector<double>& residuals,
                               std::vector<double>& jacobian);
+
+  // Of the last residuals_and_jacobian: its point, and per parameter the failure of the first
+  // perturbed run (empty: it ran), i.e. a parameter whose step of h left the region where the
+  // simulator runs.
+  const std::vector<double>& last_jacobian_point() const { return last_jacobian_point_; }
+  const std::vector<std::string>& last_step_failures() const { return last_step_failures_; }
 
   // Simulated curves (one per experiment) at parameter values (SI).
   std::vector<Curve> simulate(const std::vector<double>& values);
@@ -93,6 +107,10 @@ class ProblemEvaluator {
   ResultsCache cache_;
   std::map<const Simulator*, std::unique_ptr<std::mutex>> serial_locks_;
   std::atomic<std::size_t> simulations_{0}, cache_hits_{0}, failures_{0};
+  std::vector<double> last_jacobian_point_;
+  std::vector<std::string> last_step_failures_;
+  mutable std::mutex failure_kinds_mutex_;
+  std::map<std::string, std::size_t> failure_kinds_;
 };
 
 }  // namespace dtwire::calibrate

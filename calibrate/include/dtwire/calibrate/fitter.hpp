@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "dtwire/calibrate/evaluation.hpp"
+#include "dtwire/calibrate/identifiability.hpp"
 
 namespace dtwire::calibrate {
 
@@ -24,7 +25,10 @@ struct FitOptions {
   LossKind loss = LossKind::Squared;
   double loss_scale = 1.0;  // residual size where the robust loss starts to bend
   int starts = 1;           // 1: the initial values only; k: plus k-1 Latin hypercube points
+                            // (in ln(value) for logarithmic parameters)
   std::uint64_t seed = 1;
+  // Relative precision below which a parameter counts as identified (identifiability.hpp).
+  double identification_tolerance = 0.05;
   double function_tolerance = 1e-10;
   double parameter_tolerance = 1e-10;
   double gradient_tolerance = 1e-12;
@@ -53,6 +57,7 @@ struct FitResult {
   std::optional<Eigen::MatrixXd> correlation;
   std::vector<double> sigma;                  // sqrt(diag covariance); empty without covariance
   std::vector<double> singular_values;        // of the column-normalised Jacobian, descending
+  std::vector<Identification> identification;  // per parameter (identifiability.hpp)
   double cost = 0.0;
   double residual_variance = 0.0;  // pooled: 2 cost / (m - n)
   std::size_t residual_count = 0;

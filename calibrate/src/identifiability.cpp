@@ -1,0 +1,72 @@
+#include "dtwire/calibrate/identifiability.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace dtwire::calibrate {
+namespace {
+
+std::string percent(double fraction) {
+  std::ostringstream out;
+  out << std::setprecision(3) << 100.0 * fraction << " %";
+  return out.str();
+}
+
+std::string number(double v) {
+  std::ostringstream out;
+  out << std::setprecision(4) << v;
+  return out.str();
+}
+
+}  // namespace
+
+std::vector<Identification> identify(const std::vector<ParameterDefinition>& parameters,
+                                     const std::vector<double>& values, const std::vector<double>& sigma,
+                                     const std::vector<std::string>& failed_steps,
+                                     double cost, double residual_variance, const std::vector<StartEnd>& starts,
+                                     double tolerance) {
+  const std::size_t n = parameters.size();
+  if (values.size() != n || (!sigma.empty() && sigma.size() != n) || (!failed_steps.empty() && failed_steps.size() != n))
+    throw std::invalid_argument("identify: sizes of parameters, values and sigma differ");
+  if (!(tolerance > 0.0)) throw std::invalid_argument("identify: tolerance must be > 0");
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<Identification> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ParameterDefinition& p = parameters[i];
+    Identification& id = out[i];
+    const double magnitude = std::abs(values[i]);
+    id.relative_sigma = sigma.empty() || magnitude == 0.0 ? inf : sigma[i] / magnitude;
+    std::vector<std::string> reasons;
+    if (sigma.empty()) reasons.push_back("no covariance (rank-deficient Jacobian)");
+    const double at = 1e-6 * (p.upper - p.lower);
+    if (values[i] <= p.lower + at) reasons.push_back("ended at its lower bound " + number(p.lower));
+    if (values[i] >= p.upper - at) reasons.push_back("ended at its upper bound " + number(p.upper));
+    if (!failed_steps.empty() && !failed_steps[i].empty())
+      reasons.push_back("at the edge of the region where the simulator runs (a finite-difference step failed: " +
+                        failed_steps[i] + ")");
+    if (!sigma.empty() && !(2.0 * id.relative_sigma <= tolerance))
+      reasons.push_back("2 sigma = " + percent(2.0 * id.relative_sigma) + " of the value (Jacobian; tolerance " +
+                        percent(tolerance) + ")");
+    // The other end inside the 95 % likelihood region farthest from this value.
+    double farthest = 0.0;
+    const StartEnd* witness = nullptr;
+    for (const StartEnd& s : starts) {
+      if (s.values.size() != n || !(s.cost - cost <= kLikelihoodRatioCost * residual_variance)) continue;
+      const double away = magnitude > 0.0 ? std::abs(s.values[i] - values[i]) / magnitude : inf;
+      if (away > tolerance && away > farthest) farthest = away, witness = &s;
+    }
+    if (witness)
+      reasons.push_back("another start ends at " + number(witness->values[i]) + " (" + percent(farthest) +
+                        " away) with a cost within the 95 % likelihood region (+" +
+                        number(witness->cost - cost) + ", threshold " +
+                        number(kLikelihoodRatioCost * residual_variance) + ")");
+    id.identified = reasons.empty();
+    for (std::size_t k = 0; k < reasons.size(); ++k) id.reason += (k ? "; " : "") + reasons[k];
+  }
+  return out;
+}
+
+}  // namespace dtwire::calibrate

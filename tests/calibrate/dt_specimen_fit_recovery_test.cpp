@@ -1,0 +1,127 @@
+// Recovery by the FE fit's own file (issue 36): experiments/dt_fe_fit/dt_specimen_fit.toml fits
+// the thesis macro-element's SW and DT sets jointly (8 parameters) to whole-specimen curves of the
+// dem_specimen simulator (tension and the 47 deg pull, to 34 and 42 mm). Here its targets are
+// curves synthesized at its own `reference` values (the published sets,
+// experiments/data/macroelement_thesis_params.json) with Gaussian noise of 0.5 % of each
+// channel's range, and the fit runs from the file's own start and multi-start design, as a new
+// user would run it.
+// INVERSE CRIME: the targets are made by the same simulator (same engine, law, geometry,
+// quasi-static settings and increments) as the fit, so the only model error is the noise. The
+// test shows that the machinery handles failed runs, that the multi-start improves on the single
+// start and that every parameter the data do not identify is named, as the Jacobian and the
+// other starts say (every identified one within 5 % of the truth); it does NOT yet find the
+// global minimum (the cost of the noise), and it says nothing about how well the element
+// represents the FE or a laboratory specimen (the file's fit against the FE curves,
+// docs/calibrate.md, Fit (4)).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <iostream>
+#include <random>
+
+#include "dtwire/calibrate/fit_file.hpp"
+#include "dtwire/calibrate/fitter.hpp"
+#include "dtwire/calibrate/synthesize.hpp"
+
+namespace dtwire::calibrate {
+namespace {
+
+constexpr double kNoise = 0.005;  // x each channel's range
+
+FitDefinition synthetic_fit(std::uint64_t seed) {
+  FitReadOptions options;
+  options.read_targets = false;
+  FitDefinition def = read_fit_file(
+      std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/dt_fe_fit/dt_specimen_fit.toml", options);
+  ParameterValues truth;
+  for (const auto& p : def.parameters) truth[p.name] = p.reference.value();
+  std::mt19937_64 generator(seed);
+  for (auto& e : def.experiments) e.target = synthesize_target(e, truth, kNoise, generator, 81);
+  def.evaluation.threads = 2;
+  return def;
+}
+
+// Relative standard deviations of the parameters from the Jacobian at `values`, computed here
+// independently of the fit's covariance: S = d r / d ln(x) from the evaluator's finite
+// differences in the optimiser's coordinate z (d ln x / d z = 1 for a logarithmic parameter,
+// 1 / z for a linear one), Cov(ln x) = s^2 (S^T S)^-1 with the pooled residual variance
+// s^2 = 2 cost / (m - n) (the fit uses each channel's own variance: the two differ somewhat).
+std::vector<double> jacobian_relative_sigma(ProblemEvaluator& evaluator, const std::vector<double>& values,
+                                            double residual_variance) {
+  const std::vector<double> z = evaluator.to_scaled(values);
+  std::vector<double> r, J;
+  evaluator.residuals_and_jacobian(z, r, J);
+  const auto m = static_cast<Eigen::Index>(r.size()), n = static_cast<Eigen::Index>(z.size());
+  Eigen::MatrixXd S(m, n);
+  const auto& parameters = evaluator.parameters();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    const double dlnx_dz = parameters[k].derivative(z[k]) / values[k];
+    for (Eigen::Index i = 0; i < m; ++i) S(i, j) = J[static_cast<std::size_t>(i * n + j)] * dlnx_dz;
+  }
+  const Eigen::MatrixXd covariance =
+      residual_variance * (S.transpose() * S).completeOrthogonalDecomposition().pseudoInverse();
+  std::vector<double> out;
+  for (Eigen::Index j = 0; j < n; ++j) out.push_back(std::sqrt(std::max(covariance(j, j), 0.0)));
+  return out;
+}
+
+TEST(DtSpecimenFit, RecoversTheIdentifiedParametersAndNamesTheOthers) {
+  FitDefinition def = synthetic_fit(1);
+  ProblemEvaluator evaluator(def.experiments, def.parameters, def.evaluation);
+  const FitResult result = run_fit(evaluator, def.fit);
+  ASSERT_TRUE(result.completed);
+  const double tolerance = def.fit.identification_tolerance;
+  ASSERT_EQ(tolerance, 0.05);  // "within 5 % of the truth" below is this tolerance
+  std::cout << "wall " << result.wall_seconds << " s, " << result.statistics.simulations << " runs ("
+            << result.statistics.failures << " failed), " << result.starts.size() << " starts (best "
+            << result.best_start + 1 << "), cost " << result.cost << "\n";
+  for (const auto& [kind, count] : result.statistics.failure_kinds) std::cout << "  failed: " << count << " x " << kind << "\n";
+  for (const auto& s : result.starts) std::cout << "  start: " << s.state << ", cost " << s.cost << ", " << s.iterations << " iterations\n";
+
+  // The cost of the noise alone is 1/2 x 4 channels x noise^2 = 5e-5 (each channel's residuals
+  // are divided by its range and weighted by 1/points). NOT REACHED (docs/calibrate.md, "Recovery
+  // by dt_specimen_fit.toml"): the best of the eight starts ends near 5e-4, with the DT's N0
+  // pressed against its Nult, where the law rejects the set. What is required: better than the
+  // one start of the issue (0.0037), and failed runs far below the issue's two thirds.
+  const double noise_cost = 0.5 * 4 * kNoise * kNoise;
+  std::cout << "cost " << result.cost << " = " << result.cost / noise_cost << " x the noise's\n";
+  EXPECT_LT(result.cost, 0.0037 / 2);
+  EXPECT_LT(result.statistics.failures, result.statistics.simulations / 5);
+
+  const std::vector<double> sigma = jacobian_relative_sigma(evaluator, result.values, result.residual_variance);
+  std::size_t identified = 0;
+  for (std::size_t i = 0; i < result.values.size(); ++i) {
+    const auto& p = result.parameters[i];
+    const Identification& id = result.identification.at(i);
+    const double error = result.values[i] / *p.reference - 1.0;
+    std::cout << "  " << p.name << ": " << result.values[i] << " +- " << result.sigma[i] << " (truth " << *p.reference
+              << ", error " << 100 * error << " %, 2 sigma " << 200 * sigma[i] << " % by the Jacobian here) "
+              << (id.identified ? "identified" : "NOT IDENTIFIED: " + id.reason) << "\n";
+    // The naming follows the Jacobian: clearly wide (2 sigma > 1.5 x tolerance) is named; clearly
+    // narrow (< tolerance / 1.5) is identified unless a bound or another start's equally good end
+    // says otherwise. Between the two the fit's grouped covariance decides.
+    if (2 * sigma[i] > 1.5 * tolerance) {
+      EXPECT_FALSE(id.identified) << p.name;
+    }
+    if (2 * sigma[i] < tolerance / 1.5 && !id.identified) {
+      EXPECT_EQ(id.reason.find("(Jacobian"), std::string::npos) << p.name << ": " << id.reason;
+    }
+    if (id.identified) {
+      ++identified;
+      EXPECT_LT(std::abs(error), tolerance) << p.name;
+    } else {
+      const bool named = std::any_of(result.warnings.begin(), result.warnings.end(), [&](const std::string& w) {
+        return w.find("'" + p.name + "' is NOT IDENTIFIED") != std::string::npos;
+      });
+      EXPECT_TRUE(named) << p.name;
+    }
+  }
+  // Not a test that passes by naming everything.
+  EXPECT_GE(identified, 1u);
+  for (const auto& q : result.quality) std::cout << "  " << q.experiment << " " << q.quantity << ": NRMSE " << q.nrmse << ", R^2 " << q.r_squared << "\n";
+}
+
+}  // namespace
+}  // namespace dtwire::calibrate

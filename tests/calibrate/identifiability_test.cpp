@@ -1,0 +1,85 @@
+// Identifiability rules (calibrate/include/dtwire/calibrate/identifiability.hpp), failure kinds
+// and the logarithmic coordinate, on hand-made inputs whose answer is known.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dtwire/calibrate/evaluation.hpp"
+#include "dtwire/calibrate/identifiability.hpp"
+
+namespace dtwire::calibrate {
+namespace {
+
+std::vector<ParameterDefinition> two_parameters() {
+  ParameterDefinition a;
+  a.name = "a";
+  a.initial = 100, a.lower = 10, a.upper = 1000;
+  ParameterDefinition b = a;
+  b.name = "b";
+  return {a, b};
+}
+
+TEST(Identifiability, TwoSigmaAgainstTheTolerance) {
+  // 2 sigma = 2 % and 6 % of the value: the first identified to 5 %, the second not.
+  const auto ids = identify(two_parameters(), {100, 200}, {1, 6}, {}, 1.0, 0.01, {}, 0.05);
+  EXPECT_TRUE(ids[0].identified) << ids[0].reason;
+  EXPECT_DOUBLE_EQ(ids[0].relative_sigma, 0.01);
+  EXPECT_FALSE(ids[1].identified);
+  EXPECT_NE(ids[1].reason.find("2 sigma = 6 %"), std::string::npos) << ids[1].reason;
+}
+
+TEST(Identifiability, BoundsFailedStepsAndNoCovariance) {
+  auto ids = identify(two_parameters(), {10, 1000}, {0.01, 0.01}, {}, 1.0, 0.01, {}, 0.05);
+  EXPECT_NE(ids[0].reason.find("lower bound 10"), std::string::npos) << ids[0].reason;
+  EXPECT_NE(ids[1].reason.find("upper bound 1000"), std::string::npos) << ids[1].reason;
+  ids = identify(two_parameters(), {100, 100}, {0.01, 0.01}, {"", "law rejected: Nult_N must be >= N0_N"}, 1.0, 0.01,
+                 {}, 0.05);
+  EXPECT_TRUE(ids[0].identified);
+  EXPECT_FALSE(ids[1].identified);
+  EXPECT_NE(ids[1].reason.find("Nult_N must be >= N0_N"), std::string::npos) << ids[1].reason;
+  ids = identify(two_parameters(), {100, 100}, {}, {}, 1.0, 0.01, {}, 0.05);
+  EXPECT_FALSE(ids[0].identified);
+  EXPECT_TRUE(std::isinf(ids[0].relative_sigma));
+}
+
+// Another start's end inside the 95 % likelihood region (cost within 1.92 s^2) with a parameter
+// 20 % away: that parameter is not identified, the other (1 % away) is; outside the region
+// (cost + 2 s^2) the same end says nothing.
+TEST(Identifiability, AnotherEqualFitFarAwayIsNotIdentified) {
+  const double s2 = 0.01, cost = 1.0;
+  auto ids = identify(two_parameters(), {100, 100}, {0.1, 0.1}, {}, cost, s2, {{{120, 101}, cost + 1.9 * s2}}, 0.05);
+  EXPECT_FALSE(ids[0].identified);
+  EXPECT_NE(ids[0].reason.find("another start ends at 120"), std::string::npos) << ids[0].reason;
+  EXPECT_TRUE(ids[1].identified) << ids[1].reason;
+  ids = identify(two_parameters(), {100, 100}, {0.1, 0.1}, {}, cost, s2, {{{120, 101}, cost + 2.0 * s2}}, 0.05);
+  EXPECT_TRUE(ids[0].identified) << ids[0].reason;
+  // A failed start (no values) is ignored.
+  ids = identify(two_parameters(), {100, 100}, {0.1, 0.1}, {}, cost, s2, {{{}, cost}}, 0.05);
+  EXPECT_TRUE(ids[0].identified);
+}
+
+TEST(FailureKind, NumbersBecomeHashesTheExperimentNameStays) {
+  EXPECT_EQ(failure_kind("experiment 'pull_47deg': dem_specimen: not converged at grip displacement 3.31 mm "
+                         "(leg 2, increment 1): unbalanced force 2.5e-05 of the largest"),
+            "experiment 'pull_47deg': dem_specimen: not converged at grip displacement # mm (leg #, increment #): "
+            "unbalanced force # of the largest");
+  EXPECT_EQ(failure_kind("thesis: Nult_N must be >= N0_N (-1.5E+3)"), "thesis: Nult_N must be >= N#_N (#)");
+}
+
+TEST(LogarithmicParameter, CoordinateIsTheLogOfValueOverScale) {
+  ParameterDefinition p;
+  p.initial = 150, p.lower = 20, p.upper = 2e4, p.logarithmic = true;
+  EXPECT_DOUBLE_EQ(p.to_coordinate(150), 0.0);
+  EXPECT_NEAR(p.to_coordinate(1500), std::log(10.0), 1e-15);
+  EXPECT_NEAR(p.from_coordinate(p.to_coordinate(4080)), 4080, 1e-9);
+  EXPECT_NEAR(p.derivative(p.to_coordinate(4080)), 4080, 1e-9);  // d value / d ln(value)
+  p.logarithmic = false;
+  EXPECT_DOUBLE_EQ(p.to_coordinate(300), 2.0);
+  EXPECT_DOUBLE_EQ(p.derivative(7.0), 150.0);
+  ParameterDefinition bad = p;
+  bad.name = "bad", bad.lower = 0, bad.logarithmic = true;
+  EXPECT_THROW(validate({bad}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace dtwire::calibrate
