@@ -75,12 +75,23 @@ BuiltNet build_net(const RunInput& in) {
     if (set->second.length == "link") parameters = rescale_to_link_length(parameters, link_length);
     if (set->second.law == "wirepm") {
       // As YADE: the reference length is the link's own length; each link its own seed.
-      parameters["reference_length_m"] =
-          (built.mesh.net.nodes[link.b].position - built.mesh.net.nodes[link.a].position).norm();
+      parameters["reference_length_m"] = link_length;
       if (!parameters.count("seed")) parameters["seed"] = static_cast<double>(l + 1);
     }
+    // Thoeni et al. 2013: slack lambda_u l0 r of link l; WirePM as YADE's type 2 (seed -1: its
+    // lambda_u is this link's lambda_u r), the other laws shifted by DistortedLaw.
+    const Distortion& distortion = set->second.distortion;
+    const double variate = distortion_variate(distortion, l);
+    const bool distorted = distortion.mode != DistortionMode::None && distortion.lambda_u > 0.0;
+    if (distorted && set->second.law == "wirepm") {
+      parameters["lambda_u"] = distortion.lambda_u * variate;
+      parameters["seed"] = -1.0;
+    }
     try {
-      built.links.push_back({link, make_contact_law(set->second.law, parameters)});
+      std::unique_ptr<ContactLaw> law = make_contact_law(set->second.law, parameters);
+      if (distorted && set->second.law != "wirepm")
+        law = std::make_unique<DistortedLaw>(std::move(law), distortion.lambda_u * link_length * variate);
+      built.links.push_back({link, std::move(law)});
     } catch (const std::invalid_argument& e) {
       throw InputError(in.file.string(), "links." + tag + ": " + e.what());
     }

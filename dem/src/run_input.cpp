@@ -76,8 +76,42 @@ class Reader {
   std::filesystem::path file_;
 };
 
+// Thoeni et al. 2013 initial slack (distortion.hpp): mode, lambda_u in [0, 1), integer seed.
+Distortion read_distortion(const Reader& r, const toml::table& table, const std::string& prefix, const LinkSetInput& set) {
+  Distortion d;
+  try {
+    d.mode = distortion_mode_from_name(r.text(table, prefix, "distortion", "none"));
+  } catch (const std::invalid_argument& e) {
+    r.fail(table.get("distortion"), prefix + "distortion", e.what());
+  }
+  const toml::node* lambda = table.get("distortion_lambda_u");
+  const toml::node* seed = table.get("distortion_seed");
+  if (d.mode == DistortionMode::None) {
+    if (lambda || seed) r.fail(lambda ? lambda : seed, prefix + (lambda ? "distortion_lambda_u" : "distortion_seed"),
+                               "has no effect without distortion = \"constant\" or \"random\"");
+    return d;
+  }
+  if (!lambda) r.fail(&table, prefix + "distortion_lambda_u", "missing: the slack as a fraction of the link length, in [0, 1)");
+  d.lambda_u = r.number(table, prefix, "distortion_lambda_u", 0.0);
+  if (!(d.lambda_u >= 0.0 && d.lambda_u < 1.0)) r.fail(lambda, prefix + "distortion_lambda_u", "expected a value in [0, 1)");
+  if (d.mode == DistortionMode::Constant && seed)
+    r.fail(seed, prefix + "distortion_seed", "has no effect with distortion = \"constant\" (every link gets lambda_u l0)");
+  if (d.mode == DistortionMode::Random) {
+    if (!seed) r.fail(&table, prefix + "distortion_seed", "missing: an integer in [1, 2147483646]");
+    const auto value = seed->value_exact<std::int64_t>();
+    if (!value || *value < 1 || *value > kLargestDistortionSeed)
+      r.fail(seed, prefix + "distortion_seed", "expected an integer in [1, 2147483646]");
+    d.seed = *value;
+  }
+  if (set.law == "wirepm" && set.parameters.count("lambda_u") && set.parameters.at("lambda_u") != 0.0)
+    r.fail(table.get("distortion"), prefix + "distortion",
+           "the parameter file already sets lambda_u; give the distortion in one place");
+  return d;
+}
+
 LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std::string& prefix) {
-  r.check_keys(table, prefix, {"law", "params", "wire_type", "backbone", "parameters", "length"});
+  r.check_keys(table, prefix, {"law", "params", "wire_type", "backbone", "parameters", "length", "distortion",
+                               "distortion_lambda_u", "distortion_seed"});
   LinkSetInput set;
   const std::string params = r.text(table, prefix, "params", "");
   if (params.empty()) r.fail(&table, prefix + "params", "missing: the parameter file (.json) of this link type");
@@ -127,6 +161,7 @@ LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std:
   } catch (const std::invalid_argument& e) {
     r.fail(&table, prefix + "params", e.what());
   }
+  set.distortion = read_distortion(r, table, prefix, set);
   return set;
 }
 

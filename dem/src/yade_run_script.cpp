@@ -43,18 +43,31 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
   const LinkSetInput& dt = in.link_sets.at(LinkTag::DoubleTwist);
   if (sw.law != "wirepm" || dt.law != "wirepm") throw InputError(file, "links: the YADE export needs WirePM sets for sw and dt");
   const auto curve = backbone_points(sw.parameters);
-  if (curve != backbone_points(dt.parameters))
-    throw InputError(file, "links.dt.backbone: YADE's net material has one backbone for both link types");
-  if (value_or(sw.parameters, "double_twist", 0.0) != 0.0 || value_or(dt.parameters, "double_twist", 0.0) != 1.0 ||
-      value_or(dt.parameters, "double_twist_model", 0.0) != 0.0)
-    throw InputError(file, "links: the YADE export needs a single-wire sw set and a Bertrand double-twist dt set");
+  // YADE's types: 0 Bertrand double twist (no shift), 1 the double twist's own curve on twice the
+  // wire area, 2 as 1 plus the Thoeni distortion (type, lambdau, seed, lambdaF on WireMat).
+  const bool own_dt_curve = value_or(dt.parameters, "double_twist_model", 0.0) == 1.0;
+  const bool distorted = sw.distortion.mode != DistortionMode::None;
+  if (!own_dt_curve && curve != backbone_points(dt.parameters))
+    throw InputError(file, "links.dt.backbone: YADE's Bertrand net material has one backbone for both link types");
+  if (value_or(sw.parameters, "double_twist", 0.0) != 0.0 || value_or(dt.parameters, "double_twist", 0.0) != 1.0)
+    throw InputError(file, "links: the YADE export needs a single-wire sw set and a double-twist dt set");
   for (const LinkSetInput* set : {&sw, &dt})
-    if (value_or(set->parameters, "lambda_u", 0.0) != 0.0 || value_or(set->parameters, "lambda_F", 1.0) != 1.0)
-      throw InputError(file, "links: the YADE export needs undistorted WirePM sets (lambda_u = 0)");
+    if (value_or(set->parameters, "lambda_u", 0.0) != 0.0)
+      throw InputError(file, "links: the YADE export takes the distortion from links.*.distortion, not from lambda_u in the parameter file");
+  if (sw.distortion.mode != dt.distortion.mode || sw.distortion.lambda_u != dt.distortion.lambda_u ||
+      sw.distortion.seed != dt.distortion.seed || value_or(sw.parameters, "lambda_F", 1.0) != value_or(dt.parameters, "lambda_F", 1.0))
+    throw InputError(file, "links.dt.distortion: YADE's net material has one distortion (type, lambdau, seed, lambdaF) for sw and dt");
+  if (!distorted && value_or(sw.parameters, "lambda_F", 1.0) != 1.0)
+    throw InputError(file, "links: lambda_F acts only with a distortion");
+  if (distorted && !own_dt_curve)
+    throw InputError(file, "links.dt.params: YADE's distortion (type 2) needs the double twist's own curve (double_twist_model 1); its Bertrand type 0 has no shift");
+  const int yade_type = distorted ? 2 : (own_dt_curve ? 1 : 0);
   if (value_or(sw.parameters, "diameter_m", 0.0) != value_or(dt.parameters, "diameter_m", -1.0))
     throw InputError(file, "links.dt.params: sw and dt sets must have the same wire diameter");
 
   BuiltNet built = build_net(in);
+  std::vector<double> slacks;  // dL of each link as our engine has it
+  for (const EngineLink& link : built.links) slacks.push_back(dynamic_cast<const WirePmLaw&>(*link.law).backbone().shift);
   const std::vector<Vector3> stretched = pretensioned_positions(in, built.mesh);
   // The critical step as our engine computes it, with the platter.
   EngineOptions options = in.engine;
@@ -105,14 +118,37 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
   }
   s << "]\nstrain_stress = [";
   for (const auto& [e, sigma] : curve) s << "(" << format_number(e) << "," << format_number(sigma) << "),";
-  s << "]\n\n"
+  s << "]\n";
+  if (own_dt_curve) {
+    s << "strain_stress_dt = [";
+    for (const auto& [e, sigma] : backbone_points(dt.parameters)) s << "(" << format_number(e) << "," << format_number(sigma) << "),";
+    s << "]\n";
+  }
+  if (distorted) {
+    // Our links in our order, and the slack dL our engine gives each (distortion.hpp).
+    s << "# Links (node ids) in dtwire's order and the slack dL [m] dtwire gives each: YADE draws one\n"
+         "# variate per interaction in creation order, so the links are created in this order.\n"
+         "link_pairs = [";
+    for (std::size_t l = 0; l < built.mesh.net.links.size(); ++l)
+      s << "(" << built.mesh.net.links[l].a << "," << built.mesh.net.links[l].b << "),";
+    s << "]\nexpected_slack = [";
+    for (double slack : slacks) s << format_number(slack) << ",";
+    s << "]\n";
+  }
+  s << "\n"
     << "# One material for the net: YADE finds double twists as links between consecutive ids.\n"
     << "# young/poisson also set the node-facet stiffness (see below); poisson is the Bertrand nu.\n"
     << "wire = O.materials.append(WireMat(young=" << format_number(young) << ", poisson=" << format_number(nu)
     << ", frictionAngle=math.atan(" << format_number(in.contact.friction) << "), density=7850.0, diameter="
     << format_number(value_or(sw.parameters, "diameter_m", 0.0027)) << ",\n    strainStressValues=strain_stress, isDoubleTwist=True, lambdak="
     << format_number(value_or(dt.parameters, "lambda_k", 0.73)) << ", lambdaEps="
-    << format_number(value_or(dt.parameters, "lambda_eps", 0.47)) << ", type=0))\n"
+    << format_number(value_or(dt.parameters, "lambda_eps", 0.47)) << ", type=" << yade_type
+    << (own_dt_curve ? ", strainStressValuesDT=strain_stress_dt" : "");
+  if (distorted)
+    s << ",\n    lambdau=" << format_number(sw.distortion.lambda_u)
+      << ", seed=" << (sw.distortion.mode == DistortionMode::Random ? sw.distortion.seed : -1)
+      << ", lambdaF=" << format_number(value_or(sw.parameters, "lambda_F", 1.0));
+  s << "))\n"
     << "plate = O.materials.append(FrictMat(young=" << format_number(young) << ", poisson=" << format_number(facet_poisson)
     << ", frictionAngle=math.atan(" << format_number(in.contact.friction) << "), density=7850.0))\n"
     << "# Facet-sphere: kn = " << format_number(kn) << " N/m, ks = " << format_number(ks) << " N/m\n\n"
@@ -129,8 +165,15 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
        "                    [Law2_ScGeom_WirePhys_WirePM(), Law2_ScGeom_FrictPhys_CundallStrack()]),\n"
        "    NewtonIntegrator(damping=damping, gravity=(0, 0, 0), label='newton'),\n"
        "]\n"
-       "O.dt = time_step\n"
-       "O.step()  # creates the links at zero force (no load acts yet)\n"
+       "O.dt = time_step\n";
+  if (distorted)
+    s << "for a, b in link_pairs:\n"
+         "    createInteraction(a, b)\n"
+         "worst = max(abs(O.interactions[a, b].phys.dL - e) for (a, b), e in zip(link_pairs, expected_slack))\n"
+         "if worst > 1e-12:\n"
+         "    raise SystemExit('YADE drew other slacks than dtwire: largest difference %g m' % worst)\n"
+         "print('slack of every link as dtwire drew it; largest difference', worst, 'm')\n";
+  s << "O.step()  # creates the links at zero force (no load acts yet)\n"
        "aabb.aabbEnlargeFactor = -1\nig2.interactionDetectionFactor = -1\n"
        "links = sum(1 for i in O.interactions if i.isReal and hasattr(i.phys, 'isLinked') and i.phys.isLinked)\n"
     << "if links != " << static_cast<long>(links_expected) << ":\n"

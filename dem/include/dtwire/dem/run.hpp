@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dtwire/core/curve.hpp"
+#include "dtwire/dem/distortion.hpp"
 #include "dtwire/dem/engine.hpp"
 #include "dtwire/dem/hex_mesh.hpp"
 
@@ -20,6 +21,7 @@ struct LinkSetInput {
   // strain (dtwire/dem/length_rescaling.hpp).
   std::string length = "set";
   std::vector<std::filesystem::path> files;
+  Distortion distortion;  // Thoeni et al. 2013 initial slack of every link of this type
 };
 
 // How the supported edges hold their nodes (docs/dem_engine.md, "Supports and initial state").
@@ -71,7 +73,9 @@ void override_link_set(RunInput& input, const std::string& tag, const std::files
                        const std::string& option);
 
 // The mesh, node fixities and one law per link (reference length of WirePM links set to the
-// link's own length, as YADE does). Throws InputError naming the field.
+// link's own length, as YADE does). With a distortion, link k gets the slack
+// lambda_u l0 r_k (distortion.hpp): WirePM through its own lambda_u (YADE's type 2), every other
+// law wrapped in DistortedLaw. Throws InputError naming the field.
 struct BuiltNet {
   HexMesh mesh;
   std::vector<EngineLink> links;
