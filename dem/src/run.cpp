@@ -97,6 +97,7 @@ std::vector<Vector3> pretensioned_positions(const RunInput& in, const HexMesh& m
 }
 
 RunSummary run_simulation(const RunInput& in, const RunOptions& options) {
+  if (in.tool == "strip_tension") return run_strip_tension(in, options);
   const auto wall_start = std::chrono::steady_clock::now();
   BuiltNet built = build_net(in);
   EngineOptions engine_options = in.engine;
