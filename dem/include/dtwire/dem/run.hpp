@@ -1,6 +1,7 @@
 #pragma once
-// `dtwire dem run FILE`: a validation run of the wire net (punch, cyclic punch, impact) from a
-// TOML input (format in docs/dem_engine.md), its outputs, and the same run as a YADE script.
+// `dtwire dem run FILE`: a validation run of the wire net (punch, cyclic punch, impact, strip
+// tension: strip_tension.hpp) from a TOML input (format in docs/dem_engine.md), its outputs, and
+// the same run as a YADE script.
 #include <filesystem>
 #include <map>
 #include <string>
