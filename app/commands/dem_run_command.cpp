@@ -27,6 +27,21 @@ struct RunCommandOptions {
   std::vector<std::string> compare;
 };
 
+void print_strip_summary(const dem::RunInput& input, const dem::RunSummary& s, const std::filesystem::path& out) {
+  const dem::StripFigures& f = s.strip;
+  std::cout << input.title << ": " << s.nodes << " nodes, " << s.links << " links, " << s.steps << " steps of "
+            << s.time_step << " s (critical " << s.critical_time_step << " s), " << s.wall_seconds << " s wall\n"
+            << "strip " << f.width << " m wide, free length " << f.free_length << " m; strength " << f.strength_per_width / 1000.0
+            << " kN/m (peak " << s.peak_force / 1000.0 << " kN at " << 1000.0 * s.displacement_at_peak << " mm, strain "
+            << 100.0 * f.strain_at_peak << " %); secant EA (10-50 % of the peak) ";
+  if (f.secant.defined) std::cout << f.secant.value / 1000.0 << " kN/m";
+  else std::cout << "undefined";
+  std::cout << "; broken links " << s.broken_links << (f.torn ? " (torn through)" : "") << "; largest energy balance error "
+            << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"
+            << "-> " << (out / "curve.csv").string() << ", " << (out / "results.h5").string() << ", "
+            << (out / "summary.json").string() << "\n";
+}
+
 int run_dem_run(const RunCommandOptions& o) {
   dem::RunInput input = dem::read_run_input(o.file, o.set_entries);
   for (const std::string& entry : o.set_params) {
@@ -55,14 +70,19 @@ int run_dem_run(const RunCommandOptions& o) {
   options.quiet = o.quiet;
   options.write_frames = !o.no_frames;
   const dem::RunSummary s = dem::run_simulation(input, options);
-  std::cout << input.title << ": " << s.nodes << " nodes, " << s.links << " links, " << s.steps << " steps of "
+  const bool strip = input.tool == "strip_tension";
+  if (strip) print_strip_summary(input, s, out);
+  else std::cout << input.title << ": " << s.nodes << " nodes, " << s.links << " links, " << s.steps << " steps of "
             << s.time_step << " s (critical " << s.critical_time_step << " s), " << s.wall_seconds << " s wall\n"
             << "sag after settling " << 1000.0 * s.sag << " mm; peak force " << s.peak_force / 1000.0 << " kN at "
             << 1000.0 * s.displacement_at_peak << " mm; broken links " << s.broken_links
             << "; largest energy balance error " << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"
             << "-> " << (out / "curve.csv").string() << ", " << (out / "results.h5").string() << "\n";
   if (!o.plot.empty()) {
-    std::vector<std::string> arguments{o.plot, "tool_displacement", "tool_force", "Tool force against displacement (legend: run titles)", (out / "curve.csv").string()};
+    std::vector<std::string> arguments{o.plot, strip ? "strain" : "tool_displacement", strip ? "force_per_width" : "tool_force",
+                                       strip ? "Strip force per width against strain (legend: run titles)"
+                                             : "Tool force against displacement (legend: run titles)",
+                                       (out / "curve.csv").string()};
     arguments.insert(arguments.end(), o.compare.begin(), o.compare.end());
     run_plot_script("plot_curves.py", arguments);
     std::cout << "plot: " << o.plot << "\n";
@@ -74,7 +94,7 @@ int run_dem_run(const RunCommandOptions& o) {
 
 void add_dem_run_command(CLI::App& dem, CommandSet& commands) {
   auto o = std::make_shared<RunCommandOptions>();
-  CLI::App* run = dem.add_subcommand("run", "Mesh-scale DEM run of a wire net (punch, cyclic punch, impact) from a TOML input");
+  CLI::App* run = dem.add_subcommand("run", "Mesh-scale DEM run of a wire net (punch, cyclic punch, impact, strip tension) from a TOML input");
   run->add_option("file", o->file, "Run input (.toml, docs/dem_engine.md)")->required()->check(CLI::ExistingFile);
   run->add_option("-o,--out", o->out, "Output directory (default dem-out/<input name>)");
   run->add_option("--threads", o->threads, "Threads for the link and node updates (default: the input's)")

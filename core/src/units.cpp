@@ -20,6 +20,8 @@ const std::vector<Unit>& unit_table() {
       {"Nm", Dimension::Moment, 1.0},        {"Nmm", Dimension::Moment, 1e-3},
       {"1", Dimension::Dimensionless, 1.0},  {"pct", Dimension::Dimensionless, 1e-2},
       {"mps", Dimension::Velocity, 1.0},     {"mmps", Dimension::Velocity, 1e-3},  // m/s, mm/s
+      // Force per unit width of a mesh strip, N/m and kN/m (no '_': a column splits at its last one).
+      {"Npm", Dimension::ForcePerLength, 1.0}, {"kNpm", Dimension::ForcePerLength, 1e3},
   };
   return units;
 }
@@ -36,6 +38,7 @@ std::string_view dimension_name(Dimension dimension) {
     case Dimension::Moment: return "moment";
     case Dimension::Dimensionless: return "dimensionless";
     case Dimension::Velocity: return "velocity";
+    case Dimension::ForcePerLength: return "force per length";
   }
   return "unknown";
 }

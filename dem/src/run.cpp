@@ -165,6 +165,7 @@ RunInput with_preload(const RunInput& input, const RunOptions& options) {
 }  // namespace
 
 RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
+  if (input.tool == "strip_tension") return run_strip_tension(input, options);
   const auto wall_start = std::chrono::steady_clock::now();
   const RunInput in = with_preload(input, options);
   BuiltNet built = build_net(in);

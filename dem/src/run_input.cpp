@@ -191,6 +191,35 @@ void apply_override(toml::table& root, const std::string& entry) {
   table->insert_or_assign(path.substr(start), *parsed.get("value"));
 }
 
+// `[tool] kind = "strip_tension"` (strip_tension.hpp): the clamps replace the boundary; the
+// platter and boulder keys do not apply.
+void read_strip_tension(const Reader& r, const toml::table& root, const toml::table& tool, RunInput& in) {
+  const std::set<std::string> strip_keys = {"kind", "direction", "clamp_depth_m", "speed_m_per_s", "travel_m"};
+  for (const auto& [key, node] : tool)
+    if (!strip_keys.count(std::string(key.str())))
+      r.fail(&node, "tool." + std::string(key.str()),
+             "not a strip_tension key (expected direction, clamp_depth_m, speed_m_per_s, travel_m)");
+  if (const toml::table* boundary = root.get_as<toml::table>("boundary"))
+    for (const auto& [key, node] : *boundary)
+      r.fail(&node, "boundary." + std::string(key.str()),
+             "not used by strip_tension: the clamps hold the strip's ends and its edges along the pull are free");
+  in.pinned_sides = 0;
+  const std::string direction = r.text(tool, "tool.", "direction", "along_twists");
+  if (direction != "along_twists" && direction != "across_twists")
+    r.fail(tool.get("direction"), "tool.direction", "expected along_twists or across_twists");
+  const bool along = direction == "along_twists";
+  in.strip.direction = along ? PullDirection::AlongTwists : PullDirection::AcrossTwists;
+  in.speed = r.required_number(tool, "tool.", "speed_m_per_s", true);
+  in.travel = r.required_number(tool, "tool.", "travel_m", true);
+  in.strip.clamp_depth = r.required_number(tool, "tool.", "clamp_depth_m", true);
+  // The panel checks above already refuse a strip narrower than one opening across the pull.
+  const double length = along ? in.mesh.height : in.mesh.width;
+  if (in.strip.clamp_depth >= 0.5 * length)
+    r.fail(tool.get("clamp_depth_m"), "tool.clamp_depth_m",
+           "the two clamps leave no free length: the strip is " + std::to_string(length) + " m long along the pull (mesh." +
+               (along ? "height_m" : "width_m") + "); expected a depth below half of it");
+}
+
 }  // namespace
 
 RunInput read_run_input(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
@@ -304,10 +333,13 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   if (!tool) r.fail(nullptr, "tool", "missing table");
   r.check_keys(*tool, "tool.", {"kind", "base_radius_m", "height_m", "gap_m", "speed_m_per_s", "travel_m",
                                 "force_levels_N", "unload_force_N", "side_m", "corner_plane_m", "mass_kg",
-                                "duration_s", "kn_N_per_m", "ks_N_per_m", "friction"});
+                                "duration_s", "kn_N_per_m", "ks_N_per_m", "friction", "direction", "clamp_depth_m"});
   in.tool = r.text(*tool, "tool.", "kind", "platter");
-  if (in.tool != "platter" && in.tool != "boulder" && in.tool != "none")
-    r.fail(tool->get("kind"), "tool.kind", "expected platter, boulder or none");
+  if (in.tool == "strip_tension") read_strip_tension(r, root, *tool, in);
+  else if (in.tool != "platter" && in.tool != "boulder" && in.tool != "none")
+    r.fail(tool->get("kind"), "tool.kind", "expected platter, boulder, none or strip_tension");
+  for (const char* key : {"direction", "clamp_depth_m"})
+    if (in.tool != "strip_tension" && tool->get(key)) r.fail(tool->get(key), std::string("tool.") + key, "only for kind = \"strip_tension\"");
   in.platter_base_radius = r.number(*tool, "tool.", "base_radius_m", in.platter_base_radius, true);
   in.platter_height = r.number(*tool, "tool.", "height_m", in.platter_height, true);
   in.start_gap = r.number(*tool, "tool.", "gap_m", in.start_gap);

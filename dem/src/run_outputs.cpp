@@ -147,6 +147,16 @@ void RunRecorder::frame(const Engine& engine, double time) {
   frames_.emplace_back(time, name);
 }
 
+void RunRecorder::write_frame_index() const {
+  if (frames_.empty()) return;
+  write_file_atomically(options_.out / "net.pvd", [&](std::ostream& os) {
+    os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+    for (const auto& [time, name] : frames_)
+      os << "  <DataSet timestep=\"" << format_number(time) << "\" file=\"frames/" << name << "\"/>\n";
+    os << "</Collection>\n</VTKFile>\n";
+  });
+}
+
 void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   std::vector<std::filesystem::path> inputs{input_.file};
   for (const auto& [tag, set] : input_.link_sets)
@@ -200,14 +210,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   write_csv(forces, options_.out / "link_force_histogram.csv");
   write_csv(angles, options_.out / "pulling_angle_histogram.csv");
 
-  if (!frames_.empty()) {
-    write_file_atomically(options_.out / "net.pvd", [&](std::ostream& os) {
-      os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
-      for (const auto& [time, name] : frames_)
-        os << "  <DataSet timestep=\"" << format_number(time) << "\" file=\"frames/" << name << "\"/>\n";
-      os << "</Collection>\n</VTKFile>\n";
-    });
-  }
+  write_frame_index();
 
   Results results;
   results.curves = {{"history", history}, {"link_force_histogram", forces}, {"pulling_angle_histogram", angles}};

@@ -14,6 +14,8 @@ class RunRecorder {
   // `mean_force`: the tool's force on the net averaged over the output interval.
   void record(const Engine& engine, double time, double displacement, double velocity, const Vector3& mean_force);
   void frame(const Engine& engine, double time);
+  // net.pvd listing the frames written so far (finish writes it; the strip tension calls it alone).
+  void write_frame_index() const;
   // Writes every file; fills summary's curve figures.
   void finish(const Engine& engine, RunSummary& summary);
 

@@ -71,7 +71,9 @@ TEST(Distortion, ThesisMacroElementPulledIsItsOwnCurveShiftedByTheSlack) {
   double peak = 0.0, worst = 0.0;
   for (int i = 1; i <= slack_steps; ++i) {
     distorted.update(axial(step));
-    if (i < slack_steps) ASSERT_EQ(distorted.forces()(0), 0.0) << "inside the slack, step " << i;  // the last one ends at it
+    if (i < slack_steps) {  // the last one ends at it
+      ASSERT_EQ(distorted.forces()(0), 0.0) << "inside the slack, step " << i;
+    }
   }
   for (int i = 1; i <= pulled_steps && !plain->broken(); ++i) {
     distorted.update(axial(step));

@@ -7,7 +7,7 @@
 
 namespace dtwire {
 
-enum class Dimension { Length, Force, Stress, Time, Angle, Energy, Moment, Dimensionless, Velocity };
+enum class Dimension { Length, Force, Stress, Time, Angle, Energy, Moment, Dimensionless, Velocity, ForcePerLength };
 
 std::string_view dimension_name(Dimension dimension);
 

@@ -1,6 +1,7 @@
 #pragma once
-// `dtwire dem run FILE`: a validation run of the wire net (punch, cyclic punch, impact) from a
-// TOML input (format in docs/dem_engine.md), its outputs, and the same run as a YADE script.
+// `dtwire dem run FILE`: a validation run of the wire net (punch, cyclic punch, impact, strip
+// tension: strip_tension.hpp) from a TOML input (format in docs/dem_engine.md), its outputs, and
+// the same run as a YADE script.
 #include <filesystem>
 #include <map>
 #include <string>
@@ -10,6 +11,7 @@
 #include "dtwire/dem/distortion.hpp"
 #include "dtwire/dem/engine.hpp"
 #include "dtwire/dem/hex_mesh.hpp"
+#include "dtwire/dem/strip_tension.hpp"
 
 namespace dtwire::dem {
 
@@ -46,8 +48,9 @@ struct RunInput {
   double wall_below = 0.0;
   EngineOptions engine;
   double settle_time = 0.0;  // [s] gravity only, before the tool moves
-  // Tool: "platter", "boulder" or "none".
+  // Tool: "platter", "boulder", "none" or "strip_tension" (strip_tension.hpp).
   std::string tool = "platter";
+  StripTensionInput strip;
   ToolContactLaw contact;
   double platter_base_radius = 0.5, platter_height = 0.181;  // Pol et al. 2017 (STL of the PFC7 example)
   double start_gap = 0.005;  // tool surface below the lowest node surface at the start [m]
@@ -105,6 +108,7 @@ struct RunSummary {
   std::size_t nodes = 0, links = 0, broken_links = 0;
   long steps = 0;
   double wall_seconds = 0.0;
+  StripFigures strip;  // kind = "strip_tension" only
 };
 
 // Runs and writes <out>/curve.csv, results.h5, histograms, frames; throws InputError for input
