@@ -132,7 +132,12 @@ HexMesh generate_hex_mesh(const HexMeshSpec& spec) {
     unsigned sides = 0;
     if (column_of[n] == 0) sides |= kLeft;
     if (column_of[n] == mesh.columns - 1) sides |= kRight;
-    if (degree[n] < 3) sides |= node.position.y() < 0.5 * spec.height ? kBottom : kTop;
+    // A node misses wires below or above it (bottom or top row) when it has fewer than a node of
+    // its column has inside the panel: 3 (a twist and two wires), 2 in the first and last
+    // columns (one neighbouring column), 1 in a panel one column wide.
+    const bool edge_column = column_of[n] == 0 || column_of[n] == mesh.columns - 1;
+    const int inside_degree = mesh.columns == 1 ? 1 : (edge_column ? 2 : 3);
+    if (degree[n] < inside_degree) sides |= node.position.y() < 0.5 * spec.height ? kBottom : kTop;
     mesh.sides[n] = sides;
   }
   return mesh;

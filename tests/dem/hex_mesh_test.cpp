@@ -1,6 +1,8 @@
 // The hexagonal DT mesh generator: counts, link lengths, opening, mass per area, boundary sides.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <set>
 
@@ -101,6 +103,31 @@ TEST(DemHexMesh, BoundarySidesSelvedgeGabionAndErrors) {
       EXPECT_GT(x, 1e-9);
     }
   }
+  // Bottom and top are the first and last rows only: an edge column's nodes inside the panel
+  // are left or right, not bottom or top (they once were, so that "two edges" pinned four).
+  double low = 1e300, high = -1e300;
+  for (const NetNode& node : mesh.net.nodes) {
+    low = std::min(low, node.position.y());
+    high = std::max(high, node.position.y());
+  }
+  const double period = 2.0 * (spec.twist_length + 0.5 * (spec.opening_height - spec.twist_length));
+  std::size_t bottom = 0, top = 0;
+  for (std::size_t n = 0; n < mesh.net.nodes.size(); ++n) {
+    const double y = mesh.net.nodes[n].position.y();
+    if (mesh.sides[n] & kBottom) {
+      ++bottom;
+      EXPECT_LT(y, low + period) << "node " << n;
+    }
+    if (mesh.sides[n] & kTop) {
+      ++top;
+      EXPECT_GT(y, high - period) << "node " << n;
+    }
+    if (y > low + period && y < high - period) {
+      EXPECT_FALSE(mesh.sides[n] & (kBottom | kTop)) << "node " << n << " inside the panel";
+    }
+  }
+  EXPECT_GT(bottom, 0u);
+  EXPECT_GT(top, 0u);
   const HexMeshSpec gabion = hex_pattern("8x10_3.1mm");
   EXPECT_DOUBLE_EQ(gabion.twist_length, 0.035);
   EXPECT_DOUBLE_EQ(gabion.wire_diameter, 0.0031);
