@@ -1,5 +1,6 @@
 #include "dtwire/dem/thesis_macroelement.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "law_parameters.hpp"
@@ -32,6 +33,16 @@ ThesisMacroElement::ThesisMacroElement(const ParameterMap& p) {
     throw std::invalid_argument("thesis: damage_scales_forces must be 0 (as the PFC7 plugin) or 1, got " +
                                 std::to_string(scales));
   damage_scales_forces_ = scales == 1.0;
+  // An optional break at a plastic strain (u_p / reference length), as wire-scale ductility data
+  // give it (EN 10223-3: elongation at fracture >= 8 %); 0: the bond breaks by damage only.
+  break_plastic_strain_ = detail::optional_parameter(p, "break_plastic_strain", 0.0);
+  if (!(break_plastic_strain_ >= 0.0))
+    throw std::invalid_argument("thesis: break_plastic_strain must be >= 0 (0: off)");
+  if (break_plastic_strain_ > 0.0) {
+    reference_length_ = detail::optional_parameter(p, "reference_length_m", 0.0);
+    if (!(reference_length_ > 0.0))
+      throw std::invalid_argument("thesis: break_plastic_strain needs the bond's reference_length_m > 0");
+  }
 
   stiffness_.axial = positive_parameter(p, law_name, "EA_N");
   stiffness_.moment = positive_parameter(p, law_name, "EI_Nm2_per_deg_convention");
@@ -88,6 +99,7 @@ void ThesisMacroElement::update(const Vector6& increment) {
                   N_mean * dup + M_mean * dwp_deg / degrees_per_radian});
     damage_factor_ = d1;
     if (d1 <= detail::DamageParameters::break_factor) broken_ = true;
+    if (break_plastic_strain_ > 0.0 && std::abs(after.y[3]) >= break_plastic_strain_ * reference_length_) broken_ = true;
     return !broken_;
   };
   last_substeps_ = detail::integrate_increment(surface_, stiffness_, settings_, plastic_, dq, on_substep);

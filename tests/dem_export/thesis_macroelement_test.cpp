@@ -232,6 +232,31 @@ TEST_F(ThesisFixture, PluginDamageModeTransmitsUndamagedForceAndBreaksAtTheSameW
                std::invalid_argument);
 }
 
+// A ductility break (break_plastic_strain): the bond breaks in the increment where the plastic
+// elongation reaches the strain times the reference length, long before the damage work W2.
+TEST_F(ThesisFixture, PlasticStrainBreakAtTheGivenElongation) {
+  ParameterMap ductile = p;
+  ductile["break_plastic_strain"] = 0.05;  // 3 mm on the 0.06 m reference length
+  ThesisMacroElement law(ductile);
+  const double step = 1e-5, limit = 0.05 * p.at("reference_length_m");
+  double last_plastic = 0.0;
+  for (int i = 0; i < 10000 && !law.broken(); ++i) {
+    last_plastic = law.plastic_elongation();
+    law.update(test::generalised(step, 0.0));
+  }
+  ASSERT_TRUE(law.broken());
+  EXPECT_LT(last_plastic, limit);
+  EXPECT_GE(law.plastic_elongation(), limit);
+  EXPECT_LT(law.plastic_elongation(), limit + step);  // within the increment that crossed it
+  EXPECT_LT(law.damage_work(), p.at("W2_J"));
+  EXPECT_EQ(law.forces().norm(), 0.0);
+  const EnergyAccount e = law.energy();
+  EXPECT_NEAR(e.external, e.plastic + e.damage, 1e-9 * e.external);  // tol: round-off
+  ParameterMap no_length = ductile;
+  no_length.erase("reference_length_m");
+  EXPECT_THROW(ThesisMacroElement{no_length}, std::invalid_argument);
+}
+
 // (e) Free oscillation of a node on the bond (axial and rotational, symplectic Euler): the first
 // swing yields; the forces always follow the sign of the elastic displacement (no spurious sign
 // inversion), the mechanical energy never grows, and the late elastic swings are symmetric.

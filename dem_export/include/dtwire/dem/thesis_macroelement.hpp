@@ -10,9 +10,11 @@
 //   D_m, EA_N (axial stiffness, N per m of elongation), EI_Nm2_per_deg_convention (moment per
 //   degree), N0_N, Nult_N, Nc_N, m_f, beta_f, k_F (1/m), k_M (1/deg), m_g, alpha_g, beta_g,
 //   W1_J, W2_J, alpha_d; optional: slide_a (must be 0: the sliding spring is not implemented),
-//   slide_b, reference_length_m (ignored), rk_tolerance (default 1e-6), damage_scales_forces (1:
+//   slide_b, reference_length_m (read only for break_plastic_strain), rk_tolerance (default 1e-6), damage_scales_forces (1:
 //   beyond W1 the axial force and moment are d times the effective ones, default; 0: as the PFC7
-//   plugin, which tracks d but transmits the undamaged forces until the bond is deleted at d <= 0.01).
+//   plugin, which tracks d but transmits the undamaged forces until the bond is deleted at d <= 0.01),
+//   break_plastic_strain (0: off, default; else the bond also breaks when |u_p| reaches it times
+//   reference_length_m, a wire's ductility).
 #include "dtwire/dem/contact_law.hpp"
 #include "dtwire/dem/detail/macroelement_damage.hpp"
 #include "dtwire/dem/detail/macroelement_integrator.hpp"
@@ -58,6 +60,7 @@ class ThesisMacroElement final : public ContactLaw {
   detail::EnergyTotals energy_;
   bool broken_ = false;
   bool damage_scales_forces_ = true;
+  double break_plastic_strain_ = 0.0, reference_length_ = 0.0;
   int last_substeps_ = 0;
 };
 
