@@ -3,6 +3,7 @@
 // hand-solvable chain once its hexagons have closed; the reaction balance of the two clamps; the
 // 10-50 % chord of the strip figures on curves with a known slope.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <fstream>
@@ -18,8 +19,9 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kE = 200e9;         // [Pa] linear backbone
 constexpr double kDiameter = 0.0027;  // [m]
 
+// One folder per process: ctest runs the test cases side by side.
 std::filesystem::path folder() {
-  const auto dir = std::filesystem::temp_directory_path() / "dtwire_strip_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("dtwire_strip_test_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   return dir;
 }

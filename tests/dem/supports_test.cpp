@@ -14,10 +14,11 @@ namespace {
 
 const std::string kData = std::string(DTWIRE_SOURCE_DIR) + "/experiments/data/";
 
-std::filesystem::path small_net() {
+// One input file per run: ctest runs the test cases side by side.
+std::filesystem::path small_net(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / "dtwire_dem_supports_test";
   std::filesystem::create_directories(dir);
-  const auto path = dir / "net.toml";
+  const auto path = dir / (name + ".toml");
   std::ofstream(path) << "[mesh]\npattern = \"8x10_2.7mm\"\nwidth_m = 0.6\nheight_m = 0.6\n"
                          "[links.sw]\nparams = \"" + kData + "wirepm_sw_2.7mm.json\"\nbackbone = \"" + kData + "sw_2.7mm_dem_backbone.csv\"\n"
                          "[links.dt]\nparams = \"" + kData + "wirepm_dt_2.7mm.json\"\nbackbone = \"" + kData + "sw_2.7mm_dem_backbone.csv\"\n"
@@ -32,8 +33,9 @@ RunSummary run(const std::vector<std::string>& set, const std::string& name) {
   options.quiet = true;
   options.write_frames = false;
   options.threads = 1;
-  options.out = small_net().parent_path() / name;
-  return run_simulation(read_run_input(small_net(), set), options);
+  const auto input = small_net(name);
+  options.out = input.parent_path() / name;
+  return run_simulation(read_run_input(input, set), options);
 }
 
 TEST(DemSupports, SlackNetRestsOnTheWallAndLoadsLater) {
