@@ -157,6 +157,18 @@ void RunRecorder::write_frame_index() const {
   });
 }
 
+void add_engine_parameters(Results& results, const RunInput& input, const RunSummary& summary) {
+  auto parameter = [&](const std::string& name, double value, const std::string& unit) {
+    results.parameters.push_back({name, value, unit, std::nullopt});
+  };
+  parameter("time_step_s", summary.time_step, "s");
+  parameter("critical_time_step_s", summary.critical_time_step, "s");
+  parameter("mass_scale", input.engine.mass_scale, "1");
+  parameter("local_damping", input.engine.local_damping, "1");
+  parameter("nodes", static_cast<double>(summary.nodes), "1");
+  parameter("links", static_cast<double>(summary.links), "1");
+}
+
 void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   std::vector<std::filesystem::path> inputs{input_.file};
   for (const auto& [tag, set] : input_.link_sets)
@@ -214,15 +226,10 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
 
   Results results;
   results.curves = {{"history", history}, {"link_force_histogram", forces}, {"pulling_angle_histogram", angles}};
+  add_engine_parameters(results, input_, summary);
   auto parameter = [&](const std::string& name, double value, const std::string& unit) {
     results.parameters.push_back({name, value, unit, std::nullopt});
   };
-  parameter("time_step_s", summary.time_step, "s");
-  parameter("critical_time_step_s", summary.critical_time_step, "s");
-  parameter("mass_scale", input_.engine.mass_scale, "1");
-  parameter("local_damping", input_.engine.local_damping, "1");
-  parameter("nodes", static_cast<double>(summary.nodes), "1");
-  parameter("links", static_cast<double>(summary.links), "1");
   parameter("mass_per_area_kg_per_m2", mesh_.mass_per_area, "1");
   parameter("sag_after_settling_m", summary.sag, "m");
   parameter("peak_force_N", summary.peak_force, "N");

@@ -4,9 +4,14 @@
 // at the end), frames/net_<k>.vtu + net.pvd for ParaView.
 #include <vector>
 
+#include "dtwire/core/results_store.hpp"
 #include "dtwire/dem/run.hpp"
 
 namespace dtwire::dem {
+
+// The run's engine figures every results.h5 carries (time step, critical step, mass scale,
+// damping, nodes, links), shared by the punch and the strip tension.
+void add_engine_parameters(Results& results, const RunInput& input, const RunSummary& summary);
 
 class RunRecorder {
  public:

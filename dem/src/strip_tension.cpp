@@ -289,15 +289,10 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
 
   Results results;
   results.curves = {{"history", history}};
+  add_engine_parameters(results, in, summary);
   auto parameter = [&](const std::string& name, double value, const std::string& unit) {
     results.parameters.push_back({name, value, unit, std::nullopt});
   };
-  parameter("time_step_s", summary.time_step, "s");
-  parameter("critical_time_step_s", summary.critical_time_step, "s");
-  parameter("mass_scale", in.engine.mass_scale, "1");
-  parameter("local_damping", in.engine.local_damping, "1");
-  parameter("nodes", static_cast<double>(summary.nodes), "1");
-  parameter("links", static_cast<double>(summary.links), "1");
   parameter("strip_width_m", g.width, "m");
   parameter("free_length_m", g.free_length, "m");
   parameter("clamp_depth_m", in.strip.clamp_depth, "m");

@@ -4,6 +4,8 @@
 // own shift (YADE's type 2), the other laws through DistortedLaw; the YADE script carries it.
 #include <gtest/gtest.h>
 
+#include "run_cli.hpp"
+
 #include <cstdio>
 #include <fstream>
 #include <unistd.h>
@@ -48,13 +50,8 @@ int line_of(const std::string& text, const std::string& key) {
 void expect_bad_input(const std::string& name, const std::string& text, const std::string& field, const std::string& key) {
   const auto path = write_input(name, text);
   const auto out = scratch() / ("out_" + name);
-  const std::string command = std::string(DTWIRE_EXECUTABLE) + " dem run " + path.string() + " -q -o " + out.string() + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  EXPECT_EQ(WEXITSTATUS(status), 2) << output;
+  const auto [code, output] = test::run_dtwire("dem run " + path.string() + " -q -o " + out.string());
+  EXPECT_EQ(code, 2) << output;
   EXPECT_NE(output.find(field), std::string::npos) << output;
   EXPECT_NE(output.find(name + ":" + std::to_string(line_of(text, key)) + ":"), std::string::npos) << output;
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing is written for a bad input";

@@ -2,6 +2,8 @@
 // file:line and the field, and write nothing.
 #include <gtest/gtest.h>
 
+#include "run_cli.hpp"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -39,14 +41,9 @@ Outcome run_strip(const std::string& name, const std::string& text) {
   std::ofstream(path) << text;
   const auto out = dir / ("out_" + name);
   std::filesystem::remove_all(out);
-  const std::string command = std::string(DTWIRE_EXECUTABLE) + " dem run " + path.string() + " -q -o " + out.string() + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
+  const dtwire::dem::test::CliOutcome outcome = dtwire::dem::test::run_dtwire("dem run " + path.string() + " -q -o " + out.string());
   EXPECT_FALSE(std::filesystem::exists(out)) << name << ": wrote " << out;
-  return {WEXITSTATUS(status), output};
+  return {outcome.code, outcome.output};
 }
 
 void expect_bad_strip(const std::string& name, const std::string& text, const std::string& where) {
