@@ -118,6 +118,8 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
   if (options_.local_damping < 0.0 || options_.local_damping >= 1.0)
     throw std::invalid_argument("local damping must be in [0, 1)");
   if (!(options_.mass_scale > 0.0)) throw std::invalid_argument("mass scale must be positive");
+  if (!(options_.rotational_inertia_scale > 0.0))
+    throw std::invalid_argument("rotational inertia scale must be positive");
   if (options_.threads < 1) throw std::invalid_argument("threads must be at least 1");
   State& s = *s_;
   s.nodes = std::move(nodes);
@@ -136,7 +138,7 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
     s.radius[i] = node.radius;
     const bool free = node.fixity == NodeFixity::Free;
     s.inverse_mass[i] = free ? 1.0 / (node.mass * options_.mass_scale) : 0.0;
-    s.inverse_inertia[i] = free ? 1.0 / (node.rotational_inertia * options_.mass_scale) : 0.0;
+    s.inverse_inertia[i] = free ? 1.0 / (node.rotational_inertia * options_.mass_scale * options_.rotational_inertia_scale) : 0.0;
     if (node.fixity == NodeFixity::Guided) s.v[i] = node.guided_velocity;
   }
   s.x_previous = s.x;

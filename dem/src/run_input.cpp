@@ -109,9 +109,13 @@ Distortion read_distortion(const Reader& r, const toml::table& table, const std:
   return d;
 }
 
+void apply_scales(LinkSetInput& set) {
+  for (const auto& [name, factor] : set.scales) set.parameters[name] *= factor;
+}
+
 LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std::string& prefix) {
-  r.check_keys(table, prefix, {"law", "params", "wire_type", "backbone", "parameters", "length", "distortion",
-                               "distortion_lambda_u", "distortion_seed"});
+  r.check_keys(table, prefix, {"law", "params", "wire_type", "backbone", "parameters", "scale", "length",
+                               "distortion", "distortion_lambda_u", "distortion_seed"});
   LinkSetInput set;
   const std::string params = r.text(table, prefix, "params", "");
   if (params.empty()) r.fail(&table, prefix + "params", "missing: the parameter file (.json) of this link type");
@@ -153,6 +157,20 @@ LinkSetInput read_link_set(const Reader& r, const toml::table& table, const std:
       set.overrides[name] = *value;
     }
   }
+  // Factors on the set's values for this run only (sensitivity studies, `gap --model` on a DEM
+  // run: scale = { N0_N = 0.8, Nult_N = 0.8 } weakens the links by 20 %).
+  if (const toml::table* scales = r.table(table, "scale")) {
+    for (const auto& [key, node] : *scales) {
+      const std::string name(key.str());
+      if (!set.parameters.count(name))
+        r.fail(&node, prefix + "scale." + name, "not a value of this link set (" + set.law + " law)");
+      const auto factor = node.value<double>();
+      if (!factor || !std::isfinite(*factor) || !(*factor > 0.0))
+        r.fail(&node, prefix + "scale." + name, "expected a factor > 0");
+      set.scales[name] = *factor;
+    }
+  }
+  apply_scales(set);
   try {
     check_parameter_names(chosen, set.law, params_path);
     ParameterMap probe = set.parameters;
@@ -311,13 +329,14 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   }
 
   if (const toml::table* dynamics = r.table(root, "dynamics")) {
-    r.check_keys(*dynamics, "dynamics.", {"gravity_m_per_s2", "local_damping", "mass_scale", "safety", "time_step_s",
-                                          "threads", "settle_s"});
+    r.check_keys(*dynamics, "dynamics.", {"gravity_m_per_s2", "local_damping", "mass_scale", "rotational_inertia_scale",
+                                          "safety", "time_step_s", "threads", "settle_s"});
     in.engine.gravity = Vector3(0.0, 0.0, -r.number(*dynamics, "dynamics.", "gravity_m_per_s2", 9.81));
     in.engine.local_damping = r.number(*dynamics, "dynamics.", "local_damping", 0.0);
     if (in.engine.local_damping < 0.0 || in.engine.local_damping >= 1.0)
       r.fail(dynamics->get("local_damping"), "dynamics.local_damping", "expected a value in [0, 1)");
     in.engine.mass_scale = r.number(*dynamics, "dynamics.", "mass_scale", 1.0, true);
+    in.engine.rotational_inertia_scale = r.number(*dynamics, "dynamics.", "rotational_inertia_scale", 1.0, true);
     in.engine.safety = r.number(*dynamics, "dynamics.", "safety", 0.5, true);
     if (in.engine.safety > 1.0) r.fail(dynamics->get("safety"), "dynamics.safety", "expected a value in (0, 1]");
     in.engine.time_step = r.number(*dynamics, "dynamics.", "time_step_s", 0.0, true);
@@ -386,6 +405,10 @@ void override_link_set(RunInput& input, const std::string& tag, const std::files
   if (set.law.empty()) throw InputError(option, params.string() + " names no law and the input has none for " + tag);
   set.parameters = chosen.map();
   for (const auto& [name, value] : set.overrides) set.parameters[name] = value;
+  for (const auto& [name, factor] : set.scales)
+    if (!set.parameters.count(name))
+      throw InputError(option, params.string() + " has no " + name + " for the input's " + tag + ".scale");
+  apply_scales(set);
   set.files = {params};
   try {
     check_parameter_names(chosen, set.law, params);

@@ -164,6 +164,7 @@ void add_engine_parameters(Results& results, const RunInput& input, const RunSum
   parameter("time_step_s", summary.time_step, "s");
   parameter("critical_time_step_s", summary.critical_time_step, "s");
   parameter("mass_scale", input.engine.mass_scale, "1");
+  parameter("rotational_inertia_scale", input.engine.rotational_inertia_scale, "1");
   parameter("local_damping", input.engine.local_damping, "1");
   parameter("nodes", static_cast<double>(summary.nodes), "1");
   parameter("links", static_cast<double>(summary.links), "1");

@@ -113,7 +113,7 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
     s << "(" << format_number(node.position.x()) << "," << format_number(node.position.y()) << ","
       << format_number(node.position.z()) << "," << format_number(stretched[i].x()) << "," << format_number(stretched[i].y())
       << "," << format_number(node.mass * in.engine.mass_scale) << ","
-      << format_number(node.rotational_inertia * in.engine.mass_scale) << ","
+      << format_number(node.rotational_inertia * in.engine.mass_scale * in.engine.rotational_inertia_scale) << ","
       << format_number(node.mass * in.engine.gravity.z()) << "," << (node.fixity == NodeFixity::Pinned ? 1 : 0) << "),\n";
   }
   s << "]\nstrain_stress = [";

@@ -27,6 +27,11 @@ struct EngineOptions {
   Vector3 gravity = Vector3(0.0, 0.0, -9.81);  // [m/s^2]
   double local_damping = 0.0;                  // alpha in [0, 1)
   double mass_scale = 1.0;  // inertial mass = mass_scale x mass (gravity keeps the real mass)
+  // Rotational inertia = rotational_inertia_scale x mass_scale x I. A node's I (0.4 m r^2, r the
+  // wire radius) is tiny against a link's lever arm, so the shear-rotation mode sets the critical
+  // step; scaling I alone leaves every static equilibrium unchanged (rotational density scaling,
+  // Thornton 2000; PFC's `ball property "density"` per rotational degree).
+  double rotational_inertia_scale = 1.0;
   double time_step = 0.0;   // [s]; 0: safety x critical
   double safety = 0.5;      // fraction of the critical step
   bool allow_above_critical = false;  // tests only: step beyond the stability bound

@@ -19,6 +19,7 @@ struct LinkSetInput {
   std::string law;
   ParameterMap parameters;  // from the parameter file (+ backbone), with the overrides applied
   ParameterMap overrides;   // the input's `parameters` table (kept when --set-params swaps the file)
+  ParameterMap scales;      // the input's `scale` table: factors on the set's values, after the overrides
   // "set": used as calibrated (the PFC7 plugin); "link": rescaled to each link's length at equal
   // strain (dtwire/dem/length_rescaling.hpp).
   std::string length = "set";
