@@ -21,6 +21,7 @@
 #include "dtwire/gap/modes.hpp"
 #include "dtwire/gap/selfcheck.hpp"
 #include "dtwire/gap/summary_lab.hpp"
+#include "gap_dem_model.hpp"
 #include "gap_model_runner.hpp"
 #include "dtwire/version.hpp"
 
@@ -69,6 +70,8 @@ std::vector<std::string> per_lab(const std::vector<std::string>& values, std::si
                                "the same order");
 }
 
+bool is_dem_model(const std::string& file) { return std::filesystem::path(file).extension() == ".toml"; }
+
 std::string png_for_mode(const std::string& png, const std::string& mode) {
   std::filesystem::path p(png);
   const std::string extension = p.extension().string();
@@ -82,6 +85,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   struct Options {
     std::vector<std::string> labs, sims, models, modes;
     std::string lab_summary, effects, columns, json, plot, report;
+    std::vector<std::string> model_set, model_set_params;
+    std::string model_cache;
     std::size_t model_runs = 3;
     double gauge_mm = 0.0, area_mm2 = 0.0;
     bool no_pairs = false;
@@ -104,9 +109,17 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--sim", options->sims,
                       "Simulated curve CSV (curve-only mode): once, or once per --lab");
   command->add_option("--model", options->models,
-                      "FE experiment (.prm) re-run through `dtwire run` with model-only effects "
+                      "FE experiment (.prm) re-run through `dtwire run`, or DEM run (.toml: punch or "
+                      "strip tension) re-run through `dtwire dem run`, with model-only effects "
                       "switched on (the base run is the simulation unless --sim is given): once, or "
                       "once per --lab");
+  command->add_option("--model-set", options->model_set,
+                      "A `dem run --set TABLE.KEY=VALUE` entry of a DEM --model (repeat for several)");
+  command->add_option("--model-set-params", options->model_set_params,
+                      "A `dem run --set-params TAG=FILE` of a DEM --model (repeat for several)");
+  command->add_option("--model-cache", options->model_cache,
+                      "Folder keeping the DEM --model runs (reused by a later gap with the same inputs; "
+                      "default: a temporary folder removed at the end)");
   command->add_option("--mode", options->modes,
                       "Loading mode of each --lab in order (comma-separated or repeated; one name "
                       "for all): " + gap::loading_mode_list() + " (default: from each curve)")
@@ -159,23 +172,40 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       conversion.displacement_channel = names[0];
       conversion.force_channel = names[1];
     }
-    // One FE model per .prm (its runs cached across the modes that use it).
-    std::map<std::string, FeModel> fe_models;
+    const bool dem_options_given = !options->model_set.empty() || !options->model_set_params.empty() ||
+                                   !options->model_cache.empty();
+    if (dem_options_given && std::none_of(options->models.begin(), options->models.end(), is_dem_model))
+      throw InputError(!options->model_set.empty() ? "--model-set"
+                       : !options->model_set_params.empty() ? "--model-set-params" : "--model-cache",
+                       "applies to a DEM --model (.toml); give one");
+    // One model per file (its runs cached across the modes that use it): FE for a .prm, DEM for a .toml.
+    std::map<std::string, SimulationModel> fe_models;
     std::vector<RemoveWhenEmpty> cleanup;
+    std::vector<std::filesystem::path> temporary_caches;  // removed after a diagnosis that ends well
     cleanup.reserve(options->models.size());
-    const auto fe_model = [&](const std::string& prm) -> FeModel& {
-      auto found = fe_models.find(prm);
+    const auto fe_model = [&](const std::string& file) -> SimulationModel& {
+      auto found = fe_models.find(file);
       if (found == fe_models.end()) {
-        const std::filesystem::path work = std::filesystem::temp_directory_path() /
-            ("dtwire_gap_model_" + std::to_string(::getpid()) + "_" + std::to_string(fe_models.size()));
-        found = fe_models.emplace(prm, make_fe_model(prm, work)).first;
-        cleanup.push_back({found->second.work});
+        if (is_dem_model(file)) {
+          DemModelOptions dem{options->model_set, options->model_set_params, options->model_cache};
+          found = fe_models.emplace(file, make_dem_model(file, dem)).first;
+          if (options->model_cache.empty()) temporary_caches.push_back(found->second.work);
+        } else {
+          const std::filesystem::path work = std::filesystem::temp_directory_path() /
+              ("dtwire_gap_model_" + std::to_string(::getpid()) + "_" + std::to_string(fe_models.size()));
+          found = fe_models.emplace(file, make_fe_model(file, work)).first;
+          cleanup.push_back({found->second.work});
+        }
       }
       return found->second;
     };
+    const auto remove_temporary_caches = [&] {
+      std::error_code ignored;
+      for (const auto& dir : temporary_caches) std::filesystem::remove_all(dir, ignored);
+    };
     const auto report_runs = [&] {
       for (const auto& [prm, fe] : fe_models)
-        if (fe.runs) std::cout << "FE runs (" << prm << "): " << *fe.runs << "\n";
+        if (fe.runs) std::cout << (is_dem_model(prm) ? "DEM" : "FE") << " runs (" << prm << "): " << *fe.runs << "\n";
     };
 
     if (!options->lab_summary.empty()) {
@@ -185,8 +215,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
                          "--lab-summary compares one simulation: give --sim and --model at most once");
       if (!options->plot.empty())
         throw InputError("--plot", "not available with --lab-summary (no laboratory curve to draw)");
-      FeModel none;
-      FeModel& fe = options->models.empty() ? none : fe_model(options->models.front());
+      SimulationModel none;
+      SimulationModel& fe = options->models.empty() ? none : fe_model(options->models.front());
       const gap::ForceCurve sim = !options->sims.empty() ? gap::load_force_curve(options->sims.front(), conversion)
                                                          : fe.run({});
       if (options->modes.size() > 1)
@@ -195,10 +225,12 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       const gap::ModeGuess mode =
           !options->modes.empty() ? gap::ModeGuess{gap::parse_loading_mode(options->modes.front(), "--mode"), "--mode"}
           : !options->sims.empty() ? gap::detect_loading_mode(read_csv(options->sims.front()), sim, options->sims.front())
-                                   : gap::detect_loading_mode(Curve{}, sim, options->models.front());
+                                   : gap::detect_loading_mode(fe.run_curve({}), sim, options->models.front());
       gap::SummaryOptions summary_options;
       for (const gap::EffectSpec& e : gap::effect_catalogue())
-        if (!gap::effect_applies(e, mode.mode)) summary_options.inapplicable[e.name] = "does not apply to " + mode.mode;
+        if (const std::string why = gap::effect_inapplicable(e, mode.mode, gap::curve_scale(sim).max_displacement_m);
+            !why.empty())
+          summary_options.inapplicable[e.name] = why;
       summary_options.effects = effects;
       summary_options.model = fe.run;
       summary_options.model_unsupported = fe.unsupported;
@@ -214,6 +246,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
         std::cout << "; best: " << d.ranking.front().effect << ", shrink " << d.ranking.front().shrink;
       std::cout << "\n";
       report_runs();
+      remove_temporary_caches();
       return 0;
     }
 
@@ -265,7 +298,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
                                           "in the same order");
     for (std::size_t m = 0; m < inputs.size(); ++m) {
       if (!input_model[m].empty()) {
-        FeModel& fe = fe_model(input_model[m]);
+        SimulationModel& fe = fe_model(input_model[m]);
         inputs[m].model = fe.run;
         inputs[m].model_unsupported = fe.unsupported;
       }
@@ -313,10 +346,12 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
         for (const gap::ModeDiagnosis& m : result.modes)
           render_plot(gap::plot_data_json(m.diagnosis), png_for_mode(options->plot, m.mode));
     }
+    remove_temporary_caches();
     return 0;
   });
 
   add_gap_features_command(*command, commands);
+  add_gap_mesh_selfcheck_command(*command, commands);
 
   struct SelfcheckOptions {
     gap::SelfcheckOptions run;

@@ -157,7 +157,7 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
   c->add_option("--json", o->json, "Write the figures as JSON");
   c->add_option("--report", o->report, "Write a Markdown report");
   commands.add(c, [o] {
-    FeModel model = make_fe_model(o->model);
+    SimulationModel model = make_fe_model(o->model);
     std::filesystem::path axis = o->axis;
     if (axis.empty()) {
       const auto mesh = PrmDocument::read(o->model).get("Geometry/Mesh file");

@@ -48,13 +48,13 @@ PrmDocument edit_prm(const PrmDocument& model, const PrmDocument& declared,
   return edited;
 }
 
-FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work) {
+SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work) {
   const PrmDocument model_prm = PrmDocument::read(prm);
   const PrmDocument declared = solver_declarations();
   check_declared(model_prm, declared);
   const std::filesystem::path directory = std::filesystem::absolute(prm).parent_path();
 
-  FeModel model;
+  SimulationModel model;
   GripBond grip;
   const ModelContext context{model_prm, declared, directory, grip};
   for (const auto& effect : model_effects())

@@ -15,7 +15,7 @@
 
 namespace dtwire::app {
 
-struct FeModel {
+struct SimulationModel {
   gap::ModelRunner run;  // cached by the edited .prm text; each new run prints one line
   // The same runs as the whole curve (every channel and the metadata, e.g. the failure).
   std::function<Curve(const std::vector<gap::AppliedEffect>&)> run_curve;
@@ -27,7 +27,7 @@ struct FeModel {
 // Reads the .prm as a typed document and checks its names against the solver's declarations
 // (InputError naming file:line for an unknown entry or a value that is not a number). Runs go to `work` (a fresh temp
 // directory when empty); each run's directory is removed after success.
-FeModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work = {});
+SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work = {});
 
 // The .prm with the effects switched on (exposed for tests): `Fields` off, a relative mesh file
 // made absolute, then each effect's edits (app/gap_model/). `declared` holds the solver's

@@ -197,6 +197,31 @@ std::vector<EffectSpec> make_catalogue() {
       {"geometry_imperfection", "initial crookedness and section defects (decisive in compression): "
        "the model's imperfection amplitudes scaled",
        {"imperfection_scale_1", 0.0, 10.0, 0.5, 4.0, {}, {}}, 1.0}};
+  // Mesh-level effects (issue 35): the DEM run (`gap --model F.toml`) switched to them through its
+  // input (app/commands/gap_dem_model.cpp). Plausible ranges: distortion from Pol et al. (2017)'s
+  // calibrated curve shifts (about 1 % quasi-static, 10 % dynamic); the slack state's wall 0.1 m below
+  // (Previtali, ch. 3.8) within a factor of two; junction unravelling up to halving the DT's
+  // strength; the crimp of a wire bent through its twists, down to the 13x softer arms of the
+  // DT specimen fit (docs/calibrate.md) and beyond.
+  const std::vector<ModelOnly> mesh_only = {
+      {"mesh_distortion", "initial distortion of the wires (Thoeni et al. 2013): every link's force-strain "
+       "curve shifted by a slack lambda_u l0",
+       {"lambda_u_1", 0.0, 0.3, 0.005, 0.1, {}, {}}, 0.0},
+      {"edge_sliding", "edge nodes free to slide along their edge (the thesis's pre-load support) instead of "
+       "pinned: 0 pinned, 1 sliding",
+       {"sliding_1", 0.0, 1.0, 0.0, 1.0, {0.0, 1.0}, {}}, 0.0},
+      {"slack_state", "the net slack, settled under its weight onto a wall this far below, instead of "
+       "pre-tensioned (0: the model's own initial state)",
+       {"wall_below_mm", 0.0, 300.0, 50.0, 200.0, {}, {}}, 0.0},
+      {"dt_weakening", "weaker double twists (junction unravelling, wire sliding in the twist): the DT links' "
+       "yield and ultimate forces scaled",
+       {"dt_strength_factor_1", 0.2, 1.0, 0.5, 1.0, {}, {}}, 1.0},
+      {"sw_softening", "softer single wires (crimp: each wire bent through its twists and slanted): the SW "
+       "links' axial stiffness scaled",
+       {"sw_stiffness_factor_1", 0.01, 1.0, 0.05, 1.0, {}, {}}, 1.0},
+      {"discretisation", "three nodes per wire with bending stiffness instead of two (Previtali, ch. 3.4, "
+       "study 1)",
+       {"nodes_per_wire", 2.0, 3.0, 2.0, 3.0, {2.0, 3.0}, {}}, 2.0}};
   int order = 10;
   for (const ModelOnly& m : model_only) {
     EffectSpec e;
@@ -210,6 +235,22 @@ std::vector<EffectSpec> make_catalogue() {
     e.apply = [n = std::string(m.name)](const ForceCurve&, const std::vector<double>&,
                                         const CurveScale&) -> ForceCurve {
       throw std::logic_error("effect " + n + " needs the FE model (--model)");
+    };
+    c.push_back(e);
+  }
+  for (const ModelOnly& m : mesh_only) {
+    EffectSpec e;
+    e.name = m.name;
+    e.description = m.description;
+    e.needs_model = true;
+    e.test = "mesh";
+    e.order = order++;
+    e.magnitude = 0;
+    e.neutral = m.neutral;
+    e.parameters = [p = m.parameter](const CurveScale&) { return std::vector<ParameterSpec>{p}; };
+    e.apply = [n = std::string(m.name)](const ForceCurve&, const std::vector<double>&,
+                                        const CurveScale&) -> ForceCurve {
+      throw std::logic_error("effect " + n + " needs the DEM model (--model F.toml)");
     };
     c.push_back(e);
   }

@@ -27,7 +27,8 @@ bool contains(const std::vector<std::string>& list, const std::string& name) {
 }  // namespace
 
 const std::vector<std::string>& loading_mode_names() {
-  static const std::vector<std::string> names = {"tension", "compression", "bending", "shear", "cyclic"};
+  static const std::vector<std::string> names = {"tension", "compression", "bending", "shear", "cyclic",
+                                                    "punch", "panel_tension"};
   return names;
 }
 
@@ -47,6 +48,9 @@ std::string parse_loading_mode(const std::string& text, const std::string& field
 ModeGuess detect_loading_mode(const Curve& curve, const ForceCurve& c, const std::string& file) {
   if (const std::string given = curve.metadata("loading_mode"); !given.empty())
     return {parse_loading_mode(given, file + ": metadata loading_mode"), "metadata loading_mode"};
+  // A DEM run's curve names its tool (dem/src/run_outputs.cpp).
+  if (const std::string tool = lower(curve.metadata("tool")); tool == "platter") return {"punch", "metadata tool"};
+  else if (tool == "strip_tension") return {"panel_tension", "metadata tool"};
   const std::string experiment = lower(curve.metadata("experiment"));
   for (const std::string& mode : loading_mode_names())
     if (experiment.find(mode) != std::string::npos) return {mode, "metadata experiment"};
@@ -62,10 +66,23 @@ ModeGuess detect_loading_mode(const Curve& curve, const ForceCurve& c, const std
   return {"tension", "dominant force positive"};
 }
 
+bool mesh_mode(const std::string& mode) { return mode == "punch" || mode == "panel_tension"; }
+
 bool effect_applies(const EffectSpec& effect, const std::string& mode) {
+  // An effect's plausible range is stated for its own kind of test.
+  if ((effect.test == "mesh") != mesh_mode(mode)) return false;
   if (effect.name == "grip_slip" || effect.name == "gauge_length") return mode == "tension" || mode == "cyclic";
   if (effect.name == "ductile_damage") return mode != "compression";
   return true;
+}
+
+std::string effect_inapplicable(const EffectSpec& effect, const std::string& mode, double largest_displacement_m) {
+  if (!effect_applies(effect, mode)) return "does not apply to " + mode;
+  if (effect.test == "wire" && largest_displacement_m > kWireTestLargestDisplacement)
+    return "a wire-test effect: the curve's displacement reaches " +
+           std::to_string(static_cast<int>(std::lround(largest_displacement_m * 1e3))) + " mm, beyond a wire test's (" +
+           std::to_string(static_cast<int>(kWireTestLargestDisplacement * 1e3)) + " mm)";
+  return "";
 }
 
 bool effect_per_mode(const EffectSpec& effect) {

@@ -36,17 +36,23 @@ struct Candidate {
   std::string untested;  // why not testable anywhere (empty: testable)
 };
 
+// The largest displacement of a mode's simulated and laboratory curves [m].
+double largest_displacement(const ModeInput& in) {
+  double largest = 0.0;
+  for (const double u : in.sim.u) largest = std::max(largest, std::abs(u));
+  for (const ForceCurve& lab : in.labs)
+    for (const double u : lab.u) largest = std::max(largest, std::abs(u));
+  return largest;
+}
+
 Candidate candidate_for(const EffectSpec& e, const std::vector<ModeInput>& inputs) {
   Candidate c{{&e, std::vector<int>(inputs.size(), -1), 0}, ""};
   for (std::size_t m = 0; m < inputs.size(); ++m) {
     const ModeInput& in = inputs[m];
-    std::string why;
-    if (!effect_applies(e, in.mode))
-      why = "does not apply to " + in.mode;
-    else if (e.needs_model && !in.model)
-      why = "needs --model";
-    else if (const auto u = in.model_unsupported.find(e.name); e.needs_model && u != in.model_unsupported.end())
-      why = u->second;
+    std::string why = effect_inapplicable(e, in.mode, largest_displacement(in));
+    const auto unsupported = in.model_unsupported.find(e.name);
+    if (why.empty() && e.needs_model && !in.model) why = "needs --model";
+    if (why.empty() && e.needs_model && unsupported != in.model_unsupported.end()) why = unsupported->second;
     if (!why.empty()) {
       c.untested += (c.untested.empty() ? "" : "; ") + in.mode + ": " + why;
       continue;
@@ -349,7 +355,8 @@ MultiModeDiagnosis diagnose_modes(const std::vector<ModeInput>& inputs, const Di
     o.model = in.model;
     o.model_unsupported = in.model_unsupported;
     for (const EffectSpec& e : effect_catalogue())
-      if (!effect_applies(e, in.mode)) o.inapplicable[e.name] = "does not apply to " + in.mode;
+      if (const std::string why = effect_inapplicable(e, in.mode, largest_displacement(in)); !why.empty())
+        o.inapplicable[e.name] = why;
     out.modes.push_back({in.mode, in.basis, diagnose(in.labs, in.sim, o)});
   }
   out.combined = inputs.size() == 1 ? out.modes.front().diagnosis : combine(inputs, out.modes, options);

@@ -19,7 +19,7 @@ namespace {
 
 const std::vector<std::string>& known_features() {
   static const std::vector<std::string> names = {"peak_force_N", "residual_force_N",
-                                                 "peak_displacement_mm"};
+                                                 "peak_displacement_mm", "onset_displacement_mm"};
   return names;
 }
 
@@ -325,6 +325,17 @@ double curve_feature(const ForceCurve& c, const std::string& name) {
   if (name == "peak_force_N") return *peak;
   if (name == "residual_force_N") return c.f.back();
   if (name == "peak_displacement_mm") return c.u[static_cast<std::size_t>(peak - c.f.begin())] * 1e3;
+  if (name == "onset_displacement_mm") {
+    // Where the force first reaches 4 % of the peak (the thesis punch: 1 kN of 25 kN), linearly
+    // interpolated between samples.
+    const double level = kOnsetFraction * *peak;
+    for (std::size_t i = 1; i < c.size(); ++i)
+      if (c.f[i] >= level) {
+        const double t = c.f[i] > c.f[i - 1] ? (level - c.f[i - 1]) / (c.f[i] - c.f[i - 1]) : 1.0;
+        return (c.u[i - 1] + std::clamp(t, 0.0, 1.0) * (c.u[i] - c.u[i - 1])) * 1e3;
+      }
+    return c.u.front() * 1e3;
+  }
   throw std::invalid_argument("unknown summary feature " + name);
 }
 

@@ -60,11 +60,11 @@ TEST(GapModelPrm, DoubleTwistEffectsEditTheWireContact) {
   const std::string gap = edited_text(dt, {{&gap::find_effect("twist_tightening"), {0.12}}}, ".");
   EXPECT_NE(gap.find("  set Gap offset (mm) = 0.12\nend\n"), std::string::npos) << gap;
   // The bundled DT experiment supports both; the SW column supports neither.
-  const FeModel model = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
+  const SimulationModel model = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
                                       fs::temp_directory_path() / "dtwire_gap_fe_test_dt");
   EXPECT_EQ(model.unsupported.count("wire_friction"), 0u);
   EXPECT_EQ(model.unsupported.count("twist_tightening"), 0u);
-  const FeModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_c");
+  const SimulationModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_c");
   EXPECT_EQ(column.unsupported.count("wire_friction"), 1u);
 }
 
@@ -86,7 +86,7 @@ TEST(GapModelPrm, FormingHistorySetsTheAsMadeStart) {
   const std::string twisted = edited_text(dt + "subsection As made\n  set Twisted pair state = pair.csv\nend\n",
                                           {{&gap::find_effect("forming_history"), {0.8}}}, ".");
   EXPECT_EQ(twisted.find("pair.csv"), std::string::npos) << twisted;
-  const FeModel model = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
+  const SimulationModel model = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
                                       fs::temp_directory_path() / "dtwire_gap_fe_test_f");
   EXPECT_EQ(model.unsupported.count("forming_history"), 0u);
 }
@@ -97,10 +97,10 @@ TEST(GapModelPrm, ShearFailureEditsTheFailureLocus) {
   const std::string prm = "subsection Material\n  set Failure d1 = 0.05\n  set Failure d2 = 3.44\nend\n";
   const std::string edited = edited_text(prm, {{&gap::find_effect("shear_failure"), {0.55}}}, ".");
   EXPECT_NE(edited.find("  set Failure shear ductility ratio = 0.55\nend\n"), std::string::npos) << edited;
-  const FeModel dt = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
+  const SimulationModel dt = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
                                    fs::temp_directory_path() / "dtwire_gap_fe_test_s");
   EXPECT_EQ(dt.unsupported.count("shear_failure"), 0u);
-  const FeModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_s2");
+  const SimulationModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_s2");
   EXPECT_NE(column.unsupported.at("shear_failure").find("failure locus"), std::string::npos);
 }
 
@@ -117,15 +117,15 @@ TEST(GapModelPrm, CoatingSlipBondsTheGripsAtAFractionOfThePeakForce) {
       << half;  // 0.5 x 3200 N / 80 mm^2
   EXPECT_EQ(edited_text(prm, {{&gap::find_effect("coating_slip"), {1.0}}}, ".", grip), edited_text(prm, {}, ".", grip));
   EXPECT_THROW(edited_text(prm, {{&gap::find_effect("coating_slip"), {0.5}}}, "."), ComputationError);
-  const FeModel dt = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
+  const SimulationModel dt = make_fe_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm",
                                    fs::temp_directory_path() / "dtwire_gap_fe_test_g");
   EXPECT_EQ(dt.unsupported.count("coating_slip"), 0u);
-  const FeModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_g2");
+  const SimulationModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_g2");
   EXPECT_NE(column.unsupported.at("coating_slip").find("mesh file"), std::string::npos);
 }
 
 TEST(GapModelPrm, UnsupportedEffectsAreNamedWithTheirReason) {
-  const FeModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_a");
+  const SimulationModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_a");
   EXPECT_EQ(model.unsupported.count("geometry_imperfection"), 0u);
   EXPECT_EQ(model.unsupported.count("residual_stress"), 0u);
   EXPECT_NE(model.unsupported.at("wire_friction").find("Wire contact"), std::string::npos);
@@ -162,7 +162,7 @@ TEST(GapModelFe, InjectedImperfectionRecoveredThroughDtwireRun) {
   const std::string exe = fe_executable();
   if (exe.empty()) GTEST_SKIP() << "no dtwire with fem in this build (set DTWIRE_FE_EXECUTABLE)";
   ::setenv("DTWIRE_FE_EXECUTABLE", exe.c_str(), 1);
-  const FeModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_b");
+  const SimulationModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_b");
   const gap::ForceCurve base = model.run({});
   const double injected = 3.0;
   const gap::ForceCurve with = gap::oriented(model.run({{&gap::find_effect("geometry_imperfection"), {injected}}}));
@@ -208,7 +208,7 @@ TEST(GapModelFe, InjectedCoatingSlipRecoveredThroughDtwireRun) {
          "subsection Load stepping\n  set Initial step = 0.1\n  set Maximum step = 0.1\nend\n"
          "subsection Newton\n  set Relative tolerance = 1e-9\nend\n"
          "subsection Output\n  set Fields = false\nend\n";
-  const FeModel model = make_fe_model(dir / "gripped.prm", dir / "runs");
+  const SimulationModel model = make_fe_model(dir / "gripped.prm", dir / "runs");
   ASSERT_EQ(model.unsupported.count("coating_slip"), 0u) << model.unsupported.at("coating_slip");
   const gap::ForceCurve base = model.run({});
   const double injected = 0.6;
@@ -244,7 +244,7 @@ TEST(GapModelFe, InjectedResidualStressRecoveredThroughDtwireRun) {
   const std::string exe = fe_executable();
   if (exe.empty()) GTEST_SKIP() << "no dtwire with fem in this build (set DTWIRE_FE_EXECUTABLE)";
   ::setenv("DTWIRE_FE_EXECUTABLE", exe.c_str(), 1);
-  const FeModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_residual");
+  const SimulationModel model = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_residual");
   const gap::ForceCurve base = model.run({});
   const double injected = 0.7;
   const gap::ForceCurve with = gap::oriented(model.run({{&gap::find_effect("residual_stress"), {injected}}}));

@@ -45,6 +45,10 @@ struct EffectSpec {
   std::string name;
   std::string description;
   bool needs_model = false;  // only in --model mode
+  // The kind of test the effect belongs to, which its plausible range is stated for: "wire" (a
+  // wire or twist specimen in a testing machine, displacements of millimetres) or "mesh" (a panel
+  // of mesh: punch, panel tension; displacements of decimetres; the model is a DEM run).
+  std::string test = "wire";
   int order = 0;             // composition order: material first, then the measurement chain
   std::size_t magnitude = 0; // index of the parameter that measures the effect's size
   double neutral = 0.0;      // value of that parameter for which the effect vanishes

@@ -1,5 +1,6 @@
 #pragma once
-// Loading modes of laboratory curves (tension, compression, bending, shear, cyclic): how a
+// Loading modes of laboratory curves (wire tests: tension, compression, bending, shear, cyclic;
+// mesh tests: punch, panel_tension): how a
 // curve's mode is found, and which catalogue effects apply to which mode. Test-setup effects
 // (the measurement chain) take one parameter set per mode (each mode has its own fixtures);
 // specimen effects (material, geometry) share one set over every mode.
@@ -23,14 +24,24 @@ struct ModeGuess {
 };
 
 // In order: metadata `loading_mode` (must be a mode name, else InputError naming `file`);
+// metadata `tool` of a DEM run (platter -> punch, strip_tension -> panel_tension);
 // metadata `experiment` containing a mode name; channels (moment, rotation or deflection -> bending,
 // shear_* -> shear); the force (both signs beyond 20 % of the peak -> cyclic; dominant force
 // negative -> compression; else tension).
 ModeGuess detect_loading_mode(const Curve& curve, const ForceCurve& force_curve, const std::string& file);
 
-// Whether `effect` can act in `mode` (grip_slip and gauge_length need tensile grips and an
-// extensometer: tension and cyclic; ductile_damage needs tensile strain: not compression).
+// A test of a panel of mesh (the DEM runs' tests), not of a wire or twist specimen.
+bool mesh_mode(const std::string& mode);
+// Whether `effect` can act in `mode`: wire effects in wire tests, mesh effects in mesh tests
+// (each's plausible range is its test's); among wire effects, grip_slip and gauge_length need
+// tensile grips and an extensometer (tension and cyclic), ductile_damage tensile strain (not
+// compression).
 bool effect_applies(const EffectSpec& effect, const std::string& mode);
+// Why `effect` is not tested on a curve of `mode` whose displacements reach `largest_displacement_m`
+// ("" when it is): it does not act in the mode, or the curve is far outside its test's range (a
+// wire test's displacements stay below kWireTestLargestDisplacement).
+std::string effect_inapplicable(const EffectSpec& effect, const std::string& mode, double largest_displacement_m);
+inline constexpr double kWireTestLargestDisplacement = 0.2;  // m
 // Test-setup effects: one parameter set per loading mode.
 bool effect_per_mode(const EffectSpec& effect);
 

@@ -15,7 +15,7 @@
 namespace dtwire::gap {
 
 struct SummaryFeature {
-  std::string name;  // peak_force_N, residual_force_N, peak_displacement_mm
+  std::string name;  // peak_force_N, residual_force_N, peak_displacement_mm, onset_displacement_mm
   double mean = 0.0, sd = 0.0;  // in the unit of the name
 };
 
@@ -27,7 +27,8 @@ std::string summary_feature_names();
 
 // The feature of an oriented curve (dominant force positive), in the unit of its name:
 // peak_force_N the largest force, residual_force_N the force at the end of the test,
-// peak_displacement_mm the displacement at the peak.
+// peak_displacement_mm the displacement at the peak, onset_displacement_mm where the force first
+// reaches kOnsetFraction of the peak.
 double curve_feature(const ForceCurve& curve, const std::string& name);
 
 struct SummaryOptions {
@@ -80,6 +81,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim, const std::vector<Summa
 nlohmann::json summary_json(const SummaryDiagnosis& d);
 std::string summary_markdown(const SummaryDiagnosis& d);
 
+inline constexpr double kOnsetFraction = 0.04;
 // A qualifying effect must remove at least this fraction of the gap.
 inline constexpr double kSummaryMinimumShrink = 0.3;
 // Pairs (with a model-only effect) are tried among this many best single effects.

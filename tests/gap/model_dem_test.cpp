@@ -1,0 +1,119 @@
+// `gap --model F.toml` (issue 35): the mesh-level effects switched on in a DEM run's input, the
+// runs cached, and the diagnosis finding an effect put in by another form than the one it fits.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "cli.hpp"
+#include "commands/gap_dem_model.hpp"
+#include "dtwire/core/error.hpp"
+#include "dtwire/gap/loading_mode.hpp"
+#include "dtwire/gap/summary_lab.hpp"
+
+namespace dtwire::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The selfcheck's 1.5 x 1.5 m punch: a run takes seconds.
+const fs::path kPunch = fs::path(DTWIRE_SOURCE_DIR) / "experiments/dem/gap_selfcheck_punch.toml";
+
+gap::AppliedEffect effect(const std::string& name, double value) { return {&gap::find_effect(name), {value}}; }
+
+class GapDemModel : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    // The runs are subprocesses of the dtwire built beside this test.
+    ::setenv("DTWIRE_EXECUTABLE", DTWIRE_EXECUTABLE, 1);
+    dir = fs::temp_directory_path() / ("dtwire_gap_dem_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir);
+  }
+  fs::path dir;
+  const fs::path toml = kPunch;
+};
+
+TEST_F(GapDemModel, EachEffectIsSwitchedOnThroughTheRunInput) {
+  const dem::RunInput base = read_dem_model(toml, {});
+  const auto entries = dem_effect_entries(
+      base, {effect("mesh_distortion", 0.1), effect("edge_sliding", 1.0), effect("slack_state", 80.0),
+             effect("dt_weakening", 0.6), effect("sw_softening", 0.2)});
+  const dem::RunInput edited = dem::read_run_input(toml, entries);  // the entries are valid input
+  EXPECT_EQ(edited.support, dem::EdgeSupport::Slider);
+  EXPECT_DOUBLE_EQ(edited.wall_below, 0.08);
+  EXPECT_DOUBLE_EQ(edited.pretension_strain, 0.0);
+  EXPECT_GE(edited.settle_time, 40.0);
+  for (const dem::LinkTag tag : {dem::LinkTag::SingleWire, dem::LinkTag::DoubleTwist}) {
+    EXPECT_EQ(edited.link_sets.at(tag).distortion.mode, dem::DistortionMode::Constant);
+    EXPECT_DOUBLE_EQ(edited.link_sets.at(tag).distortion.lambda_u, 0.1);
+  }
+  const auto& dt = edited.link_sets.at(dem::LinkTag::DoubleTwist).parameters;
+  const auto& dt_base = base.link_sets.at(dem::LinkTag::DoubleTwist).parameters;
+  EXPECT_NEAR(dt.at("N0_N"), 0.6 * dt_base.at("N0_N"), 1e-9 * dt_base.at("N0_N"));
+  EXPECT_NEAR(dt.at("Nult_N"), 0.6 * dt_base.at("Nult_N"), 1e-9 * dt_base.at("Nult_N"));
+  EXPECT_DOUBLE_EQ(dt.at("EA_N"), dt_base.at("EA_N"));
+  const auto& sw = edited.link_sets.at(dem::LinkTag::SingleWire).parameters;
+  const auto& sw_base = base.link_sets.at(dem::LinkTag::SingleWire).parameters;
+  EXPECT_NEAR(sw.at("EA_N"), 0.2 * sw_base.at("EA_N"), 1e-9 * sw_base.at("EA_N"));
+  EXPECT_DOUBLE_EQ(sw.at("N0_N"), sw_base.at("N0_N"));
+  // Neutral values change nothing.
+  EXPECT_TRUE(dem_effect_entries(base, {effect("mesh_distortion", 0.0), effect("edge_sliding", 0.0),
+                                        effect("slack_state", 0.0)}).empty());
+}
+
+TEST_F(GapDemModel, AnEffectTheInputCannotShowIsNamedWithTheReason) {
+  const dem::RunInput punch = read_dem_model(toml, {});
+  EXPECT_NE(dem_effect_unsupported("discretisation", punch).find("two nodes per wire"), std::string::npos);
+  EXPECT_EQ(dem_effect_unsupported("edge_sliding", punch), "");
+  const dem::RunInput sliding = read_dem_model(toml, {{"boundary.support=\"slider\""}, {}, {}});
+  EXPECT_NE(dem_effect_unsupported("edge_sliding", sliding).find("already slide"), std::string::npos);
+  const dem::RunInput wirepm = read_dem_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dem/punch_wirepm.toml", {});
+  EXPECT_NE(dem_effect_unsupported("dt_weakening", wirepm).find("wirepm"), std::string::npos);
+  const dem::RunInput strip =
+      read_dem_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dem/strip_tension_thesis.toml", {});
+  EXPECT_NE(dem_effect_unsupported("slack_state", strip).find("strip"), std::string::npos);
+  EXPECT_THROW(dem_effect_entries(strip, {effect("edge_sliding", 1.0)}), ComputationError);
+  EXPECT_THROW(read_dem_model(toml, {{"boundary.support=\"sideways\""}, {}, {}}), InputError);
+}
+
+// Not an inverse crime: the "laboratory" net's slack is drawn per link (lambda_u 0.06, YADE's
+// triangular variate, mean 0.03); the diagnosis fits one uniform slack.
+TEST_F(GapDemModel, FindsADistortionDrawnPerLinkAndReusesItsRuns) {
+  const DemModelOptions options{{}, {}, dir / "cache"};
+  SimulationModel model = make_dem_model(toml, options);
+  const gap::ForceCurve base = model.run({});
+  DemModelOptions lab_options = options;
+  for (const char* tag : {"sw", "dt"})
+    for (const std::string entry : {"distortion=\"random\"", "distortion_lambda_u=0.06"})
+      lab_options.set.push_back("links." + std::string(tag) + "." + entry);
+  lab_options.set.push_back("links.sw.distortion_seed=11");
+  lab_options.set.push_back("links.dt.distortion_seed=12");
+  const gap::ForceCurve lab_curve = make_dem_model(toml, lab_options).run({});
+  std::vector<gap::SummaryFeature> lab;
+  for (const char* name : {"peak_force_N", "peak_displacement_mm"}) {
+    const double value = gap::curve_feature(lab_curve, name);
+    lab.push_back({name, value, 0.05 * value});
+  }
+  gap::SummaryOptions diagnosis;
+  for (const gap::EffectSpec& e : gap::effect_catalogue())
+    if (!gap::effect_applies(e, "punch")) diagnosis.inapplicable[e.name] = "not a punch effect";
+  diagnosis.model = model.run;
+  diagnosis.model_unsupported = model.unsupported;
+  diagnosis.model_runs = 5;
+  diagnosis.effects = {"mesh_distortion", "edge_sliding", "dt_weakening", "sw_softening"};  // slack: 30 s a run
+  diagnosis.try_pairs = false;
+  const gap::SummaryDiagnosis d = gap::diagnose_summary(base, lab, diagnosis);
+  EXPECT_GT(d.gap_before, 2.0);
+  ASSERT_EQ(d.cause, "mesh_distortion") << d.reason;
+  const double lambda_u = d.ranking.front().fitted.front().params.front();
+  EXPECT_GT(lambda_u, 0.015);
+  EXPECT_LT(lambda_u, 0.06);
+  // The same model again: every run comes from the cache.
+  SimulationModel again = make_dem_model(toml, options);
+  again.run({effect("mesh_distortion", 0.1)});
+  EXPECT_EQ(*again.runs, 0);
+}
+
+}  // namespace
+}  // namespace dtwire::app
