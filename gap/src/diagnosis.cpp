@@ -371,6 +371,11 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
     evidence::demote_weak_pairs(ranking, singles, single_gap);
     parsimony::apply(ranking, fits, singles, ctx.problem, rng);
   }
+  for (RankedEffect& r : ranking)
+    if (!magnitudes_plausible(r.fitted, ctx.problem.scale)) {
+      r.implausible = true;
+      r.qualifies = false;
+    }
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });
   d.ranking = ranking;
@@ -384,7 +389,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   if (d.gap_before <= d.noise_floor) {
     d.reason = "the gap is within the noise floor";
   } else if (!cause) {
-    d.reason = candidates.empty() ? "no curve-mode effect was requested"
+    d.reason = candidates.empty() ? "no effect could be tested on this curve (see not_tested)"
                                   : "no effect reduces the gap by more than the noise floor";
   } else {
     d.cause = cause->effect;

@@ -316,6 +316,15 @@ ForceCurve augment(const ForceCurve& sim, const std::vector<AppliedEffect>& effe
   return apply_effects(runner(model_effects), curve_effects, scale);
 }
 
+bool magnitudes_plausible(const std::vector<AppliedEffect>& effects, const CurveScale& scale) {
+  for (const AppliedEffect& a : effects) {
+    const ParameterSpec spec = a.effect->parameters(scale).at(a.effect->magnitude);
+    const double value = a.params.at(a.effect->magnitude), tolerance = 1e-9 * spec.width();
+    if (value < spec.plausible_lower - tolerance || value > spec.plausible_upper + tolerance) return false;
+  }
+  return true;
+}
+
 double plausibility(const EffectSpec& effect, const std::vector<double>& params,
                     const CurveScale& scale) {
   const auto specs = effect.parameters(scale);

@@ -74,7 +74,8 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                        {"pcm_after", r.pcm_after},
                        {"gap_after_by_region", r.gap_after_by_segment},
                        {"parameters", r.parameters},
-                       {"qualifies", r.qualifies}});
+                       {"qualifies", r.qualifies},
+                       {"implausible", r.implausible}});
     if (r.search_points > 0) ranking.back()["search_points"] = r.search_points;
     if (r.against_single.done) {
       const PairEvidence& e = r.against_single;
@@ -191,7 +192,7 @@ std::string diagnosis_markdown(const Diagnosis& d) {
   constexpr std::size_t kShown = 10;  // the JSON has them all
   for (std::size_t k = 0; k < d.ranking.size() && k < kShown; ++k) {
     const RankedEffect& r = d.ranking[k];
-    s << "| " << r.effect << " | " << r.gap_after << " | " << r.shrink << " | " << r.score << " | "
+    s << "| " << r.effect << (r.implausible ? " (implausible)" : "") << " | " << r.gap_after << " | " << r.shrink << " | " << r.score << " | "
       << r.delta_aicc << " | " << r.plausibility << " | " << r.region_match << " |\n";
   }
   if (d.ranking.size() > kShown)

@@ -323,6 +323,12 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
     evidence::demote_weak_pairs(ranking, first_pair, single_gap);
     parsimony::apply_joint(ranking, fits, fitted_effects, first_pair, cb.problems, cb.curves, rng);
   }
+  for (RankedEffect& r : ranking)
+    for (std::size_t m = 0; m < r.fitted_by_mode.size(); ++m)
+      if (!magnitudes_plausible(r.fitted_by_mode[m].second, cb.problems.at(m).scale)) {
+        r.implausible = true;
+        r.qualifies = false;
+      }
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });
   c.ranking = ranking;

@@ -398,7 +398,9 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     c.score = c.plausibility * std::max(0.0, c.shrink);
     c.parameters = parameter_count(c.fitted);
     c.aic = aic_of(lab, c.gap_after, c.parameters);
-    c.qualifies = d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5;
+    c.implausible = !magnitudes_plausible(c.fitted, scale);
+    c.qualifies = d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 &&
+                  !c.implausible;
     d.ranking.push_back(c);
   }
   // Pairs with a model-only effect, when no single effect brings the features within the scatter.
@@ -431,7 +433,8 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
         c.score = c.plausibility * std::max(0.0, c.shrink);
         c.parameters = parameter_count(c.fitted);
         c.aic = aic_of(lab, c.gap_after, c.parameters);
-        c.qualifies = c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && c.aic < best_aic &&
+        c.implausible = !magnitudes_plausible(c.fitted, scale);
+        c.qualifies = !c.implausible && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && c.aic < best_aic &&
                       c.gap_after < kPairGapRatio * best_gap;
         if (!(c.aic < best_aic && c.gap_after < kPairGapRatio * best_gap)) c.score *= 0.1;
         d.ranking.push_back(c);
@@ -502,7 +505,7 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
     nlohmann::json params = nlohmann::json::object();
     for (const auto& [name, value] : named_params(c, scale)) params[name] = value;
     ranking.push_back({{"effect", c.effect}, {"params", params}, {"gap_after", c.gap_after},
-                       {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility},
+                       {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility}, {"implausible", c.implausible},
                        {"aic", c.aic}, {"parameters", c.parameters},
                        {"features_after", c.features}, {"fe_runs", c.runs}, {"qualifies", c.qualifies}});
     if (!c.samples.empty()) {
@@ -538,11 +541,11 @@ std::string summary_markdown(const SummaryDiagnosis& d) {
     for (const auto& n : d.not_tested) s << " " << n << " (" << d.not_tested_reason.at(n) << ");";
     s << "\n";
   }
-  s << "\n| effect | fitted | features after | gap after | shrink | plausibility | FE runs |\n"
+  s << "\n| effect | fitted | features after | gap after | shrink | plausibility | model runs |\n"
     << "|---|---|---|---|---|---|---|\n";
   const CurveScale scale = curve_scale(d.sim);
   for (const SummaryCandidate& c : d.ranking) {
-    s << "| " << c.effect << " | ";
+    s << "| " << c.effect << (c.implausible ? " (implausible)" : "") << " | ";
     for (const auto& [name, value] : named_params(c, scale)) s << name << " " << value << " ";
     s << "| ";
     for (double f : c.features) s << f << " ";
@@ -553,7 +556,7 @@ std::string summary_markdown(const SummaryDiagnosis& d) {
     std::string names;
     for (const AppliedEffect& a : c.fitted)
       if (a.effect->needs_model) names += (names.empty() ? "" : ", ") + a.effect->parameters(scale).front().name;
-    s << "\nFE runs of " << c.effect << " (" << names << " -> features, rms z):";
+    s << "\nModel runs of " << c.effect << " (" << names << " -> features, rms z):";
     for (const auto& [v, f] : c.samples) {
       for (double x : v) s << " " << x;
       s << " ->";

@@ -52,6 +52,7 @@ struct RankedEffect {
   double pcm_after = 0.0;
   std::vector<double> gap_after_by_segment;  // per entry of Diagnosis::where
   bool qualifies = false;  // beats the noise floor and the information criterion
+  bool implausible = false;  // a magnitude fitted outside its plausible range: never the cause
   int search_points = 0;   // pairs with a model-only effect: points of the bounded search
   PairEvidence against_single;  // pairs only
   bool also_possible = false;   // a pair that fits better but fails the parsimony rule

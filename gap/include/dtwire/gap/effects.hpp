@@ -81,6 +81,10 @@ ForceCurve augment(const ForceCurve& sim, const std::vector<AppliedEffect>& effe
 ForceCurve apply_effects(const ForceCurve& sim, std::vector<AppliedEffect> effects,
                          const CurveScale& scale);
 
+// Whether every effect's magnitude parameter lies in its plausible range: an effect fitted
+// outside it is reported as implausible and is never the cause (issue 37).
+bool magnitudes_plausible(const std::vector<AppliedEffect>& effects, const CurveScale& scale);
+
 // 1 inside the plausible range, falling linearly to 0.2 at the fit bounds; product over params.
 double plausibility(const EffectSpec& effect, const std::vector<double>& params,
                     const CurveScale& scale);

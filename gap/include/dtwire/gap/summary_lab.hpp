@@ -56,6 +56,7 @@ struct SummaryCandidate {
   // model-only parameters) and the features.
   std::vector<std::pair<std::vector<double>, std::vector<double>>> samples;
   bool qualifies = false;
+  bool implausible = false;  // a magnitude fitted outside its plausible range: never the cause
 };
 
 struct SummaryDiagnosis {
