@@ -2,6 +2,7 @@
 // and messages for bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -90,6 +91,63 @@ TEST_F(GapCli, EffectsOptionRestrictsTheCandidates) {
   ASSERT_EQ(j.at("ranking").size(), 1u);
   EXPECT_EQ(j.at("ranking")[0].at("effect"), "strain_rate");
   EXPECT_EQ(j.at("not_tested"), nlohmann::json::array({"coating_slip"}));
+}
+
+// Issue 37: a DEM punch against another DEM punch is not a wire test. A grip slip of metres
+// was once named the cause; now only mesh effects apply, and they need the DEM model.
+TEST_F(GapCli, APunchCurveGetsNoWireTestEffect) {
+  const auto punch = [&](double stiffness, const fs::path& file) {
+    Curve curve;
+    std::vector<double> mm, force;
+    for (int i = 0; i <= 200; ++i) {
+      const double u = 3.0 * i;  // mm, to 0.6 m
+      mm.push_back(u);
+      force.push_back(u < 200.0 ? 0.0 : stiffness * (u - 200.0) * (u - 200.0));
+    }
+    curve.add_channel("tool_displacement", *find_unit("mm"), mm);
+    curve.add_channel("tool_force", *find_unit("N"), force);
+    curve.set_metadata("tool", "platter");
+    write_csv(curve, file);
+  };
+  punch(0.3, dir / "punch_lab.csv");
+  punch(0.6, dir / "punch_sim.csv");
+  const fs::path json = dir / "punch_gap.json";
+  const CommandResult r = run({"gap", "--lab", (dir / "punch_lab.csv").string(), "--sim", (dir / "punch_sim.csv").string(),
+                               "--columns", "tool_displacement,tool_force", "--json", json.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("cause"), "none");
+  EXPECT_TRUE(j.at("ranking").empty());
+  const auto& untested = j.at("not_tested");
+  for (const char* name : {"grip_slip", "machine_compliance", "sw_softening"})
+    EXPECT_NE(std::find(untested.begin(), untested.end(), name), untested.end()) << name;
+}
+
+// The same curve without its metadata reads as a tension test, but its 0.6 m of travel is no
+// wire test's: the wire effects are still not tested.
+TEST_F(GapCli, AWireEffectIsNotTestedFarOutsideAWireTestsDisplacements) {
+  Curve lab, sim;
+  std::vector<double> mm, f_lab, f_sim;
+  for (int i = 0; i <= 200; ++i) {
+    mm.push_back(3.0 * i);
+    f_lab.push_back(20.0 * i);
+    f_sim.push_back(30.0 * i);
+  }
+  lab.add_channel("displacement", *find_unit("mm"), mm);
+  lab.add_channel("force", *find_unit("N"), f_lab);
+  sim.add_channel("displacement", *find_unit("mm"), mm);
+  sim.add_channel("force", *find_unit("N"), f_sim);
+  write_csv(lab, dir / "long_lab.csv");
+  write_csv(sim, dir / "long_sim.csv");
+  const fs::path json = dir / "long_gap.json";
+  const CommandResult r = run({"gap", "--lab", (dir / "long_lab.csv").string(), "--sim", (dir / "long_sim.csv").string(),
+                               "--json", json.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("cause"), "none");
+  EXPECT_NE(j.at("not_tested_reason").at("grip_slip").get<std::string>().find("beyond a wire test"), std::string::npos);
 }
 
 TEST_F(GapCli, BadInputExitsTwoNamingTheFileAndWritesNothing) {
