@@ -223,37 +223,24 @@ std::vector<EffectSpec> make_catalogue() {
        "study 1)",
        {"nodes_per_wire", 2.0, 3.0, 2.0, 3.0, {2.0, 3.0}, {}}, 2.0}};
   int order = 10;
-  for (const ModelOnly& m : model_only) {
+  const auto add_model_only = [&](const ModelOnly& m, const std::string& test, const std::string& model) {
     EffectSpec e;
     e.name = m.name;
     e.description = m.description;
     e.needs_model = true;
+    e.test = test;
     e.order = order++;
     e.magnitude = 0;
     e.neutral = m.neutral;
     e.parameters = [p = m.parameter](const CurveScale&) { return std::vector<ParameterSpec>{p}; };
-    e.apply = [n = std::string(m.name)](const ForceCurve&, const std::vector<double>&,
-                                        const CurveScale&) -> ForceCurve {
-      throw std::logic_error("effect " + n + " needs the FE model (--model)");
+    e.apply = [why = "effect " + std::string(m.name) + " needs the " + model](
+                  const ForceCurve&, const std::vector<double>&, const CurveScale&) -> ForceCurve {
+      throw std::logic_error(why);
     };
     c.push_back(e);
-  }
-  for (const ModelOnly& m : mesh_only) {
-    EffectSpec e;
-    e.name = m.name;
-    e.description = m.description;
-    e.needs_model = true;
-    e.test = "mesh";
-    e.order = order++;
-    e.magnitude = 0;
-    e.neutral = m.neutral;
-    e.parameters = [p = m.parameter](const CurveScale&) { return std::vector<ParameterSpec>{p}; };
-    e.apply = [n = std::string(m.name)](const ForceCurve&, const std::vector<double>&,
-                                        const CurveScale&) -> ForceCurve {
-      throw std::logic_error("effect " + n + " needs the DEM model (--model F.toml)");
-    };
-    c.push_back(e);
-  }
+  };
+  for (const ModelOnly& m : model_only) add_model_only(m, "wire", "FE model (--model M.prm)");
+  for (const ModelOnly& m : mesh_only) add_model_only(m, "mesh", "DEM model (--model F.toml)");
   return c;
 }
 
