@@ -112,6 +112,8 @@ std::vector<std::string> dem_effect_entries(const dem::RunInput& base, const std
       entries.push_back("boundary.presag_m=0.0");
       entries.push_back("boundary.wall_below_m=" + number_text(p * 1e-3));
       entries.push_back("dynamics.settle_s=" + number_text(std::max(base.settle_time, kSlackSettleSeconds)));
+    } else if (p == 1.0) {
+      continue;  // the neutral factor: the same run as the input's (and the same cache entry)
     } else if (name == "dt_weakening") {
       const dem::LinkSetInput& set = *link_set(base, dem::LinkTag::DoubleTwist);
       for (const char* value : {"N0_N", "Nult_N"}) entries.push_back(scale_entry(set, dem::LinkTag::DoubleTwist, value, p));

@@ -59,7 +59,8 @@ TEST_F(GapDemModel, EachEffectIsSwitchedOnThroughTheRunInput) {
   EXPECT_DOUBLE_EQ(sw.at("N0_N"), sw_base.at("N0_N"));
   // Neutral values change nothing.
   EXPECT_TRUE(dem_effect_entries(base, {effect("mesh_distortion", 0.0), effect("edge_sliding", 0.0),
-                                        effect("slack_state", 0.0)}).empty());
+                                        effect("slack_state", 0.0), effect("dt_weakening", 1.0),
+                                        effect("sw_softening", 1.0)}).empty());
 }
 
 TEST_F(GapDemModel, AnEffectTheInputCannotShowIsNamedWithTheReason) {
