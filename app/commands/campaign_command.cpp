@@ -21,6 +21,7 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     bool force = false;
     std::vector<std::string> only;
     std::vector<std::string> variables;
+    int jobs = 1;
   };
   auto options = std::make_shared<Options>();
   options->file = data_path("experiments/default/campaign.toml").string();
@@ -34,6 +35,10 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--var", options->variables,
                       "NAME=VALUE: a variable of the campaign file's [variables] (the default campaign: "
                       "as_made=true starts every DT FE step from the as-made state)");
+  command->add_option("-j,--jobs", options->jobs,
+                      "Cores for steps side by side: a step starts when the steps it reads from are "
+                      "done and its `threads` fit (default 1: one step at a time, in order)")
+      ->check(CLI::Range(1, 4096));
   commands.add(command, [options] {
     Campaign campaign = read_campaign(options->file);
     apply_variables(campaign, options->variables);
@@ -49,6 +54,7 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     }
     check_commands(campaign, command_names());
     run_options.executable = executable_path();
+    run_options.jobs = options->jobs;
     const CampaignLock lock(run_options.out);
     if (!lock.stale_note().empty())
       std::cerr << "campaign: a stale lock in " << run_options.out.string() << " (" << lock.stale_note()
