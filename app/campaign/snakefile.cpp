@@ -1,6 +1,7 @@
 #include "snakefile.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 
 #include "campaign_graph.hpp"
