@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "campaign_graph.hpp"
 #include "dtwire/core/closest_name.hpp"
 #include "dtwire/core/error.hpp"
 
@@ -18,8 +19,8 @@ namespace dtwire::app {
 namespace {
 
 const std::vector<std::string> kTopFields = {"name", "title", "variables", "step"};
-const std::vector<std::string> kStepFields = {"name",    "description", "command", "inputs",
-                                              "outputs", "report",      "summary"};
+const std::vector<std::string> kStepFields = {"name",   "description", "command", "inputs",
+                                              "outputs", "report",     "summary", "threads"};
 const std::vector<std::string> kBuiltInPlaceholders = {"out", "campaign"};
 
 [[noreturn]] void fail(const std::string& file, const toml::node* node, const std::string& message) {
@@ -106,21 +107,15 @@ std::map<std::string, std::string> read_variables(const std::string& file, const
   return variables;
 }
 
-bool writes(const CampaignStep& step, const std::string& path) {
-  return std::any_of(step.outputs.begin(), step.outputs.end(), [&](const std::string& output) {
-    return path == output || path.rfind(output + "/", 0) == 0;
-  });
-}
-
 // Every {out} input must be an output (or lie in an output folder) of an earlier step.
 void check_graph(const Campaign& campaign) {
   for (auto step = campaign.steps.begin(); step != campaign.steps.end(); ++step)
     for (const std::string& input : step->inputs) {
       if (input.rfind("{out}", 0) != 0) continue;
-      if (std::any_of(campaign.steps.begin(), step, [&](const CampaignStep& s) { return writes(s, input); }))
+      if (std::any_of(campaign.steps.begin(), step, [&](const CampaignStep& s) { return step_writes(s, input); }))
         continue;
       const auto later = std::find_if(step + 1, campaign.steps.end(),
-                                      [&](const CampaignStep& s) { return writes(s, input); });
+                                      [&](const CampaignStep& s) { return step_writes(s, input); });
       fail_at_step_field(campaign, *step, "inputs",
                          "step '" + step->name + "': input '" + input + "' is written by no earlier step" +
                              (later != campaign.steps.end() ? " (step '" + later->name + "' writes it, after this one)"
@@ -181,6 +176,12 @@ Campaign read_campaign(const std::filesystem::path& file) {
     step.outputs = string_list(source, table, "outputs", false, placeholders);
     step.report = string_list(source, table, "report", false, placeholders);
     step.summary = string_list(source, table, "summary", false, placeholders);
+    if (const toml::node* threads = table.get("threads")) {
+      const auto count = threads->value<std::int64_t>();
+      if (!threads->is_integer() || !count || *count < 1 || *count > 4096)
+        fail(source, threads, "'threads' must be an integer from 1 to 4096 (the cores the step uses)");
+      step.threads = static_cast<int>(*count);
+    }
     campaign.steps.push_back(std::move(step));
   }
   check_graph(campaign);

@@ -10,6 +10,7 @@
 //   outputs = ["{out}/meshes/sw.msh"]     # must exist after the step for it to count as done
 //   report = ["{out}/meshes/sw_check.md", "{out}/figures/sw.png"]  # embedded in the report
 //   summary = ["{out}/fit/parameters.json"]  # read by the report's summary (optional)
+//   threads = 4                           # cores the step uses (its threads or MPI ranks); 1 if absent
 //   [variables]                           # optional: {name} in any step string, value a string
 //   as_made = "false"                     # default; `dtwire campaign --var as_made=true` overrides
 //
@@ -31,6 +32,7 @@ struct CampaignStep {
   std::vector<std::string> outputs;
   std::vector<std::string> report;
   std::vector<std::string> summary;
+  int threads = 1;  // cores it occupies while it runs (campaign --jobs, Snakemake threads:)
   int line = 0;                       // of the step's [[step]] table
   std::map<std::string, int> field_lines;  // field name -> line of its value
 };

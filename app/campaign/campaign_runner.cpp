@@ -1,67 +1,30 @@
 #include "campaign_runner.hpp"
 
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
+#include <condition_variable>
 #include <fstream>
-#include <iomanip>
-#include <iostream>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <set>
-#include <sstream>
+#include <thread>
 
 #include "../cli.hpp"
-#include "dtwire/core/atomic_file.hpp"
+#include "campaign_graph.hpp"
+#include "campaign_state.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
-#include "dtwire/version.hpp"
+#include "step_console.hpp"
 #include "step_process.hpp"
 
 namespace dtwire::app {
 namespace {
 
 using nlohmann::json;
-
-std::filesystem::path state_path(const std::filesystem::path& out) {
-  return out / "campaign_state.json";
-}
-
-json load_state(const std::filesystem::path& out) {
-  const auto path = state_path(out);
-  if (!std::filesystem::exists(path)) return json::object();
-  std::ifstream in(path);
-  try {
-    return json::parse(in);
-  } catch (const json::exception& e) {
-    std::cerr << "campaign: ignoring unreadable state " << path << " (" << e.what() << ")\n";
-    return json::object();
-  }
-}
-
-void save_state(const std::filesystem::path& out, const json& state) {
-  write_file_atomically(state_path(out), [&](std::ostream& stream) { stream << state.dump(2) << "\n"; });
-}
-
-std::string fingerprint(const std::vector<std::string>& command, const std::vector<std::string>& inputs) {
-  std::string text = std::string("dtwire ") + kVersion + "\n";
-  for (const auto& arg : command) text += arg + '\0';
-  for (const auto& input : inputs) text += "\n" + input + " " + sha256_file(input);
-  return sha256_text(text);
-}
-
-// True if `path` lies inside `folder` (both made absolute, lexically normalised).
-bool is_within(const std::filesystem::path& path, const std::filesystem::path& folder) {
-  const auto p = std::filesystem::absolute(path).lexically_normal().string();
-  const auto f = std::filesystem::absolute(folder).lexically_normal().string();
-  return p.compare(0, f.size(), f) == 0;
-}
-
-bool outputs_exist(const std::vector<std::string>& outputs) {
-  return std::all_of(outputs.begin(), outputs.end(),
-                     [](const std::string& o) { return std::filesystem::exists(o); });
-}
+using Clock = std::chrono::steady_clock;
 
 // The step's console log, then the *.log files a command writes beside its outputs (run.log).
 std::vector<std::filesystem::path> progress_logs(const std::filesystem::path& console,
@@ -74,30 +37,236 @@ std::vector<std::filesystem::path> progress_logs(const std::filesystem::path& co
   return logs;
 }
 
-// One line per step: rewritten in place on a terminal, printed once when the step ends otherwise.
-class ProgressLine {
+// A step that has to run: its expanded command, inputs, outputs and fingerprint.
+struct Launch {
+  std::vector<std::string> command, inputs, outputs;
+  std::string hash;
+  int cores = 1;
+};
+
+// What a step's turn gives before anything runs: an outcome (skipped, blocked, ...), a launch,
+// or nothing (not selected by --only and never run).
+struct Decision {
+  std::optional<StepOutcome> outcome;
+  std::optional<Launch> launch;
+  std::string note;  // the console's line for a step that does not run
+};
+
+class Runner {
  public:
-  explicit ProgressLine(std::string prefix) : prefix_(std::move(prefix)), live_(::isatty(2) == 1) {}
-  void update(double seconds, const std::string& progress) {
-    if (!live_) return;
-    std::cerr << "\r\033[K" << text(seconds, progress) << std::flush;
+  Runner(const Campaign& campaign, const CampaignOptions& options)
+      : campaign_(campaign),
+        options_(options),
+        campaign_dir_(std::filesystem::absolute(campaign.file).parent_path()),
+        waits_(step_dependencies(campaign)),
+        state_(load_state(options.out)),
+        console_(options.jobs > 1),
+        phase_(campaign.steps.size(), Phase::Waiting),
+        outcomes_(campaign.steps.size()),
+        workers_(campaign.steps.size()) {}
+
+  ~Runner() {  // after an error: the running steps finish first
+    for (auto& worker : workers_)
+      if (worker.joinable()) worker.join();
   }
-  void finish(const std::string& message) {
-    std::cerr << (live_ ? "\r\033[K" : "") << prefix_ << ": " << message << "\n";
-  }
-  static std::string seconds_text(double seconds) {
-    std::ostringstream s;
-    s << std::fixed << std::setprecision(seconds < 10 ? 1 : 0) << seconds << " s";
-    return s.str();
+
+  std::vector<StepOutcome> run() {
+    for (;;) {
+      start_ready_steps();
+      if (cores_in_use_ == 0) break;  // nothing running: every step has had its turn
+      collect_one_finished_step();
+    }
+    std::vector<StepOutcome> outcomes;
+    for (auto& outcome : outcomes_)
+      if (outcome) outcomes.push_back(*outcome);
+    return outcomes;
   }
 
  private:
-  std::string text(double seconds, const std::string& progress) const {
-    std::string line = prefix_ + ": running " + seconds_text(seconds) + (progress.empty() ? "" : ", " + progress);
-    return line.size() > 118 ? line.substr(0, 115) + "..." : line;
+  enum class Phase { Waiting, Running, Finished };
+
+  std::string expand_text(const std::string& text) const { return expand(text, options_.out, campaign_dir_); }
+  std::vector<std::string> expand_all(const std::vector<std::string>& texts) const {
+    std::vector<std::string> out;
+    for (const auto& t : texts) out.push_back(expand_text(t));
+    return out;
   }
-  std::string prefix_;
-  bool live_;
+  std::string label(std::size_t i) const {
+    return "[" + std::to_string(i + 1) + "/" + std::to_string(campaign_.steps.size()) + "] " + campaign_.steps[i].name;
+  }
+
+  bool ready(std::size_t i) const {
+    // One at a time, the steps keep the file's order.
+    if (options_.jobs == 1 && std::any_of(phase_.begin(), phase_.begin() + static_cast<std::ptrdiff_t>(i),
+                                          [](Phase p) { return p != Phase::Finished; }))
+      return false;
+    return std::all_of(waits_[i].begin(), waits_[i].end(), [&](std::size_t j) { return phase_[j] == Phase::Finished; });
+  }
+
+  // Starts (or settles without running) every waiting step whose producers are finished, in
+  // the file's order, as long as its cores fit.
+  void start_ready_steps() {
+    for (bool again = true; again;) {
+      again = false;
+      for (std::size_t i = 0; i < campaign_.steps.size(); ++i) {
+        if (phase_[i] != Phase::Waiting || !ready(i)) continue;
+        if (!decisions_.count(i)) decisions_[i] = decide(i);
+        Decision& decision = decisions_[i];
+        if (!decision.launch) {
+          if (!decision.note.empty()) console_.finished(label(i), decision.note);
+          outcomes_[i] = decision.outcome;
+          phase_[i] = Phase::Finished;
+          again = true;
+          continue;
+        }
+        if (cores_in_use_ > 0 && cores_in_use_ + decision.launch->cores > options_.jobs) continue;
+        start(i, *decision.launch);
+      }
+    }
+  }
+
+  Decision decide(std::size_t i) {
+    const CampaignStep& step = campaign_.steps[i];
+    const auto outputs = expand_all(step.outputs);
+    const json& previous = state_.value(step.name, json::object());
+    if (!options_.only.empty() && std::find(options_.only.begin(), options_.only.end(), step.name) == options_.only.end()) {
+      // Not selected: its earlier results, if any, still belong in the report.
+      if (previous.value("status", "") == "done" && outputs_exist(outputs))
+        return {StepOutcome{step.name, StepStatus::Skipped, previous.value("seconds", 0.0), 0,
+                            "not selected by --only; results of an earlier run"},
+                std::nullopt, {}};
+      return {};
+    }
+    StepOutcome outcome{step.name, StepStatus::Done, 0.0, 0, {}};
+    if (!command_available(step.command.front())) {
+      outcome.status = StepStatus::Unavailable;
+      outcome.message = "'dtwire " + step.command.front() + "' is compiled out of this build";
+      return {outcome, std::nullopt, outcome.message};
+    }
+    for (std::size_t j : waits_[i])
+      if (outcomes_[j] && (outcomes_[j]->status == StepStatus::Failed || outcomes_[j]->status == StepStatus::Blocked)) {
+        // Its earlier outputs may still be on disk: never run on what a failed step left.
+        const auto read = std::find_if(step.inputs.begin(), step.inputs.end(), [&](const std::string& input) {
+          return step_writes(campaign_.steps[j], input);
+        });
+        outcome.status = StepStatus::Blocked;
+        outcome.message = (read != step.inputs.end()
+                               ? "input " + std::filesystem::relative(expand_text(*read), options_.out).string() +
+                                     " was not produced"
+                               : std::string("it waits for step '") + campaign_.steps[j].name + "'") +
+                          " (step '" + campaign_.steps[j].name + "' " + status_name(outcomes_[j]->status) + ")";
+        return {outcome, std::nullopt, "blocked, " + outcome.message};
+      }
+    Launch launch{expand_all(step.command), expand_all(step.inputs), outputs, {}, std::min(step.threads, options_.jobs)};
+    const auto missing = std::find_if(launch.inputs.begin(), launch.inputs.end(),
+                                      [](const std::string& input) { return !std::filesystem::exists(input); });
+    if (missing != launch.inputs.end()) {
+      outcome.status = StepStatus::Blocked;
+      outcome.message = "input " + std::filesystem::relative(*missing, options_.out).string() +
+                        " was not produced (an earlier step failed)";
+      return {outcome, std::nullopt, "blocked, " + outcome.message};
+    }
+    for (const auto& output : outputs) std::filesystem::create_directories(std::filesystem::path(output).parent_path());
+    launch.hash = step_fingerprint(launch.command, launch.inputs);
+    if (!options_.force && previous.value("status", "") == "done" && previous.value("fingerprint", "") == launch.hash &&
+        outputs_exist(outputs)) {
+      outcome.status = StepStatus::Skipped;
+      outcome.seconds = previous.value("seconds", 0.0);
+      return {outcome, std::nullopt, "up to date, skipped"};
+    }
+    return {std::nullopt, launch, {}};
+  }
+
+  void start(std::size_t i, const Launch& launch) {
+    phase_[i] = Phase::Running;
+    cores_in_use_ += launch.cores;
+    started_at_[i] = std::chrono::duration<double>(Clock::now() - campaign_start_).count();
+    console_.started(label(i), campaign_.steps[i].name);
+    workers_[i] = std::thread([this, i, launch] {
+      StepOutcome outcome = execute(i, launch);
+      const std::lock_guard<std::mutex> lock(mutex_);
+      finished_.push_back({i, std::move(outcome)});
+      wake_.notify_one();
+    });
+  }
+
+  // On a worker thread: runs the step's process and judges it. Never throws.
+  StepOutcome execute(std::size_t i, const Launch& launch) {
+    const CampaignStep& step = campaign_.steps[i];
+    StepOutcome outcome{step.name, StepStatus::Done, 0.0, 0, {}};
+    const auto folder = step_folder(options_.out, step.name);
+    const auto log = folder / "output.log";
+    const auto start = Clock::now();
+    try {
+      std::filesystem::create_directories(folder);
+      {
+        std::ofstream header(folder / "command.txt");
+        header << "dtwire";
+        for (const auto& a : launch.command) header << " " << a;
+        header << "\n";
+      }
+      outcome.exit_code = run_step_process(options_.executable, launch.command, log, [&](double seconds) {
+        console_.progress(label(i), seconds, step_progress(progress_logs(log, launch.outputs)));
+      });
+      if (outcome.exit_code != 0) {
+        outcome.status = StepStatus::Failed;
+        outcome.message = "exit code " + std::to_string(outcome.exit_code) + ": " + last_line(log);
+      } else if (!outputs_exist(launch.outputs)) {
+        outcome.status = StepStatus::Failed;
+        outcome.message = "finished but did not write all of its outputs";
+      }
+    } catch (const std::exception& e) {  // the step could not be started: it fails, the others run
+      outcome.status = StepStatus::Failed;
+      outcome.exit_code = 1;
+      outcome.message = e.what();
+    }
+    outcome.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return outcome;
+  }
+
+  void collect_one_finished_step() {
+    std::pair<std::size_t, StepOutcome> done;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return !finished_.empty(); });
+      done = std::move(finished_.front());
+      finished_.erase(finished_.begin());
+    }
+    const auto& [i, outcome] = done;
+    workers_[i].join();
+    const Launch& launch = *decisions_[i].launch;
+    cores_in_use_ -= launch.cores;
+    const std::string log_name =
+        std::filesystem::relative(step_folder(options_.out, outcome.name) / "output.log", options_.out).string();
+    console_.finished(label(i), status_name(outcome.status) + " in " + StepConsole::seconds_text(outcome.seconds) +
+                                    (outcome.message.empty() ? "" : " (" + outcome.message + "; log " + log_name + ")"));
+    state_[outcome.name] = {{"status", outcome.status == StepStatus::Done ? "done" : "failed"},
+                            {"fingerprint", launch.hash},
+                            {"seconds", outcome.seconds},
+                            {"started_s", started_at_[i]},
+                            {"log", log_name},
+                            {"finished_utc", utc_now_iso8601()}};
+    save_state(options_.out, state_);
+    outcomes_[i] = outcome;
+    phase_[i] = Phase::Finished;
+  }
+
+  const Campaign& campaign_;
+  const CampaignOptions& options_;
+  const std::filesystem::path campaign_dir_;
+  const std::vector<std::vector<std::size_t>> waits_;
+  json state_;
+  StepConsole console_;
+  std::vector<Phase> phase_;
+  std::vector<std::optional<StepOutcome>> outcomes_;
+  std::map<std::size_t, Decision> decisions_;
+  std::map<std::size_t, double> started_at_;  // seconds after the campaign started
+  const Clock::time_point campaign_start_ = Clock::now();
+  int cores_in_use_ = 0;
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::vector<std::pair<std::size_t, StepOutcome>> finished_;  // reported by workers, not yet collected
 };
 
 }  // namespace
@@ -117,112 +286,23 @@ std::string status_name(StepStatus status) {
   return "unknown";
 }
 
-std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOptions& options) {
-  check_commands(campaign, command_names());
-  std::filesystem::create_directories(options.out);
+void check_external_inputs(const Campaign& campaign, const std::filesystem::path& out) {
   const auto campaign_dir = std::filesystem::absolute(campaign.file).parent_path();
-  // Inputs from outside the output folder must all exist before anything runs.
   for (const CampaignStep& step : campaign.steps)
     for (const auto& raw : step.inputs) {
-      const std::string input = expand(raw, options.out, campaign_dir);
-      if (!is_within(input, options.out) && !std::filesystem::exists(input))
+      const std::string input = expand(raw, out, campaign_dir);
+      if (!is_within(input, out) && !std::filesystem::exists(input))
         throw InputError(campaign.file.string(), step.field_lines.count("inputs") ? step.field_lines.at("inputs") : step.line,
                          0, "step '" + step.name + "': input " + input + " does not exist");
     }
-  json state = load_state(options.out);
-  std::vector<StepOutcome> outcomes;
-  std::size_t index = 0;
-  for (const CampaignStep& step : campaign.steps) {
-    ++index;
-    if (!options.only.empty() &&
-        std::find(options.only.begin(), options.only.end(), step.name) == options.only.end()) {
-      // Not selected: its earlier results, if any, still belong in the report.
-      std::vector<std::string> outputs;
-      for (const auto& a : step.outputs) outputs.push_back(expand(a, options.out, campaign_dir));
-      const json& previous = state.value(step.name, json::object());
-      if (previous.value("status", "") == "done" && outputs_exist(outputs))
-        outcomes.push_back({step.name, StepStatus::Skipped, previous.value("seconds", 0.0), 0,
-                            "not selected by --only; results of an earlier run"});
-      continue;
-    }
-    ProgressLine line("[" + std::to_string(index) + "/" + std::to_string(campaign.steps.size()) + "] " + step.name);
-    StepOutcome outcome{step.name, StepStatus::Done, 0.0, 0, {}};
-    if (!command_available(step.command.front())) {
-      outcome.status = StepStatus::Unavailable;
-      outcome.message = "'dtwire " + step.command.front() + "' is compiled out of this build";
-      line.finish(outcome.message);
-      outcomes.push_back(outcome);
-      continue;
-    }
-    std::vector<std::string> command, inputs, outputs;
-    for (const auto& a : step.command) command.push_back(expand(a, options.out, campaign_dir));
-    for (const auto& a : step.inputs) inputs.push_back(expand(a, options.out, campaign_dir));
-    for (const auto& a : step.outputs) outputs.push_back(expand(a, options.out, campaign_dir));
-    const auto missing = std::find_if(inputs.begin(), inputs.end(), [](const std::string& input) {
-      return !std::filesystem::exists(input);
-    });
-    if (missing != inputs.end()) {
-      outcome.status = StepStatus::Blocked;
-      outcome.message = "input " + std::filesystem::relative(*missing, options.out).string() +
-                        " was not produced (an earlier step failed)";
-      line.finish("blocked, " + outcome.message);
-      outcomes.push_back(outcome);
-      continue;
-    }
-    for (const auto& output : outputs)
-      std::filesystem::create_directories(std::filesystem::path(output).parent_path());
-    const std::string hash = fingerprint(command, inputs);
-    const json& previous = state.value(step.name, json::object());
-    if (!options.force && previous.value("status", "") == "done" &&
-        previous.value("fingerprint", "") == hash && outputs_exist(outputs)) {
-      outcome.status = StepStatus::Skipped;
-      outcome.seconds = previous.value("seconds", 0.0);
-      line.finish("up to date, skipped");
-      outcomes.push_back(outcome);
-      continue;
-    }
-    const auto folder = step_folder(options.out, step.name);
-    std::filesystem::create_directories(folder);
-    const auto log = folder / "output.log";
-    {
-      std::ofstream header(folder / "command.txt");
-      header << "dtwire";
-      for (const auto& a : command) header << " " << a;
-      header << "\n";
-    }
-    const auto start = std::chrono::steady_clock::now();
-    std::string start_failure;
-    try {
-      outcome.exit_code = run_step_process(options.executable, command, log, [&](double seconds) {
-        line.update(seconds, step_progress(progress_logs(log, outputs)));
-      });
-    } catch (const ComputationError& e) {  // the step could not be started: it fails, the others run
-      start_failure = e.what();
-      outcome.exit_code = 1;
-    }
-    outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!start_failure.empty()) {
-      outcome.status = StepStatus::Failed;
-      outcome.message = start_failure;
-    } else if (outcome.exit_code != 0) {
-      outcome.status = StepStatus::Failed;
-      outcome.message = "exit code " + std::to_string(outcome.exit_code) + ": " + last_line(log);
-    } else if (!outputs_exist(outputs)) {
-      outcome.status = StepStatus::Failed;
-      outcome.message = "finished but did not write all of its outputs";
-    }
-    const std::string log_name = std::filesystem::relative(log, options.out).string();
-    line.finish(status_name(outcome.status) + " in " + ProgressLine::seconds_text(outcome.seconds) +
-                (outcome.message.empty() ? "" : " (" + outcome.message + "; log " + log_name + ")"));
-    state[step.name] = {{"status", outcome.status == StepStatus::Done ? "done" : "failed"},
-                        {"fingerprint", hash},
-                        {"seconds", outcome.seconds},
-                        {"log", log_name},
-                        {"finished_utc", utc_now_iso8601()}};
-    save_state(options.out, state);
-    outcomes.push_back(outcome);
-  }
-  return outcomes;
+}
+
+std::vector<StepOutcome> run_campaign(const Campaign& campaign, const CampaignOptions& options) {
+  if (options.jobs < 1) throw InputError("--jobs", "must be at least 1, got " + std::to_string(options.jobs));
+  check_commands(campaign, command_names());
+  std::filesystem::create_directories(options.out);
+  check_external_inputs(campaign, options.out);
+  return Runner(campaign, options).run();
 }
 
 }  // namespace dtwire::app

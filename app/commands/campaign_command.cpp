@@ -6,13 +6,37 @@
 #include "../campaign/campaign_lock.hpp"
 #include "../campaign/campaign_report.hpp"
 #include "../campaign/campaign_runner.hpp"
+#include "../campaign/recorded_outcomes.hpp"
+#include "../campaign/snakefile.hpp"
 #include "../cli.hpp"
 #include "../commands.hpp"
 #include "../data_path.hpp"
+#include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/version.hpp"
 
 namespace dtwire::app {
+namespace {
+
+// --snakefile: the workflow instead of a run. Refuses a path that exists and is not a file.
+int write_snakefile(const Campaign& campaign, const std::filesystem::path& out, const std::string& file,
+                    const std::vector<std::string>& variables) {
+  if (std::filesystem::exists(file) && !std::filesystem::is_regular_file(file))
+    throw InputError("--snakefile", "'" + file + "' exists and is not a file");
+  check_external_inputs(campaign, out);
+  SnakefileOptions options{std::filesystem::absolute(out).lexically_normal(), executable_path(), variables};
+  for (const CampaignStep& step : campaign.steps)
+    if (!command_available(step.command.front()))
+      std::cerr << "campaign: step '" << step.name << "': 'dtwire " << step.command.front()
+                << "' is compiled out of this build; the workflow runs it with " << options.executable.string()
+                << " all the same\n";
+  write_file_atomically(file, [&](std::ostream& stream) { stream << snakefile_text(campaign, options); });
+  std::cout << "campaign " << campaign.name << ": " << campaign.steps.size() << " step(s) written as "
+            << file << "; run it with: snakemake -s " << file << " --cores N\n";
+  return 0;
+}
+
+}  // namespace
 
 void add_campaign_command(CLI::App& root, CommandSet& commands) {
   struct Options {
@@ -21,6 +45,9 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     bool force = false;
     std::vector<std::string> only;
     std::vector<std::string> variables;
+    int jobs = 1;
+    std::string snakefile;
+    bool report_only = false;
   };
   auto options = std::make_shared<Options>();
   options->file = data_path("experiments/default/campaign.toml").string();
@@ -34,6 +61,24 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--var", options->variables,
                       "NAME=VALUE: a variable of the campaign file's [variables] (the default campaign: "
                       "as_made=true starts every DT FE step from the as-made state)");
+  CLI::Option* jobs = command->add_option("-j,--jobs", options->jobs,
+                      "Cores for steps side by side: a step starts when the steps it reads from are "
+                      "done and its `threads` fit (default 1: one step at a time, in order)")
+      ->check(CLI::Range(1, 4096));
+  CLI::Option* snakefile = command->add_option(
+      "--snakefile", options->snakefile,
+      "Instead of running: write the campaign as a Snakemake workflow to this file (run it with "
+      "`snakemake -s FILE --cores N` or a cluster profile)");
+  CLI::Option* report_only = command->add_flag(
+      "--report-only", options->report_only,
+      "Run nothing: write the report from the outputs in the output directory (the last rule of "
+      "the --snakefile workflow)");
+  snakefile->excludes(report_only)->excludes(jobs);
+  report_only->excludes(jobs);
+  for (const char* run_only : {"--force", "--only"}) {
+    command->get_option(run_only)->excludes(snakefile);
+    command->get_option(run_only)->excludes(report_only);
+  }
   commands.add(command, [options] {
     Campaign campaign = read_campaign(options->file);
     apply_variables(campaign, options->variables);
@@ -49,11 +94,17 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     }
     check_commands(campaign, command_names());
     run_options.executable = executable_path();
+    run_options.jobs = options->jobs;
+    if (!options->snakefile.empty())
+      return write_snakefile(campaign, run_options.out, options->snakefile, options->variables);
+    if (options->report_only && !std::filesystem::is_directory(run_options.out))
+      throw InputError("--report-only", "no output directory " + run_options.out.string() + " to report on");
     const CampaignLock lock(run_options.out);
     if (!lock.stale_note().empty())
       std::cerr << "campaign: a stale lock in " << run_options.out.string() << " (" << lock.stale_note()
                 << ") shows an earlier campaign that did not finish; taking over\n";
-    const auto outcomes = run_campaign(campaign, run_options);
+    const auto outcomes = options->report_only ? recorded_outcomes(campaign, run_options.out)
+                                               : run_campaign(campaign, run_options);
     const auto report = write_campaign_report(campaign, outcomes, run_options.out);
     std::size_t failed = 0, unavailable = 0, blocked = 0;
     for (const auto& o : outcomes) {

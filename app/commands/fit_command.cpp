@@ -4,6 +4,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #include "../cli.hpp"
 #include "../plotting.hpp"
@@ -55,7 +56,11 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                     "Continue from <out>/checkpoint.json if present (same fit definition)");
   command->add_flag("--plot", options->plot,
                     "Also draw <out>/fit_curves.png with scripts/plot_fit.py (python3-matplotlib)");
-  command->add_option("--threads", options->threads, "Parallel simulation runs (default: fit file, else all cores)")
+  command->add_option("-j,--jobs,--threads", options->threads,
+                      "Simulator runs side by side: the starts, and an iteration's experiments and "
+                      "finite-difference columns, each command run in its own folder; the results do "
+                      "not depend on it "
+                      "(default: the fit file's, else all cores)")
       ->check(CLI::Range(1, 1024));
   command->add_option("--synthesize", options->synthesize,
                       "Instead of fitting: write the targets simulated at the parameters' reference "
@@ -88,6 +93,9 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
         options->out.empty() ? std::filesystem::path("fit-out") / def.file.stem() : std::filesystem::path(options->out);
     std::filesystem::create_directories(out);
     if (options->threads >= 0) def.evaluation.threads = static_cast<unsigned>(options->threads);
+    // The starts go side by side too; the evaluator keeps the runs at `threads` at once.
+    def.fit.parallel_starts =
+        def.evaluation.threads > 0 ? def.evaluation.threads : std::max(1u, std::thread::hardware_concurrency());
     if (def.disk_cache) def.evaluation.cache_directory = out / "cache";
     def.fit.checkpoint = out / "checkpoint.json";
     // A new fit's folder never shows an earlier fit's results beside its checkpoint.

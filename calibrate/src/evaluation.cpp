@@ -134,6 +134,22 @@ Curve ProblemEvaluator::run(std::size_t experiment, const ParameterValues& value
   std::unique_lock<std::mutex> serial;
   if (const auto lock = serial_locks_.find(&simulator); lock != serial_locks_.end())
     serial = std::unique_lock<std::mutex>(*lock->second);
+  // A run slot after the simulator's own lock: a thread waiting for that lock holds no slot.
+  {
+    std::unique_lock<std::mutex> slots(slots_mutex_);
+    slot_freed_.wait(slots, [&] { return runs_in_progress_ < options_.threads; });
+    ++runs_in_progress_;
+  }
+  struct SlotRelease {
+    ProblemEvaluator& self;
+    ~SlotRelease() {
+      {
+        const std::lock_guard<std::mutex> slots(self.slots_mutex_);
+        --self.runs_in_progress_;
+      }
+      self.slot_freed_.notify_one();
+    }
+  } release{*this};
   ++simulations_;
   try {
     Curve curve = simulator.simulate(values);
@@ -226,11 +242,14 @@ void ProblemEvaluator::residuals_and_jacobian(const std::vector<double>& z,
     std::move(perturbed.begin(), perturbed.end(), std::back_inserter(outcomes));
   }
 
-  last_jacobian_point_ = z;
-  last_step_failures_.assign(n, "");
-  for (std::size_t k = 1; k < points.size(); ++k)
-    if (!outcomes[k].failure.empty() && last_step_failures_[columns[k].first].empty())
-      last_step_failures_[columns[k].first] = outcomes[k].failure;
+  {
+    const std::lock_guard<std::mutex> lock(last_jacobian_mutex_);
+    last_jacobian_point_ = z;
+    last_step_failures_.assign(n, "");
+    for (std::size_t k = 1; k < points.size(); ++k)
+      if (!outcomes[k].failure.empty() && last_step_failures_[columns[k].first].empty())
+        last_step_failures_[columns[k].first] = outcomes[k].failure;
+  }
 
   // Retry failed perturbed runs: opposite direction, then a tenth of the step.
   for (int attempt = 0; attempt < 2; ++attempt) {

@@ -55,6 +55,7 @@ lsq::Options engine_options(const FitOptions& options) {
   // differently. The parameters are already scaled (z = value / scale).
   o.jacobi_scaling = false;
   o.initial_trust_region_radius = 1e4;
+  o.parallel_starts = options.parallel_starts;
   return o;
 }
 

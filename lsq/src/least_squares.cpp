@@ -3,9 +3,12 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <exception>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "ceres_problem.hpp"
 #include "dtwire/core/error.hpp"
@@ -16,12 +19,16 @@ namespace {
 class IterationReporter final : public ceres::IterationCallback {
  public:
   IterationReporter(const std::vector<double>& x, std::vector<Start>& states, std::size_t index,
-                    int done_before, const Options& options, const SharedEvaluation& shared)
+                    int done_before, const Options& options, const SharedEvaluation& shared,
+                    std::mutex& states_mutex, std::atomic<bool>& stop)
       : x_(x), states_(states), state_(states[index]), index_(index), done_before_(done_before),
-        options_(options), shared_(shared) {}
+        options_(options), shared_(shared), states_mutex_(states_mutex), stop_(stop) {}
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
     if (shared_.has_fatal_error()) return ceres::SOLVER_ABORT;
+    // Starts side by side: one update and one callback at a time, so that a checkpoint sees
+    // every start's last accepted iterate.
+    const std::lock_guard<std::mutex> lock(states_mutex_);
     // Only accepted iterates are resumable states: a resumed run restarts from the last one
     // with its radius and repeats any rejected steps after it, taking the same decisions, so it
     // ends bit for bit where the uninterrupted run ends (Ceres' LM shrink factor, which grows
@@ -33,10 +40,12 @@ class IterationReporter final : public ceres::IterationCallback {
       state_.iterations = done_before_ + summary.iteration;
       state_.cost = summary.cost;
     }
-    if (!options_.after_iteration) return ceres::SOLVER_CONTINUE;
-    const Iteration report{index_, done_before_ + summary.iteration, summary.cost,
-                           summary.gradient_max_norm, accepted};
-    if (options_.after_iteration(report, states_)) return ceres::SOLVER_CONTINUE;
+    if (!stop_ && options_.after_iteration) {
+      const Iteration report{index_, done_before_ + summary.iteration, summary.cost,
+                             summary.gradient_max_norm, accepted};
+      if (!options_.after_iteration(report, states_)) stop_ = true;
+    }
+    if (!stop_) return ceres::SOLVER_CONTINUE;  // another start may have been stopped
     stopped = true;
     return ceres::SOLVER_ABORT;
   }
@@ -51,6 +60,8 @@ class IterationReporter final : public ceres::IterationCallback {
   int done_before_;
   const Options& options_;
   const SharedEvaluation& shared_;
+  std::mutex& states_mutex_;
+  std::atomic<bool>& stop_;
 };
 
 ceres::Solver::Options solver_options(const Options& options) {
@@ -88,8 +99,10 @@ void check(const Problem& problem) {
 }
 
 // Runs (or resumes) one start; returns false when the user's callback stopped it.
-bool solve_start(const Problem& problem, const Options& options, std::size_t index, std::vector<Start>& states) {
+bool solve_start(const Problem& problem, const Options& options, std::size_t index, std::vector<Start>& states,
+                 std::mutex& states_mutex, std::atomic<bool>& stop) {
   Start& state = states[index];
+  std::unique_lock<std::mutex> lock(states_mutex);
   const bool continuing = state.state == StartState::Running;
   std::vector<double> x = clamped(problem, continuing ? state.x : state.start);
   const int done_before = continuing ? state.iterations : 0;
@@ -99,16 +112,19 @@ bool solve_start(const Problem& problem, const Options& options, std::size_t ind
     state.message = "maximum number of iterations reached";
     return true;
   }
+  const double radius = continuing ? state.radius : options.initial_trust_region_radius;
+  lock.unlock();
   CeresProblem ceres_problem(problem, options, x);
   ceres::Solver::Options solver = solver_options(options);
   solver.max_num_iterations = options.max_iterations - done_before;
-  solver.initial_trust_region_radius = continuing ? state.radius : options.initial_trust_region_radius;
-  IterationReporter reporter(x, states, index, done_before, options, ceres_problem.shared);
+  solver.initial_trust_region_radius = radius;
+  IterationReporter reporter(x, states, index, done_before, options, ceres_problem.shared, states_mutex, stop);
   solver.callbacks.push_back(&reporter);
   ceres::Solver::Summary summary;
   ceres::Solve(solver, ceres_problem.problem.get(), &summary);
   ceres_problem.shared.rethrow_fatal_error();
   if (reporter.stopped) return false;
+  lock.lock();
   if (summary.termination_type == ceres::CONVERGENCE ||
       summary.termination_type == ceres::NO_CONVERGENCE) {
     state.state = StartState::Done;
@@ -150,19 +166,40 @@ std::vector<Start> starts_at(const std::vector<std::vector<double>>& points) {
 
 Summary solve(const Problem& problem, const Options& options, std::vector<Start> starts) {
   check(problem);
-  Summary summary;
-  summary.completed = true;
-  for (std::size_t s = 0; s < starts.size(); ++s) {
-    Start& state = starts[s];
-    if (state.state == StartState::Done || state.state == StartState::Failed) continue;
-    if (state.start.size() != problem.parameter_count)
+  for (const Start& state : starts)
+    if (state.state != StartState::Done && state.state != StartState::Failed &&
+        state.start.size() != problem.parameter_count)
       throw std::invalid_argument("least squares: a start has the wrong number of parameters");
-    if (!solve_start(problem, options, s, starts)) {
-      summary.completed = false;
-      break;
+  Summary summary;
+  std::mutex states_mutex;
+  std::atomic<bool> stop{false};
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  // Each worker takes the next open start; a start's path does not depend on the others.
+  const auto work = [&] {
+    for (std::size_t s = next++; s < starts.size() && !stop; s = next++) {
+      if (starts[s].state == StartState::Done || starts[s].state == StartState::Failed) continue;
+      try {
+        if (!solve_start(problem, options, s, starts, states_mutex, stop)) return;
+        const std::lock_guard<std::mutex> lock(states_mutex);
+        if (options.after_start) options.after_start(s, starts);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(states_mutex);
+        if (!error) error = std::current_exception();
+        stop = true;
+      }
     }
-    if (options.after_start) options.after_start(s, starts);
+  };
+  const std::size_t workers = std::max<std::size_t>(1, std::min<std::size_t>(options.parallel_starts, starts.size()));
+  if (workers == 1) {
+    work();
+  } else {
+    std::vector<std::thread> pool;
+    for (std::size_t w = 0; w < workers; ++w) pool.emplace_back(work);
+    for (auto& t : pool) t.join();
   }
+  if (error) std::rethrow_exception(error);
+  summary.completed = !stop;
   for (std::size_t s = 0; s < starts.size(); ++s)
     if (starts[s].state == StartState::Done && (!summary.best || starts[s].cost < starts[*summary.best].cost))
       summary.best = s;

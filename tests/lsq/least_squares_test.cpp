@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -197,6 +198,38 @@ TEST(LeastSquares, ResumedSolveEndsWhereTheUninterruptedOneEnds) {
   for (std::size_t j = 0; j < 2; ++j) EXPECT_EQ(part.x[j], whole.x[j]);  // bit for bit
   EXPECT_EQ(part.starts[0].iterations, whole.starts[0].iterations);
   EXPECT_EQ(part.starts[1].iterations, whole.starts[1].iterations);
+}
+
+// Issue 38: starts side by side end where they end one after the other, bit for bit; a stop
+// asked by one start's callback stops the others, and the solve resumes to the same end.
+TEST(LeastSquares, StartsSideBySideEndWhereTheyEndAlone) {
+  std::vector<double> t, y;
+  const Problem p = decay_problem(t, y);
+  Options o;
+  o.jacobi_scaling = false;
+  o.function_tolerance = 1e-14;
+  const auto starts = starts_at({{1.0, 3.0}, {5.0, 0.1}, {0.5, 1.5}, {4.0, 2.0}});
+  const Summary serial = solve(p, o, starts);
+  Options side_by_side = o;
+  side_by_side.parallel_starts = 3;
+  const Summary parallel = solve(p, side_by_side, starts);
+  ASSERT_TRUE(parallel.completed && parallel.best && serial.best);
+  EXPECT_EQ(*parallel.best, *serial.best);
+  for (std::size_t s = 0; s < starts.size(); ++s) {
+    EXPECT_EQ(parallel.starts[s].x, serial.starts[s].x) << "start " << s;
+    EXPECT_EQ(parallel.starts[s].iterations, serial.starts[s].iterations) << "start " << s;
+  }
+  std::atomic<int> seen{0};
+  // Every start must get past its longest run of rejected steps between stops (12 here, as above).
+  side_by_side.after_iteration = [&](const Iteration&, const std::vector<Start>&) { return ++seen < 48; };
+  Summary part = solve(p, side_by_side, starts);
+  EXPECT_FALSE(part.completed);
+  for (int resumes = 0; !part.completed && resumes < 100; ++resumes) {
+    seen = 0;
+    part = solve(p, side_by_side, part.starts);
+  }
+  ASSERT_TRUE(part.completed);
+  for (std::size_t s = 0; s < starts.size(); ++s) EXPECT_EQ(part.starts[s].x, serial.starts[s].x) << "start " << s;
 }
 
 TEST(LeastSquares, ComputationErrorRejectsAPointOtherErrorsEndTheSolve) {

@@ -3,6 +3,7 @@
 // inputs, parallel runs, and forward/central finite-difference Jacobians whose step suits
 // solver noise. Works on the scaled parameters z = value / scale the optimiser sees.
 #include <atomic>
+#include <condition_variable>
 #include <cstddef>
 #include <filesystem>
 #include <map>
@@ -40,7 +41,9 @@ class ResultsCache {
 };
 
 struct EvaluationOptions {
-  unsigned threads = 0;          // 0: std::thread::hardware_concurrency()
+  // Simulator runs at once, over every caller (starts side by side share them); 0:
+  // std::thread::hardware_concurrency().
+  unsigned threads = 0;
   double relative_step = 1e-4;   // finite-difference step h = relative_step * max(|z|, 1)
   bool central_differences = false;
   std::filesystem::path cache_directory;  // empty: memory only
@@ -106,7 +109,11 @@ class ProblemEvaluator {
   std::size_t residual_count_ = 0;
   ResultsCache cache_;
   std::map<const Simulator*, std::unique_ptr<std::mutex>> serial_locks_;
+  std::mutex slots_mutex_;  // at most options_.threads runs at once
+  std::condition_variable slot_freed_;
+  unsigned runs_in_progress_ = 0;
   std::atomic<std::size_t> simulations_{0}, cache_hits_{0}, failures_{0};
+  std::mutex last_jacobian_mutex_;  // starts side by side take Jacobians at once
   std::vector<double> last_jacobian_point_;
   std::vector<std::string> last_step_failures_;
   mutable std::mutex failure_kinds_mutex_;

@@ -36,6 +36,9 @@ struct FitOptions {
   bool resume = false;               // continue from `checkpoint` if it exists
   // Stop as if interrupted once this process has completed this many iterations (tests).
   int stop_after_iterations = -1;
+  // Starts solved side by side (fit --jobs); their simulator runs share the evaluator's
+  // threads. Each start ends where it would alone, so the result does not depend on it.
+  unsigned parallel_starts = 1;
   const std::atomic<bool>* stop_requested = nullptr;  // e.g. set by a SIGINT handler
   std::ostream* progress = nullptr;
 };

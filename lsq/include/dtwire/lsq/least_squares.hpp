@@ -81,6 +81,9 @@ struct Options {
   std::function<bool(const Iteration&, const std::vector<Start>&)> after_iteration;
   // When a start has ended (done or failed).
   std::function<void(std::size_t start, const std::vector<Start>&)> after_start;
+  // Starts solved side by side, on threads (the problem's residuals must then be thread safe);
+  // each start ends where it would alone. The callbacks are called one at a time.
+  unsigned parallel_starts = 1;
 };
 
 std::vector<Start> starts_at(const std::vector<std::vector<double>>& points);
@@ -93,8 +96,8 @@ struct Summary {
   double cost = 0.0;
 };
 
-// Solves from every start not yet done or failed, in order; starts outside the bounds are
-// clamped into them.
+// Solves from every start not yet done or failed, in order (with parallel_starts > 1, up to that
+// many at once); starts outside the bounds are clamped into them.
 Summary solve(const Problem& problem, const Options& options, std::vector<Start> starts);
 
 struct Uncertainty {
