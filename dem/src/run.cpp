@@ -293,7 +293,6 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   if (!options.quiet) std::cerr << "\n";
   summary.steps = engine->steps_taken();
   summary.broken_links = engine->broken_links();
-  summary.largest_balance_error = guard.largest_balance_error();
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   recorder.finish(*engine, summary);
   return summary;

@@ -10,13 +10,13 @@
 namespace dtwire::dem {
 
 struct RunChecks {
-  // |balance error| / work on the mesh (the largest work so far): 5 %, twenty times the largest
-  // figure of a valid 3 x 3 m punch (0.25 %), a third of the smallest runaway (14 %).
+  // |balance error| / work on the mesh (the largest work so far, at least 1 J): 5 %, twenty times
+  // the largest figure of a valid 3 x 3 m punch (0.25 %), a third of the smallest runaway (14 %).
   double max_balance_error = 0.05;
-  // Kinetic energy / work on the mesh, quasi-static runs (punch, cyclic punch, strip), from the
-  // second row on: a valid punch peaks at 23 % when the platter first meets the net; a runaway
-  // exceeds 100 %.
-  double max_kinetic_share = 0.5;
+  // Kinetic energy / the same work, quasi-static runs (punch, cyclic punch, strip), from the
+  // second row on: valid punches peak at 23 % (3 x 3 m) and 37 % (1.6 m at 5 cm/s) when the
+  // platter first meets the net; a runaway exceeds 100 %.
+  double max_kinetic_share = 0.8;
 };
 
 struct FailedCheck {
@@ -34,12 +34,11 @@ class RunGuard {
   // One output row: the energies at `time` after settling, step `step`, and any other figure of
   // the row that must be finite (e.g. the tool force). Returns the first check that fails.
   std::optional<FailedCheck> check(const EnergySplit& energy, double time, long step, double row_figure = 0.0);
-  double largest_balance_error() const { return largest_balance_error_; }
 
  private:
   RunChecks checks_;
   bool quasi_static_;
-  double largest_work_ = 0.0, largest_balance_error_ = 0.0;
+  double largest_work_ = 0.0;
   long loaded_rows_ = 0;  // rows with work on the mesh
 };
 
