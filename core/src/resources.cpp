@@ -1,6 +1,7 @@
 // Memory and disk checks before a command allocates or writes (resources.hpp).
 #include "dtwire/core/resources.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -18,9 +19,10 @@ std::uint64_t parse_byte_size(const std::string& text, const std::string& option
     throw InputError(option, "expected a positive size such as 4G, 512M or 800K, found '" + text + "'");
   is >> unit;
   const std::string rest = is.eof() ? "" : "x";
+  for (char& c : unit) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));  // 4g as 4G
   double factor = 0.0;
   if (unit.empty() || unit == "B") factor = 1.0;
-  else if (unit == "K" || unit == "KB" || unit == "k") factor = 1024.0;
+  else if (unit == "K" || unit == "KB") factor = 1024.0;
   else if (unit == "M" || unit == "MB") factor = 1024.0 * 1024.0;
   else if (unit == "G" || unit == "GB") factor = 1024.0 * 1024.0 * 1024.0;
   else if (unit == "T" || unit == "TB") factor = 1024.0 * 1024.0 * 1024.0 * 1024.0;
