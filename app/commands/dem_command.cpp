@@ -10,6 +10,7 @@
 #include "dem_run_command.hpp"
 #include "dem_surface_command.hpp"
 #include "dtwire/core/error.hpp"
+#include "dtwire/core/resources.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/driver.hpp"
 #include "dtwire/dem/export_params.hpp"
@@ -28,7 +29,24 @@ struct DriverOptions {
   std::optional<double> max_strain;
   double max_rotation = 0.5;
   std::string out;
+  std::string max_memory;
 };
+
+// Per sample: 18 history channels, held about four times (growing vectors, the curve, the
+// writers), and the path's six increments; 1.2 times the peak RSS of 2e5 and 1e6 steps
+// (docs/dem_engine.md, "Resources"). On disk: the CSV and driver.h5, 270 B per sample.
+constexpr double kDriverBytesPerSample = 18 * 8 * 4 + 6 * 8, kDriverProgramBytes = 80e6, kDriverDiskPerSample = 300.0;
+
+// Refuses, before any path is replayed, a --steps the memory or the disk cannot hold (exit 2).
+void check_driver_resources(const DriverOptions& o, std::size_t sets) {
+  const double paths = o.path == "all" ? 6.0 : 1.0;
+  const double samples = paths * static_cast<double>(sets) * static_cast<double>(o.steps);
+  std::optional<std::uint64_t> max_memory;
+  if (!o.max_memory.empty()) max_memory = parse_byte_size(o.max_memory, "--max-memory");
+  const std::string what = std::to_string(o.steps) + " steps x " + std::to_string(static_cast<long>(paths * sets)) + " path runs";
+  check_memory(kDriverProgramBytes + kDriverBytesPerSample * samples, max_memory, "--steps", what);
+  check_disk(kDriverDiskPerSample * samples, o.out, "--steps", what);
+}
 
 // One parameter set on the chosen path(s), written to `out`.
 void drive_set(const DriverOptions& o, dem::ParameterSet set, const std::filesystem::path& out,
@@ -73,6 +91,7 @@ void drive_set(const DriverOptions& o, dem::ParameterSet set, const std::filesys
 
 int run_driver_command(const DriverOptions& o, const std::string& command_line) {
   const std::vector<dem::ParameterSet> sets = dem::read_parameter_file(o.params);
+  check_driver_resources(o, o.wire_type.empty() ? sets.size() : 1);
   if (!o.wire_type.empty() || sets.size() == 1) {
     drive_set(o, dem::select_wire_type(sets, o.wire_type, o.params), o.out, command_line);
     return 0;
@@ -113,6 +132,8 @@ void add_dem_command(CLI::App& root, CommandSet& commands) {
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   driver->add_option("--out", options->out, "Output directory")->required();
+  driver->add_option("--max-memory", options->max_memory,
+                     "Refuse a run whose memory estimate exceeds SIZE (4G, 512M; default: the available memory)");
   commands.add(driver, [options] {
     return run_driver_command(*options, "dtwire dem driver --path " + options->path + " --params " + options->params);
   });

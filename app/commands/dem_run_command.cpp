@@ -3,12 +3,16 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <optional>
+#include <sstream>
 
 #include "../cli.hpp"
 #include "../plotting.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
+#include "dtwire/core/resources.hpp"
 #include "dtwire/dem/run.hpp"
+#include "dtwire/dem/run_footprint.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -25,7 +29,19 @@ struct RunCommandOptions {
   std::vector<std::string> set_entries;
   std::string plot;
   std::vector<std::string> compare;
+  std::string max_memory;
 };
+
+// Refuses, before anything is built or written, a run the machine cannot hold (exit 2).
+void check_resources(const RunCommandOptions& o, const dem::RunInput& input, const std::filesystem::path& out) {
+  const dem::RunFootprint f = dem::run_footprint(input, !o.no_frames);
+  std::ostringstream panel;
+  panel << "a " << input.mesh.width << " x " << input.mesh.height << " m panel (mesh.width_m, mesh.height_m): " << f.describe();
+  std::optional<std::uint64_t> max_memory;
+  if (!o.max_memory.empty()) max_memory = parse_byte_size(o.max_memory, "--max-memory");
+  check_memory(f.memory, max_memory, input.file.string(), panel.str());
+  check_disk(f.disk, out, input.file.string(), panel.str() + " (--no-frames writes none)");
+}
 
 void print_strip_summary(const dem::RunInput& input, const dem::RunSummary& s, const std::filesystem::path& out) {
   const dem::StripFigures& f = s.strip;
@@ -52,6 +68,7 @@ int run_dem_run(const RunCommandOptions& o) {
     input.title += " [" + entry.substr(0, equals) + ": " + std::filesystem::path(entry.substr(equals + 1)).filename().string() + "]";
   }
   const std::filesystem::path out = o.out.empty() ? std::filesystem::path("dem-out") / input.file.stem() : std::filesystem::path(o.out);
+  check_resources(o, input, out);
   if (!o.yade_script.empty()) {
     const std::string script = dem::yade_run_script(input);
     write_file_atomically(o.yade_script, [&](std::ostream& os) { os << script; });
@@ -78,6 +95,12 @@ int run_dem_run(const RunCommandOptions& o) {
             << 1000.0 * s.displacement_at_peak << " mm; broken links " << s.broken_links
             << "; largest energy balance error " << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"
             << "-> " << (out / "curve.csv").string() << ", " << (out / "results.h5").string() << "\n";
+  if (s.failed) {
+    // The partial results stay, marked failed (summary.json "status", curve.csv, results.h5).
+    std::cerr << "dtwire: failed: dem run: " << s.failed->message() << "; partial results in " << out.string()
+              << " (status failed)\n";
+    return kExitFailure;
+  }
   if (!o.plot.empty()) {
     std::vector<std::string> arguments{o.plot, strip ? "strain" : "tool_displacement", strip ? "force_per_width" : "tool_force",
                                        strip ? "Strip force per width against strain (legend: run titles)"
@@ -109,6 +132,8 @@ void add_dem_run_command(CLI::App& dem, CommandSet& commands) {
   run->add_option("--plot", o->plot, "Plot tool force against displacement (PNG)");
   run->add_option("--compare", o->compare, "Other curve CSVs on the same plot")->check(CLI::ExistingFile);
   run->add_flag("-q,--quiet", o->quiet, "No progress line");
+  run->add_option("--max-memory", o->max_memory,
+                  "Refuse runs whose memory estimate exceeds SIZE (4G, 512M; default: the available memory)");
   commands.add(run, [o] { return run_dem_run(*o); });
 }
 

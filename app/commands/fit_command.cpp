@@ -139,6 +139,8 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                         ? "  NOT IDENTIFIED: " + result.identification[i].reason
                         : std::string())
                 << "\n";
+    if (!result.covariance_status.empty() && result.covariance_status != "positive definite")
+      std::cout << "  covariance " << result.covariance_status << ": the +- are not standard errors\n";
     if (options->plot) {
       try {
         run_plot_script("plot_fit.py", {out.string()});

@@ -125,6 +125,7 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
   root["parameters"] = parameters;
   root["covariance"] = result.covariance ? matrix(*result.covariance) : json(nullptr);
   root["correlation"] = result.correlation ? matrix(*result.correlation) : json(nullptr);
+  root["covariance_status"] = result.covariance_status;
   root["covariance_parameters"] = json::array();
   for (const auto& p : result.parameters) root["covariance_parameters"].push_back(p.name);
   root["fit_quality"] = quality;
@@ -158,6 +159,8 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
       << result.best_start + 1 << "); " << result.statistics.simulations << " simulation runs ("
       << result.statistics.cache_hits << " cache hits, " << result.statistics.failures
       << " failed), wall time " << number(result.wall_seconds, 3) << " s; run " << provenance.run_id << ".\n\n";
+    if (!result.covariance_status.empty() && result.covariance_status != "positive definite")
+      s << "**Covariance " << result.covariance_status << ": the sigma below are not standard errors.**\n\n";
     s << "| parameter | value | sigma | unit | bounds | reference | identified |\n|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < n; ++i) {
       const auto& p = result.parameters[i];

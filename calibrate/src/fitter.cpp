@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 
+#include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
 #include "dtwire/calibrate/sampling.hpp"
@@ -117,6 +118,20 @@ std::optional<std::vector<lsq::Start>> read_checkpoint(const std::filesystem::pa
     throw InputError(path.string(), std::string("unreadable checkpoint: ") + error.what());
   }
   return starts;
+}
+
+// The pseudo-inverse of a rank-deficient J^T J, or round-off, gives a covariance that is only
+// semi-definite: some combination of the parameters then shows a variance of zero. Judged on the
+// correlation matrix: the SI covariance mixes units (EA in N against ratios) by 1e16 and more.
+std::string covariance_definiteness(const Eigen::MatrixXd& correlation, const std::vector<double>& sigma) {
+  for (double s : sigma)
+    if (!(s > 0.0) || !std::isfinite(s)) return "not positive definite (a parameter with a variance of zero or not finite)";
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(correlation, Eigen::EigenvaluesOnly);
+  const Eigen::VectorXd& eigen = solver.eigenvalues();  // ascending
+  if (eigen.size() == 0 || eigen(0) > 1e-12 * eigen(eigen.size() - 1)) return "positive definite";
+  std::ostringstream os;
+  os << "not positive definite (correlation eigenvalues " << eigen(0) << " to " << eigen(eigen.size() - 1) << ")";
+  return os.str();
 }
 
 }  // namespace
@@ -242,6 +257,9 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
       }
     result.covariance = cov;
     result.correlation = corr;
+    result.covariance_status = covariance_definiteness(corr, result.sigma);
+    if (result.covariance_status != "positive definite")
+      result.warnings.push_back("covariance " + result.covariance_status + ": the sigma are not standard errors");
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j)
         if (std::abs(corr(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j))) > 0.95)
@@ -254,6 +272,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
         result.warnings.push_back("parameter '" + parameters[i].name +
                                   "' is poorly identified: sigma exceeds |value|");
   } else {
+    result.covariance_status = "not computed (rank-deficient Jacobian)";
     result.warnings.push_back("covariance could not be computed (rank-deficient Jacobian)");
   }
 

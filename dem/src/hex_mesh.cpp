@@ -1,6 +1,7 @@
 // The hexagonal DT mesh generator (layout in hex_mesh.hpp).
 #include "dtwire/dem/hex_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -34,6 +35,20 @@ HexMeshSpec hex_pattern(const std::string& name) {
     return spec;
   }
   throw std::invalid_argument("pattern: unknown pattern '" + name + "', expected 8x10_2.7mm or 8x10_3.1mm");
+}
+
+HexMeshSize hex_mesh_size(const HexMeshSpec& spec) {
+  const double t = spec.twist_length, rise = 0.5 * (spec.opening_height - t), period = 2.0 * (t + rise);
+  const double eps = 1e-9;
+  const double columns = std::floor(spec.width / (0.5 * spec.opening_width) + eps) + 1.0;
+  // Twists of a column of parity p start at p (t + rise) + k period and must end inside.
+  auto twists = [&](int parity) { return std::max(0.0, std::floor((spec.height + eps - t - parity * (t + rise)) / period) + 1.0); };
+  const double even = std::ceil(0.5 * columns), odd = columns - even;
+  const double total = even * twists(0) + odd * twists(1);
+  HexMeshSize size;
+  size.nodes = 2.0 * total;
+  size.links = 3.0 * total + (spec.selvedge ? 2.0 * std::max(twists(0), twists(1)) : 0.0);
+  return size;
 }
 
 HexMesh generate_hex_mesh(const HexMeshSpec& spec) {

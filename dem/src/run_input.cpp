@@ -2,7 +2,9 @@
 // file:line and the field.
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "dtwire/core/error.hpp"
@@ -12,6 +14,8 @@
 
 namespace dtwire::dem {
 namespace {
+
+constexpr double kHuge = std::numeric_limits<double>::max();  // no upper bound
 
 class Reader {
  public:
@@ -40,6 +44,23 @@ class Reader {
     if (!value || !std::isfinite(*value)) fail(node, prefix + key, "expected a number");
     if (positive && !(*value > 0.0)) fail(node, prefix + key, "expected a positive number");
     return *value;
+  }
+  // A number in [low, high]; `expected` says so in the error ("a mass >= 0 kg").
+  double ranged(const toml::table& table, const std::string& prefix, const std::string& key, double fallback,
+                double low, double high, const std::string& expected) const {
+    const double value = number(table, prefix, key, fallback);
+    if (!(value >= low && value <= high)) fail(table.get(key), prefix + key, "expected " + expected);
+    return value;
+  }
+  // A whole number in [low, high] (1.5 or 1e12 are refused, not truncated).
+  long integer(const toml::table& table, const std::string& prefix, const std::string& key, long fallback, long low,
+               long high) const {
+    const toml::node* node = table.get(key);
+    if (!node) return fallback;
+    const auto value = node->value_exact<std::int64_t>();
+    if (!value || *value < low || *value > high)
+      fail(node, prefix + key, "expected an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+    return static_cast<long>(*value);
   }
   double required_number(const toml::table& table, const std::string& prefix, const std::string& key, bool positive) const {
     if (!table.get(key)) fail(&table, prefix + key, "missing");
@@ -252,7 +273,7 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   Reader r(file);
   RunInput in;
   in.file = file;
-  r.check_keys(root, "", {"title", "mesh", "links", "boundary", "dynamics", "tool", "output"});
+  r.check_keys(root, "", {"title", "mesh", "links", "boundary", "dynamics", "tool", "output", "checks"});
   in.title = r.text(root, "", "title", file.stem().string());
 
   const toml::table* mesh = r.table(root, "mesh");
@@ -267,7 +288,7 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   in.mesh.width = r.required_number(*mesh, "mesh.", "width_m", true);
   in.mesh.height = r.required_number(*mesh, "mesh.", "height_m", true);
   in.mesh.selvedge = r.boolean(*mesh, "mesh.", "selvedge", false);
-  in.mesh.node_mass = r.number(*mesh, "mesh.", "node_mass_kg", 0.0);
+  in.mesh.node_mass = r.ranged(*mesh, "mesh.", "node_mass_kg", 0.0, 0.0, kHuge, "a mass >= 0 kg (0: from the wire)");
   in.mesh.node_radius = r.number(*mesh, "mesh.", "node_radius_m", in.mesh.node_radius, true);
   if (in.mesh.width < in.mesh.opening_width)
     r.fail(mesh->get("width_m"), "mesh.width_m", "the panel is narrower than one mesh opening (" +
@@ -329,9 +350,16 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   }
 
   if (const toml::table* dynamics = r.table(root, "dynamics")) {
+<<<<<<< HEAD
     r.check_keys(*dynamics, "dynamics.", {"gravity_m_per_s2", "local_damping", "mass_scale", "rotational_inertia_scale",
                                           "safety", "time_step_s", "threads", "settle_s"});
     in.engine.gravity = Vector3(0.0, 0.0, -r.number(*dynamics, "dynamics.", "gravity_m_per_s2", 9.81));
+=======
+    r.check_keys(*dynamics, "dynamics.", {"gravity_m_per_s2", "local_damping", "mass_scale", "safety", "time_step_s",
+                                          "threads", "settle_s"});
+    in.engine.gravity = Vector3(0.0, 0.0, -r.ranged(*dynamics, "dynamics.", "gravity_m_per_s2", 9.81, 0.0, kHuge,
+                                                    "an acceleration >= 0 (it acts along -z)"));
+>>>>>>> issue37
     in.engine.local_damping = r.number(*dynamics, "dynamics.", "local_damping", 0.0);
     if (in.engine.local_damping < 0.0 || in.engine.local_damping >= 1.0)
       r.fail(dynamics->get("local_damping"), "dynamics.local_damping", "expected a value in [0, 1)");
@@ -340,8 +368,8 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
     in.engine.safety = r.number(*dynamics, "dynamics.", "safety", 0.5, true);
     if (in.engine.safety > 1.0) r.fail(dynamics->get("safety"), "dynamics.safety", "expected a value in (0, 1]");
     in.engine.time_step = r.number(*dynamics, "dynamics.", "time_step_s", 0.0, true);
-    in.engine.threads = static_cast<int>(r.number(*dynamics, "dynamics.", "threads", 1.0, true));
-    in.settle_time = r.number(*dynamics, "dynamics.", "settle_s", 0.0);
+    in.engine.threads = static_cast<int>(r.integer(*dynamics, "dynamics.", "threads", 1, 1, 256));
+    in.settle_time = r.ranged(*dynamics, "dynamics.", "settle_s", 0.0, 0.0, kHuge, "a time >= 0 s");
   }
 
   if ((in.presag > 0.0 || in.wall_below > 0.0) && !(in.settle_time > 0.0))
@@ -376,20 +404,33 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
     }
   }
   in.unload_force = r.number(*tool, "tool.", "unload_force_N", in.unload_force, true);
+  if (!in.force_levels.empty() && in.unload_force >= *std::min_element(in.force_levels.begin(), in.force_levels.end()))
+    r.fail(tool->get("unload_force_N") ? tool->get("unload_force_N") : tool->get("force_levels_N"), "tool.unload_force_N",
+           "expected a force below the smallest of force_levels_N (the platter reloads below it)");
   in.boulder_side = r.number(*tool, "tool.", "side_m", in.boulder_side, true);
-  in.boulder_corner_plane = r.number(*tool, "tool.", "corner_plane_m", 0.625 * in.boulder_side * 1.0, true);
+  in.boulder_corner_plane = r.number(*tool, "tool.", "corner_plane_m", 0.625 * in.boulder_side, true);
+  if (!(in.boulder_corner_plane > 0.5 * in.boulder_side && in.boulder_corner_plane <= 1.5 * in.boulder_side))
+    r.fail(tool->get("corner_plane_m"), "tool.corner_plane_m", "expected a distance in (side_m / 2, 3 side_m / 2]");
   in.boulder_mass = r.number(*tool, "tool.", "mass_kg", in.boulder_mass, true);
-  in.duration = r.number(*tool, "tool.", "duration_s", 0.0);
+  in.duration = r.ranged(*tool, "tool.", "duration_s", 0.0, 0.0, kHuge, "a time >= 0 s");
   in.contact.normal_stiffness = r.number(*tool, "tool.", "kn_N_per_m", 1e9, true);
   in.contact.shear_stiffness = r.number(*tool, "tool.", "ks_N_per_m", 1e8, true);
-  in.contact.friction = r.number(*tool, "tool.", "friction", 0.2);
+  in.contact.friction = r.ranged(*tool, "tool.", "friction", 0.2, 0.0, kHuge, "a Coulomb coefficient >= 0");
   if (in.tool == "boulder" && !(in.duration > 0.0))
     r.fail(tool, "tool.duration_s", "missing: an impact runs for a given time");
 
   if (const toml::table* output = r.table(root, "output")) {
     r.check_keys(*output, "output.", {"interval_s", "frames"});
     in.output_interval = r.number(*output, "output.", "interval_s", in.output_interval, true);
-    in.frames = static_cast<int>(r.number(*output, "output.", "frames", in.frames));
+    in.frames = static_cast<int>(r.integer(*output, "output.", "frames", in.frames, 0, 100000));
+  }
+  // The self-checks' bounds (run_checks.hpp), in percent; studies loosen them per run.
+  if (const toml::table* checks = r.table(root, "checks")) {
+    r.check_keys(*checks, "checks.", {"max_balance_error_percent", "max_kinetic_share_percent"});
+    in.checks.max_balance_error = 0.01 * r.ranged(*checks, "checks.", "max_balance_error_percent",
+                                                  100.0 * in.checks.max_balance_error, 0.0, kHuge, "a percentage >= 0");
+    in.checks.max_kinetic_share = 0.01 * r.ranged(*checks, "checks.", "max_kinetic_share_percent",
+                                                  100.0 * in.checks.max_kinetic_share, 0.0, kHuge, "a percentage >= 0");
   }
   return in;
 }

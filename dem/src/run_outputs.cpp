@@ -170,6 +170,19 @@ void add_engine_parameters(Results& results, const RunInput& input, const RunSum
   parameter("links", static_cast<double>(summary.links), "1");
 }
 
+std::string run_status(const RunSummary& summary) {
+  return summary.failed ? "failed: " + summary.failed->message() : "ok";
+}
+
+void add_status(nlohmann::json& headline, const RunSummary& summary) {
+  headline["status"] = summary.failed ? "failed" : "ok";
+  if (!summary.failed) return;
+  const FailedCheck& f = *summary.failed;
+  headline["failed_check"] = {{"check", f.check}, {"bound_key", f.key}, {"time_s", f.time}, {"step", f.step},
+                              {"value_percent", 100.0 * f.value}, {"bound_percent", 100.0 * f.bound},
+                              {"message", f.message()}};
+}
+
 void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   std::vector<std::filesystem::path> inputs{input_.file};
   for (const auto& [tag, set] : input_.link_sets)
@@ -187,6 +200,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   history.set_metadata("time_step_s", format_number(summary.time_step));
   history.set_metadata("sag_after_settling_mm", format_number(1000.0 * summary.sag));
   history.set_metadata("run_id", provenance.run_id);
+  history.set_metadata("status", run_status(summary));
 
   // Figures: peak, displacement at the peak, the largest balance error against the work on the
   // mesh (rows after 5 % of the final work, so that round-off on a tiny work does not count).
@@ -245,6 +259,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   }
   results.fields.emplace_back("frames", frames_.empty() ? "none" : "net.pvd (frames/net_<k>.vtu)");
   results.fields.emplace_back("title", input_.title);
+  results.fields.emplace_back("status", run_status(summary));
   results.provenance = provenance;
   write_results(results, options_.out / "results.h5");
 
@@ -270,6 +285,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
     headline["onset_force_N"] = 1000.0;
     headline["force_at_420mm_N"] = summary.force_at_420mm;
   }
+  add_status(headline, summary);
   write_file_atomically(options_.out / "summary.json", [&](std::ostream& os) { os << headline.dump(2) << "\n"; });
 }
 

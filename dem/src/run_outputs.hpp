@@ -2,7 +2,10 @@
 // What `dtwire dem run` writes (docs/dem_engine.md): curve.csv and results.h5 (history with
 // provenance), link_force_histogram.csv and pulling_angle_histogram.csv (at the peak force and
 // at the end), frames/net_<k>.vtu + net.pvd for ParaView.
+#include <string>
 #include <vector>
+
+#include <nlohmann/json_fwd.hpp>
 
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/dem/run.hpp"
@@ -12,6 +15,12 @@ namespace dtwire::dem {
 // The run's engine figures every results.h5 carries (time step, critical step, mass scale,
 // damping, nodes, links), shared by the punch and the strip tension.
 void add_engine_parameters(Results& results, const RunInput& input, const RunSummary& summary);
+
+// "ok", or "failed: <the check's message>" (curve.csv and results.h5 metadata).
+std::string run_status(const RunSummary& summary);
+// summary.json's "status" ("ok" or "failed") and, for a failed run, "failed_check": the check,
+// the key of its bound, the time and step, the value and the bound.
+void add_status(nlohmann::json& headline, const RunSummary& summary);
 
 class RunRecorder {
  public:

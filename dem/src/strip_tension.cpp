@@ -183,6 +183,7 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
   const double frame_interval = in.frames > 0 ? expected / in.frames : 0.0;
   double next_output = t0, next_frame = t0, moving_sum = 0.0, fixed_sum = 0.0, elongation_sum = 0.0, peak = 0.0;
   long steps_in_interval = 0;
+  RunGuard guard(in.checks, true);  // the strip is pulled quasi-statically
   auto last_progress = std::chrono::steady_clock::now();
   for (;;) {
     const double elongation = engine->position(marker).dot(g.pull) - start;
@@ -198,6 +199,9 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
       const double moving = steps_in_interval > 0 ? moving_sum / steps_in_interval : clamp_force(*engine, g.moving, g.pull);
       const double fixed = steps_in_interval > 0 ? fixed_sum / steps_in_interval : clamp_force(*engine, g.fixed, g.pull);
       const EnergySplit& e = engine->energy();
+      // A non-finite state stays non-finite: checked once per output interval, and not recorded.
+      summary.failed = guard.check(e, elapsed, engine->steps_taken(), moving);
+      if (summary.failed && summary.failed->check == "finite_state") break;
       double largest = 0.0;
       for (std::size_t l = 0; l < engine->link_count(); ++l)
         if (!engine->link(l).law->broken()) largest = std::max(largest, std::abs(engine->link(l).law->forces()[0]));
@@ -215,6 +219,7 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
         strip.torn = true;
         done = true;
       }
+      if (summary.failed) break;
     }
     if (options.write_frames && frame_interval > 0.0 && (engine->time() >= next_frame || done)) {
       frames.frame(*engine, elapsed);
@@ -226,8 +231,6 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
     moving_sum += clamp_force(*engine, g.moving, g.pull);
     fixed_sum += clamp_force(*engine, g.fixed, g.pull);
     ++steps_in_interval;
-    if (!std::isfinite(engine->energy().kinetic))
-      throw ComputationError("dem run: the state became non-finite at t = " + std::to_string(engine->time()) + " s");
     const auto now = std::chrono::steady_clock::now();
     if (!options.quiet && now - last_progress > std::chrono::seconds(2)) {
       last_progress = now;
@@ -240,25 +243,27 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
   summary.steps = engine->steps_taken();
   summary.broken_links = engine->broken_links();
 
-  // Figures.
+  // Figures (none when the first row was already non-finite).
   const auto& force = columns[kForce];
-  const std::size_t at_peak = static_cast<std::size_t>(std::max_element(force.begin(), force.end()) - force.begin());
-  summary.peak_force = force[at_peak];
-  summary.displacement_at_peak = columns[kElongation][at_peak] / 1000.0;
-  strip.strength_per_width = summary.peak_force / g.width;
-  strip.strain_at_peak = columns[kStrain][at_peak];
-  strip.secant = chord_stiffness(columns[kStrain], columns[kForcePerWidth], 0.1, 0.5);
-  if (strip.secant.defined) strip.origin_secant = 0.5 * strip.strength_per_width / strip.secant.strain_high;
-  for (std::size_t r = 1; r < force.size(); ++r)
-    if (columns[kBroken][r] > 0.0) {
-      strip.force_at_first_break = force[r - 1];
-      break;
-    }
-  strip.end_force = force.back();
-  strip.end_reaction_imbalance = columns[kImbalance].back();
+  if (!force.empty()) {
+    const std::size_t at_peak = static_cast<std::size_t>(std::max_element(force.begin(), force.end()) - force.begin());
+    summary.peak_force = force[at_peak];
+    summary.displacement_at_peak = columns[kElongation][at_peak] / 1000.0;
+    strip.strength_per_width = summary.peak_force / g.width;
+    strip.strain_at_peak = columns[kStrain][at_peak];
+    strip.secant = chord_stiffness(columns[kStrain], columns[kForcePerWidth], 0.1, 0.5);
+    if (strip.secant.defined) strip.origin_secant = 0.5 * strip.strength_per_width / strip.secant.strain_high;
+    for (std::size_t r = 1; r < force.size(); ++r)
+      if (columns[kBroken][r] > 0.0) {
+        strip.force_at_first_break = force[r - 1];
+        break;
+      }
+    strip.end_force = force.back();
+    strip.end_reaction_imbalance = columns[kImbalance].back();
+  }
   // Largest balance error against the work on the mesh, rows past 5 % of the final work.
   const auto work = [&](std::size_t r) { return std::abs(columns[kGravity][r]) + std::abs(columns[kBoundary][r]); };
-  const double final_work = work(force.size() - 1);
+  const double final_work = force.empty() ? 0.0 : work(force.size() - 1);
   for (std::size_t r = 0; r < force.size(); ++r)
     if (work(r) > 0.05 * final_work && work(r) > 0.0)
       summary.largest_balance_error = std::max(summary.largest_balance_error, std::abs(columns[kBalance][r]) / work(r));
@@ -283,6 +288,7 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
   history.set_metadata("free_length_m", format_number(g.free_length));
   history.set_metadata("time_step_s", format_number(summary.time_step));
   history.set_metadata("run_id", provenance.run_id);
+  history.set_metadata("status", run_status(summary));
   summary.history = history;
   write_csv(history, options.out / "curve.csv");
   frames.write_frame_index();
@@ -314,6 +320,7 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
   results.fields.emplace_back("title", in.title);
   results.fields.emplace_back("direction", direction);
   results.fields.emplace_back("secant", "chord of force per width against strain between 10 % and 50 % of the peak");
+  results.fields.emplace_back("status", run_status(summary));
   results.provenance = provenance;
   write_results(results, options.out / "results.h5");
 
@@ -346,6 +353,7 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
     headline["secant_EA_10_50_kN_per_m"] = strip.secant.value / 1000.0;
     headline["origin_secant_EA_50_kN_per_m"] = strip.origin_secant / 1000.0;
   }
+  add_status(headline, summary);
   write_file_atomically(options.out / "summary.json", [&](std::ostream& os) { os << headline.dump(2) << "\n"; });
   return summary;
 }

@@ -1,7 +1,8 @@
 #!/bin/bash
-# Hostile but realistic inputs through the dtwire executable (issue 20): each case must exit 2
-# before any work, naming the file (and line) or option and the closest known name where one
-# exists. Prints the count of cases that behave as the README's input contract says.
+# Hostile but realistic inputs through the dtwire executable (issues 20 and 37): each case must
+# exit 2 before any work, naming the file (and line) or option and the closest known name where
+# one exists; a run whose own physics check fails exits 1 with its partial results marked failed.
+# Prints the count of cases that behave as the README's input contract says.
 # Usage: hostile_inputs.sh <dtwire> <source dir> <scratch dir>
 set -u
 dtwire=$1 src=$2 work=$3
@@ -115,6 +116,61 @@ case_ ".: is the working directory or holds it" export --params "$thesis" --out 
 [ "$(cat foreign/notes.txt)" = "my notes" ] || { echo "FAIL: a refused export touched foreign/notes.txt"; total=$((total + 1)); }
 [ -e "$work/export" ] && { echo "FAIL: a refused export left $work/export"; total=$((total + 1)); }
 [ -e "$work/out/curve.csv" ] && { echo "FAIL: a refused run left $work/out/curve.csv"; total=$((total + 1)); }
+# DEM run inputs out of their physical range (issue 37), named with file:line or --set.
+punch=$src/experiments/dem/punch_macro.toml
+sed -e 's|"\.\./data/|"'"$src"'/experiments/data/|' -e 's/^friction = 0.2$/friction = -0.2/' "$punch" > negative_friction.toml
+sed -e 's|"\.\./data/|"'"$src"'/experiments/data/|' -e 's/^frames = 15$/frames = -1/' "$punch" > frames_negative.toml
+case_ "negative_friction.toml:48:12: tool.friction: expected a Coulomb coefficient >= 0" dem run negative_friction.toml -o dem_out -q
+case_ "frames_negative.toml:52:10: output.frames: expected an integer in [0, 100000]" dem run frames_negative.toml -o dem_out -q
+case_ "--set: output.frames: expected an integer in [0, 100000]" dem run "$punch" --set output.frames=2.5 -o dem_out -q
+case_ "--set: dynamics.threads: expected an integer in [1, 256]" dem run "$punch" --set dynamics.threads=1.5 -o dem_out -q
+case_ "--set: dynamics.gravity_m_per_s2: expected an acceleration >= 0" dem run "$punch" --set dynamics.gravity_m_per_s2=-9.81 -o dem_out -q
+case_ "--set: dynamics.settle_s: expected a time >= 0 s" dem run "$punch" --set dynamics.settle_s=-1 -o dem_out -q
+case_ "--set: mesh.node_mass_kg: expected a mass >= 0 kg" dem run "$punch" --set mesh.node_mass_kg=-0.01 -o dem_out -q
+case_ "--set: tool.duration_s: expected a time >= 0 s" dem run "$punch" --set tool.duration_s=-1 -o dem_out -q
+case_ "--set: tool.unload_force_N: expected a force below the smallest of force_levels_N" dem run "$punch" --set 'tool.force_levels_N=[3000.0]' --set tool.unload_force_N=5000 -o dem_out -q
+case_ "--set: tool.corner_plane_m: expected a distance in (side_m / 2, 3 side_m / 2]" dem run "$src/experiments/dem/impact.toml" --set tool.corner_plane_m=0.1 -o dem_out -q
+case_ "--set: mesh.width_m: the panel is narrower than one mesh opening" dem run "$src/experiments/dem/strip_tension_thesis.toml" --set mesh.width_m=0.05 -o dem_out -q
+case_ "--set: checks.max_balance_error_percent: expected a percentage >= 0" dem run "$punch" --set checks.max_balance_error_percent=-1 -o dem_out -q
+case_ "--set: checks.max_energy_error: unknown key" dem run "$punch" --set checks.max_energy_error=1 -o dem_out -q
+# Resources: a 2000 x 2000 m panel is refused by its memory estimate in a moment, before anything
+# is built; --max-memory lowers the limit; VTU frames beyond the free disk are refused.
+start=$(date +%s)
+case_ "punch_macro.toml: needs about " dem run "$punch" --set mesh.width_m=2000 --set mesh.height_m=2000 -o dem_out -q
+[ $(( $(date +%s) - start )) -le 5 ] || { echo "FAIL: the 2000 x 2000 m refusal took more than 5 s"; total=$((total + 1)); }
+case_ "above --max-memory 1 MB; nothing was run" dem run "$punch" --max-memory 1M -o dem_out -q
+case_ "--max-memory: expected a positive size such as 4G" dem run "$punch" --max-memory lots -o dem_out -q
+case_ "(--no-frames writes none)" dem run "$punch" --set mesh.width_m=20 --set mesh.height_m=20 --set output.frames=100000 -o dem_out -q
+[ -e "$work/dem_out" ] && { echo "FAIL: a refused dem run left $work/dem_out"; total=$((total + 1)); }
+# A run whose physics check fails: exit 1 naming the check, the time and the bound; the partial
+# curve stays and summary.json says "failed". A small, short punch with a bound no run can meet.
+small=(--set mesh.width_m=0.6 --set mesh.height_m=0.6 --set dynamics.settle_s=0.5 --set tool.travel_m=0.06
+       --set tool.speed_m_per_s=0.1 --set output.interval_s=0.05 --no-frames -q)
+case_failed() {  # case_failed <expected text> <folder> <dtwire arguments...>
+  local expected=$1 folder=$2; shift 2
+  total=$((total + 1))
+  local output code
+  output=$("$dtwire" "$@" -o "$folder" 2>&1); code=$?
+  if [ $code -eq 1 ] && [[ "$output" == *"$expected"* ]] && grep -q '"status": "failed"' "$folder/summary.json" &&
+     [ -s "$folder/curve.csv" ] && grep -q "status: failed" "$folder/curve.csv"; then
+    pass=$((pass + 1))
+  else
+    echo "FAIL: dtwire $* -> exit $code, expected 1, '$expected' and a partial result marked failed:"
+    echo "$output" | head -5
+  fi
+}
+case_failed "check 'energy_balance' failed at t = " balance dem run "$punch" "${small[@]}" --set checks.max_balance_error_percent=1e-9
+case_failed "above the bound 0 % (checks.max_kinetic_share_percent)" kinetic dem run "$punch" "${small[@]}" --set checks.max_kinetic_share_percent=0
+case_failed "check 'energy_balance' failed" strip dem run "$src/experiments/dem/strip_tension_thesis.toml" --set mesh.width_m=0.3 \
+  --set mesh.height_m=0.4 --set tool.clamp_depth_m=0.05 --set tool.travel_m=0.004 --set output.interval_s=0.05 --no-frames -q \
+  --set checks.max_balance_error_percent=1e-9
+# The same small punch within the default bounds: exit 0 and "status": "ok".
+total=$((total + 1))
+if "$dtwire" dem run "$punch" "${small[@]}" -o ok > /dev/null 2>&1 && grep -q '"status": "ok"' ok/summary.json; then
+  pass=$((pass + 1))
+else
+  echo "FAIL: a small punch within the default bounds did not end with status ok"
+fi
 # An interrupted run into a folder of an earlier run: the earlier results are gone and run.log
 # says how to resume.
 mkdir -p interrupted && touch interrupted/curve.csv interrupted/results.h5

@@ -2,6 +2,7 @@
 // bounds, failure handling, cache, checkpoint/resume.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -59,6 +60,7 @@ TEST(VoceFit, RecoversKnownParametersWithinTwoSigma) {
   const FitResult result = run_fit(evaluator, FitOptions{});
   ASSERT_TRUE(result.completed);
   ASSERT_TRUE(result.covariance.has_value());
+  EXPECT_EQ(result.covariance_status, "positive definite");
   for (std::size_t i = 0; i < result.values.size(); ++i) {
     const std::string& name = result.parameters[i].name;
     const double truth = kTruth.at(name);
@@ -70,6 +72,42 @@ TEST(VoceFit, RecoversKnownParametersWithinTwoSigma) {
     EXPECT_NEAR(q.rmse, kNoisePa, 0.25 * kNoisePa) << q.experiment;
     EXPECT_GT(q.r_squared, 0.99) << q.experiment;
   }
+}
+
+// The Voce bar declaring one more parameter that it never reads: the curves cannot identify it.
+class IgnoresOneParameter final : public Simulator {
+ public:
+  Curve simulate(const ParameterValues& parameters) const override { return bar_.simulate(parameters); }
+  std::string identity() const override { return "ignores unused_1: " + bar_.identity(); }
+  std::vector<std::pair<std::string, Dimension>> channels() const override { return bar_.channels(); }
+  std::vector<std::string> parameter_names() const override {
+    std::vector<std::string> names = bar_.parameter_names();
+    names.push_back("unused_1");
+    return names;
+  }
+
+ private:
+  VoceBarSimulator bar_{{0.0, 0.04}, 60};
+};
+
+// A covariance that is only semi-definite (issue 37: the pseudo-inverse gives the unread
+// parameter a variance of zero) is reported as such, with a warning, not as standard errors.
+TEST(VoceFit, CovarianceThatIsNotPositiveDefiniteIsReported) {
+  auto simulator = std::make_shared<IgnoresOneParameter>();
+  std::vector<Experiment> experiments = voce_experiments(simulator);
+  experiments.resize(1);  // the monotonic pull, the wrapped bar's path
+  std::vector<ParameterDefinition> parameters = voce_parameters();
+  parameters.push_back({"unused_1", "1", 0.5, 0.0, 1.0, 0.0, std::nullopt});
+  ProblemEvaluator evaluator(experiments, parameters, serial_evaluation());
+  const FitResult result = run_fit(evaluator, FitOptions{});
+  ASSERT_TRUE(result.completed);
+  EXPECT_NE(result.covariance_status, "positive definite");
+  EXPECT_EQ(result.covariance_status.rfind("not ", 0), 0u) << result.covariance_status;
+  const bool warned = std::any_of(result.warnings.begin(), result.warnings.end(), [](const std::string& w) {
+    return w.find("the sigma are not standard errors") != std::string::npos ||
+           w.find("covariance could not be computed") != std::string::npos;
+  });
+  EXPECT_TRUE(warned);
 }
 
 // The covariance is honest: over 40 noise realisations, the fraction of the 160 estimates

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <set>
+#include <tuple>
 
 #include "dtwire/dem/hex_mesh.hpp"
 
@@ -139,6 +140,23 @@ TEST(DemHexMesh, BoundarySidesSelvedgeGabionAndErrors) {
     EXPECT_NE(std::string(e.what()).find("width_m"), std::string::npos);
   }
   EXPECT_THROW(hex_pattern("6x8"), std::invalid_argument);
+}
+
+// The counts the memory check uses (issue 37) without building the mesh: the nodes exactly, the
+// links as an upper bound, within 5 % on the 3 x 3 m punch panel (edge twists have fewer wires).
+TEST(DemHexMesh, SizeWithoutBuildingMatchesTheMesh) {
+  for (const auto& [width, height, selvedge] : {std::tuple{3.0, 3.0, false}, std::tuple{0.6, 0.45, false},
+                                                std::tuple{1.0, 0.99, true}, std::tuple{0.08, 0.1, false}}) {
+    HexMeshSpec spec;
+    spec.width = width;
+    spec.height = height;
+    spec.selvedge = selvedge;
+    const HexMesh mesh = generate_hex_mesh(spec);
+    const HexMeshSize size = hex_mesh_size(spec);
+    EXPECT_EQ(size.nodes, static_cast<double>(mesh.net.nodes.size())) << width << " x " << height;
+    EXPECT_GE(size.links, static_cast<double>(mesh.net.links.size())) << width << " x " << height;
+    if (width >= 3.0) EXPECT_LT(size.links, 1.05 * static_cast<double>(mesh.net.links.size()));
+  }
 }
 
 }  // namespace

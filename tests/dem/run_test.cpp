@@ -153,6 +153,34 @@ TEST(DemRun, SmallPunchWritesItsFilesBalancesEnergyAndIsThreadIndependent) {
   std::ifstream summary(path.parent_path() / "out1" / "summary.json");
   const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"run_id\": \"" + id + "\""), std::string::npos) << text;
+  EXPECT_FALSE(one.failed);
+  EXPECT_NE(text.find("\"status\": \"ok\""), std::string::npos) << text;
+}
+
+// A check that leaves its bound (issue 37) stops the run at that row: the partial curve stays,
+// marked failed in curve.csv, results.h5 and summary.json, with the check, time and bound.
+TEST(DemRun, FailedCheckStopsTheRunAndMarksItsPartialResults) {
+  const auto path = write_input("failing.toml", small_punch("[output]", "[checks]\nmax_balance_error_percent = 1e-9\n[output]"));
+  RunOptions options;
+  options.quiet = true;
+  options.write_frames = false;
+  options.out = path.parent_path() / "out_failed";
+  const RunSummary run = run_simulation(read_run_input(path), options);
+  ASSERT_TRUE(run.failed);
+  EXPECT_EQ(run.failed->check, "energy_balance");
+  EXPECT_EQ(run.failed->key, "checks.max_balance_error_percent");
+  EXPECT_GT(run.failed->value, run.failed->bound);
+  EXPECT_GT(run.failed->step, 0);
+  EXPECT_LT(run.history.size(), 40u);  // stopped early: the whole push is 0.4 s at 0.01 s
+  EXPECT_EQ(run.history.metadata("status").rfind("failed: check 'energy_balance' failed at t = ", 0), 0u)
+      << run.history.metadata("status");
+  std::ifstream csv(options.out / "curve.csv");
+  const std::string rows((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+  EXPECT_NE(rows.find("# status: failed: check 'energy_balance'"), std::string::npos) << rows;
+  std::ifstream summary(options.out / "summary.json");
+  const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"bound_key\": \"checks.max_balance_error_percent\""), std::string::npos) << text;
 }
 
 // Cyclic punch: the platter reverses when the (interval-averaged) force reaches each level and

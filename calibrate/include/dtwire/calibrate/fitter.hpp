@@ -59,6 +59,9 @@ struct FitResult {
   std::optional<Eigen::MatrixXd> covariance;  // SI, scaled by the residual variances
   std::optional<Eigen::MatrixXd> correlation;
   std::vector<double> sigma;                  // sqrt(diag covariance); empty without covariance
+  // "positive definite", or why not (then sigma are not standard errors: a direction of the
+  // parameters has no finite variance); in parameters.json, the report and on the console.
+  std::string covariance_status;
   std::vector<double> singular_values;        // of the column-normalised Jacobian, descending
   std::vector<Identification> identification;  // per parameter (identifiability.hpp)
   double cost = 0.0;

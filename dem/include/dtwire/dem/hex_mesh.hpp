@@ -50,6 +50,14 @@ struct HexMesh {
   double twist_wire_factor = 1.0;   // helix length / twist length
 };
 
+// The node and link counts generate_hex_mesh would give (links: an upper bound, edge twists
+// have fewer wires), without building anything: the memory check of a run comes first. Counts
+// as doubles: a typo in a width can exceed every integer type the mesh uses.
+struct HexMeshSize {
+  double nodes = 0.0, links = 0.0;
+};
+HexMeshSize hex_mesh_size(const HexMeshSpec& spec);
+
 // Throws std::invalid_argument naming the field ("width_m", ...) for a panel smaller than one
 // opening or non-positive dimensions.
 HexMesh generate_hex_mesh(const HexMeshSpec& spec);

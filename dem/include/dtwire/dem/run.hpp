@@ -4,6 +4,7 @@
 // the same run as a YADE script.
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "dtwire/dem/distortion.hpp"
 #include "dtwire/dem/engine.hpp"
 #include "dtwire/dem/hex_mesh.hpp"
+#include "dtwire/dem/run_checks.hpp"
 #include "dtwire/dem/strip_tension.hpp"
 
 namespace dtwire::dem {
@@ -63,6 +65,7 @@ struct RunInput {
   double duration = 0.0;  // [s] after settling (impact); 0: until the platter travel is done
   double output_interval = 0.05;  // [s]
   int frames = 20;
+  RunChecks checks;
 };
 
 // Throws InputError naming file:line and the field for anything malformed or missing.
@@ -110,10 +113,13 @@ struct RunSummary {
   long steps = 0;
   double wall_seconds = 0.0;
   StripFigures strip;  // kind = "strip_tension" only
+  std::optional<FailedCheck> failed;  // the check that stopped the run (its results are partial)
 };
 
 // Runs and writes <out>/curve.csv, results.h5, histograms, frames; throws InputError for input
-// errors found while setting up (e.g. a tool inside the mesh), ComputationError otherwise.
+// errors found while setting up (e.g. a tool inside the mesh), ComputationError otherwise. A run
+// stopped by a check (run_checks.hpp) writes its partial results marked failed and returns with
+// `failed` set.
 RunSummary run_simulation(const RunInput& input, const RunOptions& options);
 
 // Python source for `yade -n -x SCRIPT OUT.csv`: the same mesh, WirePM links, boundary,

@@ -1,0 +1,25 @@
+#pragma once
+// The memory and disk a command would take, checked before it allocates or writes: a typo in a
+// size must be refused by name (exit 2), not allocate until the kernel kills the machine's jobs.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace dtwire {
+
+// "4G", "512M", "1.5G", "800K" or a number of bytes; throws InputError naming `option`.
+std::uint64_t parse_byte_size(const std::string& text, const std::string& option);
+// MemAvailable of /proc/meminfo [bytes]; none where it cannot be read.
+std::optional<std::uint64_t> available_memory();
+std::string format_bytes(double bytes);  // "1.2 GB"
+
+// Throws InputError(source, ...) when `estimate` [bytes] exceeds `max_memory` if given, else the
+// available memory; `what` says what the estimate counts ("3268 nodes, 4784 links, ...").
+void check_memory(double estimate, const std::optional<std::uint64_t>& max_memory, const std::string& source,
+                  const std::string& what);
+// Throws InputError(source, ...) when `estimate` [bytes] exceeds the free space of the file system
+// that holds `folder` (or its nearest existing parent).
+void check_disk(double estimate, const std::filesystem::path& folder, const std::string& source, const std::string& what);
+
+}  // namespace dtwire
