@@ -171,12 +171,19 @@ SimulationModel make_dem_model(const std::filesystem::path& toml, const DemModel
       }
       std::cout << "  DEM run: " << label << std::flush;
       const int code = run_step_process(calibrate::dtwire_executable(), arguments, run / "command.log", [](double) {});
-      if (code != 0)
+      // A run stopped by its own checks (exit 1, issue 37) keeps its curve up to the failed check,
+      // marked `status: failed ...`: the diagnosis reads that part (a runaway after the peak
+      // leaves onset and peak as they were) and says so; any other failure ends the diagnosis.
+      const bool stopped = code == 1 && std::filesystem::exists(run / "out" / "curve.csv") &&
+                           read_csv(run / "out" / "curve.csv").metadata("status").rfind("failed", 0) == 0;
+      if (code != 0 && !stopped)
         throw ComputationError("DEM run (" + label + ") failed (exit " + std::to_string(code) + "), see " +
                                (run / "command.log").string());
       std::ofstream(run / "finished") << label << "\n";
       ++*keep;
-      std::cout << " (done)\n";
+      std::cout << (stopped ? " (stopped by its checks: " + read_csv(run / "out" / "curve.csv").metadata("status") +
+                                  "; its curve up to there)\n"
+                            : std::string(" (done)\n"));
     }
     return read_csv(run / "out" / "curve.csv");
   };

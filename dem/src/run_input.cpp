@@ -350,16 +350,10 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   }
 
   if (const toml::table* dynamics = r.table(root, "dynamics")) {
-<<<<<<< HEAD
     r.check_keys(*dynamics, "dynamics.", {"gravity_m_per_s2", "local_damping", "mass_scale", "rotational_inertia_scale",
                                           "safety", "time_step_s", "threads", "settle_s"});
-    in.engine.gravity = Vector3(0.0, 0.0, -r.number(*dynamics, "dynamics.", "gravity_m_per_s2", 9.81));
-=======
-    r.check_keys(*dynamics, "dynamics.", {"gravity_m_per_s2", "local_damping", "mass_scale", "safety", "time_step_s",
-                                          "threads", "settle_s"});
     in.engine.gravity = Vector3(0.0, 0.0, -r.ranged(*dynamics, "dynamics.", "gravity_m_per_s2", 9.81, 0.0, kHuge,
                                                     "an acceleration >= 0 (it acts along -z)"));
->>>>>>> issue37
     in.engine.local_damping = r.number(*dynamics, "dynamics.", "local_damping", 0.0);
     if (in.engine.local_damping < 0.0 || in.engine.local_damping >= 1.0)
       r.fail(dynamics->get("local_damping"), "dynamics.local_damping", "expected a value in [0, 1)");
