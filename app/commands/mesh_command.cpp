@@ -57,6 +57,7 @@ double estimated_cells(const meshes::MeshParameters& p) {
 // Refuses, before anything is built, a mesh the memory cannot hold (a length typed in m as mm).
 void check_mesh_memory(const MeshOptions& options, const meshes::MeshParameters& p) {
   const double cells = estimated_cells(p);
+  if (!std::isfinite(cells)) return;  // a zero diameter: build_wire_mesh names the field
   std::optional<std::uint64_t> max_memory;
   if (!options.max_memory.empty()) max_memory = parse_byte_size(options.max_memory, "--max-memory");
   std::ostringstream what;
