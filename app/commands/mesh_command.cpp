@@ -1,15 +1,21 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
+#include <sstream>
 
 #include "../cli.hpp"
 #include "../commands.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
+#include "dtwire/core/resources.hpp"
 #include "dtwire/meshes/axis_io.hpp"
+#include "dtwire/meshes/cross_section.hpp"
 #include "dtwire/meshes/mesh_check.hpp"
 #include "dtwire/meshes/mesh_io.hpp"
 #include "dtwire/meshes/parameter_file.hpp"
@@ -27,7 +33,40 @@ struct MeshOptions {
   bool check = false;
   std::map<std::string, double> values;  // option name -> value in mm / deg / count
   std::map<std::string, CLI::Option*> given;
+  std::string max_memory;
 };
+
+// Per hexahedron: its 8 node indices, about one node's coordinates, the material and the writers'
+// copies; fitted to the peak RSS of SW and DT meshes (docs/meshes.md, "Resources").
+constexpr double kBytesPerCell = 500.0, kMeshProgramBytes = 80e6;
+
+// The hexahedra build_wire_mesh would make, before it makes them: the O-grid section's quads
+// times the stations along each wire axis (a twist's axis at most its length plus one turn of the
+// pair per half turn, and a station per max_section_turn of the section's spin).
+double estimated_cells(const meshes::MeshParameters& p) {
+  constexpr double kPi = 3.14159265358979323846;
+  const meshes::Resolution r = meshes::resolution(p.level, p.diameter);
+  const double n = r.block_cells;
+  const double quads = n * n + 4.0 * n * (r.radial_cells + (p.coating > 0.0 ? r.coating_cells : 0));
+  if (p.kind == meshes::WireKind::Single) return quads * std::ceil(p.length / r.axial_cell_length);
+  const double axis = p.twist_length + kPi * (p.diameter + 2.0 * p.coating + p.gap) * p.half_turns + 2.0 * p.arm_length;
+  const double stations = std::ceil(axis / r.axial_cell_length) + std::ceil(kPi * p.half_turns / r.max_section_turn);
+  return 2.0 * quads * stations;
+}
+
+// Refuses, before anything is built, a mesh the memory cannot hold (a length typed in m as mm).
+void check_mesh_memory(const MeshOptions& options, const meshes::MeshParameters& p) {
+  const double cells = estimated_cells(p);
+  if (!std::isfinite(cells)) return;  // a zero diameter: build_wire_mesh names the field
+  std::optional<std::uint64_t> max_memory;
+  if (!options.max_memory.empty()) max_memory = parse_byte_size(options.max_memory, "--max-memory");
+  std::ostringstream what;
+  what << "about " << std::setprecision(3) << cells << " hexahedra at level " << p.level
+       << (p.kind == meshes::WireKind::Single ? ", length " : ", twist-length and arm-length ")
+       << (p.kind == meshes::WireKind::Single ? 1000.0 * p.length : 1000.0 * p.twist_length) << " mm";
+  if (p.kind == meshes::WireKind::DoubleTwist) what << ", " << 1000.0 * p.arm_length << " mm";
+  check_memory(kMeshProgramBytes + kBytesPerCell * cells, max_memory, options.prm.empty() ? "mesh" : options.prm, what.str());
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -51,6 +90,7 @@ int run_mesh(const MeshOptions& options) {
   if (options.msh.empty() && options.vtu.empty() && !options.check && options.report.empty())
     throw InputError("mesh", "nothing to do: give -o FILE.msh, --vtu FILE.vtu, --check or --report FILE.md");
 
+  check_mesh_memory(options, parameters);
   const auto start = std::chrono::steady_clock::now();
   const WireMesh mesh = build_wire_mesh(parameters, locations);
   const double build_seconds = seconds_since(start);
@@ -95,6 +135,8 @@ void add_kind(CLI::App& mesh, CommandSet& commands, meshes::WireKind kind) {
   command->add_flag("--check", options->check,
                     "Print cell count, scaled Jacobian, aspect ratio, wire-wire distance, lay angle and volume");
   command->add_option("--report", options->report, "Write the --check figures as Markdown to this file");
+  command->add_option("--max-memory", options->max_memory,
+                      "Refuse a mesh whose memory estimate exceeds SIZE (4G, 512M; default: the available memory)");
   commands.add(command, [options] { return run_mesh(*options); });
 }
 

@@ -142,6 +142,9 @@ case_ "above --max-memory 1 MB; nothing was run" dem run "$punch" --max-memory 1
 case_ "--max-memory: expected a positive size such as 4G" dem run "$punch" --max-memory lots -o dem_out -q
 case_ "(--no-frames writes none)" dem run "$punch" --set mesh.width_m=20 --set mesh.height_m=20 --set output.frames=100000 -o dem_out -q
 [ -e "$work/dem_out" ] && { echo "FAIL: a refused dem run left $work/dem_out"; total=$((total + 1)); }
+case_ "mesh: needs about " mesh sw --length 1e7 --level 3 -o big.msh  # 10 km typed for 10 mm
+case_ "--steps: needs about " dem driver --law thesis --steps 100000000 --out driver_big
+[ -e big.msh ] || [ -e driver_big ] && { echo "FAIL: a refused mesh or driver left its output"; total=$((total + 1)); }
 # A run whose physics check fails: exit 1 naming the check, the time and the bound; the partial
 # curve stays and summary.json says "failed". A small, short punch with a bound no run can meet.
 small=(--set mesh.width_m=0.6 --set mesh.height_m=0.6 --set dynamics.settle_s=0.5 --set tool.travel_m=0.06
