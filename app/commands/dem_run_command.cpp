@@ -25,6 +25,7 @@ struct RunCommandOptions {
   std::vector<std::string> set_entries;
   std::string plot;
   std::vector<std::string> compare;
+  std::string label;
 };
 
 void print_strip_summary(const dem::RunInput& input, const dem::RunSummary& s, const std::filesystem::path& out) {
@@ -66,6 +67,8 @@ int run_dem_run(const RunCommandOptions& o) {
   for (const std::string& entry : o.set_entries) options.command_line += " --set '" + entry + "'";
   for (const std::string& entry : o.set_params) options.command_line += " --set-params " + entry;
   if (o.threads > 0) options.command_line += " --threads " + std::to_string(o.threads);
+  if (!o.label.empty()) options.command_line += " --label '" + o.label + "'";
+  options.label = o.label;
   options.threads = o.threads;
   options.quiet = o.quiet;
   options.write_frames = !o.no_frames;
@@ -79,12 +82,15 @@ int run_dem_run(const RunCommandOptions& o) {
             << "; largest energy balance error " << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"
             << "-> " << (out / "curve.csv").string() << ", " << (out / "results.h5").string() << "\n";
   if (!o.plot.empty()) {
-    std::vector<std::string> arguments{o.plot, strip ? "strain" : "tool_displacement", strip ? "force_per_width" : "tool_force",
-                                       strip ? "Strip force per width against strain (legend: run titles)"
-                                             : "Tool force against displacement (legend: run titles)",
-                                       (out / "curve.csv").string()};
+    // Punches against the thesis figures (plot_punch.py); other tools as plain curves.
+    const bool punch = input.tool == "platter" && input.force_levels.empty();
+    std::vector<std::string> arguments{o.plot};
+    if (!punch)
+      arguments.insert(arguments.end(), {strip ? "strain" : "tool_displacement", strip ? "force_per_width" : "tool_force",
+                                         strip ? "Strip force per width against strain" : "Tool force against displacement"});
+    arguments.push_back((out / "curve.csv").string());
     arguments.insert(arguments.end(), o.compare.begin(), o.compare.end());
-    run_plot_script("plot_curves.py", arguments);
+    run_plot_script(punch ? "plot_punch.py" : "plot_curves.py", arguments);
     std::cout << "plot: " << o.plot << "\n";
   }
   return 0;
@@ -108,6 +114,7 @@ void add_dem_run_command(CLI::App& dem, CommandSet& commands) {
                   "TAG=FILE: take the sw, dt or selvedge law set from FILE (e.g. sw={out}/export/single_wire_parameters.json)");
   run->add_option("--plot", o->plot, "Plot tool force against displacement (PNG)");
   run->add_option("--compare", o->compare, "Other curve CSVs on the same plot")->check(CLI::ExistingFile);
+  run->add_option("--label", o->label, "Short name of the run in plots and the campaign's mesh-scale table (default: the input's title)");
   run->add_flag("-q,--quiet", o->quiet, "No progress line");
   commands.add(run, [o] { return run_dem_run(*o); });
 }
