@@ -63,7 +63,7 @@ void LinkRecorder::sample(const Engine& engine, double tool_displacement_mm) {
     const ContactLaw& law = *engine.link(l).law;
     if (law.broken()) continue;
     s.force[l] = law.forces()[0];
-    s.elongation[l] = engine.link_length(l) - length_[l];
+    s.elongation[l] = engine.link_law_length(l) - length_[l];
     s.plastic[l] = plastic_elongation(law);
   }
   samples_.push_back(std::move(s));

@@ -7,9 +7,10 @@
 //   link_types_at_peak.csv    per type, link counts, summed tension and quantiles at the peak
 //   link_paths.csv            force-strain path of the kPathsPerType links of each type with the
 //                             largest axial force at the peak
-// Strain is the link's elongation over its generated length (node centre to node centre); the
-// plastic strain is the law's plastic elongation over the same length, for the laws that expose
-// one (thesis, WirePM), empty otherwise.
+// The elongation is the law's own axial displacement u (the length its last update saw minus the
+// generated length, node centre to node centre); the strain is u over the generated length, the
+// plastic strain the law's plastic elongation over the same length, for the laws that expose one
+// (thesis, WirePM), empty otherwise.
 #include <filesystem>
 #include <string>
 #include <vector>
