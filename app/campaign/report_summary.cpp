@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "report_mesh_scale.hpp"
 #include "step_process.hpp"
 
 namespace dtwire::app {
@@ -28,7 +29,7 @@ Kind kind_of(const CampaignStep& step) {
   const auto& c = step.command;
   if (c.front() == "fit") return Kind::Fit;
   if (c.front() == "gap") return c.size() > 1 && c[1] == "selfcheck" ? Kind::Other : Kind::Gap;
-  if (c.front() == "dem" && c.size() > 1 && c[1] == "run") return Kind::Validation;
+  if (c.front() == "dem" && c.size() > 1 && (c[1] == "run" || c[1] == "plot-punch")) return Kind::Validation;
   return Kind::Other;
 }
 
@@ -310,6 +311,17 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
                " kN at " + number("displacement_at_peak_mm", 1.0, 0) + " mm";
     }
   if (table_started) md << "\n";
+  // The sets judged at mesh scale: the labelled runs (dem run --label), run or not.
+  std::vector<MeshScaleRun> labelled;
+  for (const StepFiles& s : by_kind[Kind::Validation]) {
+    const std::string label = label_of_command(s.step->command);
+    if (label.empty()) continue;
+    MeshScaleRun run{label, s.step->name, status_name(s.outcome->status), json()};
+    for (const auto& file : s.files)
+      if (file.filename() == "summary.json") run.summary = read_json(file);
+    labelled.push_back(run);
+  }
+  md << mesh_scale_table(labelled);
   if (by_kind[Kind::Validation].empty())
     glance.push_back("**Mesh-scale validation**: no DEM mesh step yet ([validation](#mesh-scale-validation)).");
   else

@@ -7,6 +7,7 @@
 #include "../cli.hpp"
 #include "../commands.hpp"
 #include "../data_path.hpp"
+#include "dem_plot_command.hpp"
 #include "dem_run_command.hpp"
 #include "dem_surface_command.hpp"
 #include "dtwire/core/error.hpp"
@@ -109,6 +110,7 @@ void add_dem_command(CLI::App& root, CommandSet& commands) {
   dem->require_subcommand(1);
   commands.add(dem, [] { return kExitBadInput; });  // never runs: a subcommand is required
   add_dem_run_command(*dem, commands);
+  add_dem_plot_command(*dem, commands);
   add_dem_surface_command(*dem, commands);
 
   auto options = std::make_shared<DriverOptions>();

@@ -30,6 +30,7 @@ struct RunCommandOptions {
   std::string plot;
   std::vector<std::string> compare;
   std::string max_memory;
+  std::string label;
 };
 
 // Refuses, before anything is built or written, a run the machine cannot hold (exit 2).
@@ -83,6 +84,8 @@ int run_dem_run(const RunCommandOptions& o) {
   for (const std::string& entry : o.set_entries) options.command_line += " --set '" + entry + "'";
   for (const std::string& entry : o.set_params) options.command_line += " --set-params " + entry;
   if (o.threads > 0) options.command_line += " --threads " + std::to_string(o.threads);
+  if (!o.label.empty()) options.command_line += " --label '" + o.label + "'";
+  options.label = o.label;
   options.threads = o.threads;
   options.quiet = o.quiet;
   options.write_frames = !o.no_frames;
@@ -102,12 +105,15 @@ int run_dem_run(const RunCommandOptions& o) {
     return kExitFailure;
   }
   if (!o.plot.empty()) {
-    std::vector<std::string> arguments{o.plot, strip ? "strain" : "tool_displacement", strip ? "force_per_width" : "tool_force",
-                                       strip ? "Strip force per width against strain (legend: run titles)"
-                                             : "Tool force against displacement (legend: run titles)",
-                                       (out / "curve.csv").string()};
+    // Punches against the thesis figures (plot_punch.py); other tools as plain curves.
+    const bool punch = input.tool == "platter" && input.force_levels.empty();
+    std::vector<std::string> arguments{o.plot};
+    if (!punch)
+      arguments.insert(arguments.end(), {strip ? "strain" : "tool_displacement", strip ? "force_per_width" : "tool_force",
+                                         strip ? "Strip force per width against strain" : "Tool force against displacement"});
+    arguments.push_back((out / "curve.csv").string());
     arguments.insert(arguments.end(), o.compare.begin(), o.compare.end());
-    run_plot_script("plot_curves.py", arguments);
+    run_plot_script(punch ? "plot_punch.py" : "plot_curves.py", arguments);
     std::cout << "plot: " << o.plot << "\n";
   }
   return 0;
@@ -131,6 +137,7 @@ void add_dem_run_command(CLI::App& dem, CommandSet& commands) {
                   "TAG=FILE: take the sw, dt or selvedge law set from FILE (e.g. sw={out}/export/single_wire_parameters.json)");
   run->add_option("--plot", o->plot, "Plot tool force against displacement (PNG)");
   run->add_option("--compare", o->compare, "Other curve CSVs on the same plot")->check(CLI::ExistingFile);
+  run->add_option("--label", o->label, "Short name of the run in plots and the campaign's mesh-scale table (default: the input's title)");
   run->add_flag("-q,--quiet", o->quiet, "No progress line");
   run->add_option("--max-memory", o->max_memory,
                   "Refuse runs whose memory estimate exceeds SIZE (4G, 512M; default: the available memory)");

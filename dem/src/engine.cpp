@@ -638,6 +638,7 @@ double Engine::link_length(std::size_t i) const {
   const NetLink& link = s_->links.at(i).link;
   return (s_->x[link.b] - s_->x[link.a]).norm();
 }
+double Engine::link_law_length(std::size_t i) const { return s_->link_state.at(i).length; }
 std::size_t Engine::broken_links() const {
   return static_cast<std::size_t>(std::count_if(s_->link_state.begin(), s_->link_state.end(),
                                                 [](const LinkState& state) { return state.broken; }));

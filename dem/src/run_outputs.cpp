@@ -54,7 +54,7 @@ Curve histogram(const std::string& quantity, const std::string& unit, double wid
 }  // namespace
 
 RunRecorder::RunRecorder(const RunInput& input, const HexMesh& mesh, const RunOptions& options)
-    : input_(input), mesh_(mesh), options_(options), columns_(history_columns().size()) {
+    : input_(input), mesh_(mesh), options_(options), columns_(history_columns().size()), links_(mesh) {
   // Every SW link leaving a DT end, paired with that twist.
   std::vector<int> twist_at(mesh.net.nodes.size(), -1);
   for (std::size_t l = 0; l < mesh.net.links.size(); ++l)
@@ -73,6 +73,7 @@ RunRecorder::RunRecorder(const RunInput& input, const HexMesh& mesh, const RunOp
   for (const char* stale : {"curve.csv", "link_force_histogram.csv", "pulling_angle_histogram.csv", "net.pvd",
                             "results.h5", "summary.json"})
     std::filesystem::remove(options_.out / stale);
+  for (const std::string& stale : LinkRecorder::file_names()) std::filesystem::remove(options_.out / stale);
   std::filesystem::remove_all(options_.out / "frames");
   if (options_.write_frames) std::filesystem::create_directories(options_.out / "frames");
 }
@@ -106,9 +107,11 @@ void RunRecorder::record(const Engine& engine, double time, double displacement,
                                    e.friction, e.damping, e.gravity_work, e.tool_work, e.boundary_work,
                                    e.balance_error(), static_cast<double>(engine.broken_links()), largest};
   for (std::size_t c = 0; c < row.size(); ++c) columns_[c].push_back(row[c]);
+  links_.sample(engine, 1000.0 * displacement);
   if (mean_force.norm() > peak_force_) {
     peak_force_ = mean_force.norm();
     at_peak_ = snapshot(engine);
+    links_.mark_peak();
   }
 }
 
@@ -195,7 +198,8 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   for (std::size_t c = 0; c < names.size(); ++c) history.add_channel(names[c].first, *find_unit(names[c].second), columns_[c]);
   history.set_metadata("source", "dtwire dem run " + input_.file.filename().string());
   history.set_metadata("title", input_.title);
-  history.set_metadata("label", input_.title);  // the legend entry of plots
+  const std::string label = options_.label.empty() ? input_.title : options_.label;
+  history.set_metadata("label", label);  // the legend entry of plots
   history.set_metadata("tool", input_.tool);
   history.set_metadata("time_step_s", format_number(summary.time_step));
   history.set_metadata("sag_after_settling_mm", format_number(1000.0 * summary.sag));
@@ -236,6 +240,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   angles.set_metadata("run_id", provenance.run_id);
   write_csv(forces, options_.out / "link_force_histogram.csv");
   write_csv(angles, options_.out / "pulling_angle_histogram.csv");
+  links_.write(options_.out, provenance.run_id);
 
   write_frame_index();
 
@@ -266,6 +271,8 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   // The headline figures for reports (the campaign's validation table), SI-named columns.
   nlohmann::json headline = {
       {"title", input_.title},
+      {"label", label},
+      {"tool", input_.tool},
       {"peak_force_N", summary.peak_force},
       {"displacement_at_peak_mm", 1000.0 * summary.displacement_at_peak},
       {"sag_after_settling_mm", 1000.0 * summary.sag},

@@ -1,7 +1,7 @@
 #pragma once
 // What `dtwire dem run` writes (docs/dem_engine.md): curve.csv and results.h5 (history with
 // provenance), link_force_histogram.csv and pulling_angle_histogram.csv (at the peak force and
-// at the end), frames/net_<k>.vtu + net.pvd for ParaView.
+// at the end), the per-type link records (link_records.hpp), frames/net_<k>.vtu + net.pvd.
 #include <string>
 #include <vector>
 
@@ -9,6 +9,7 @@
 
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/dem/run.hpp"
+#include "link_records.hpp"
 
 namespace dtwire::dem {
 
@@ -45,6 +46,7 @@ class RunRecorder {
   std::vector<std::vector<double>> columns_;
   Snapshot at_peak_;
   double peak_force_ = -1.0;
+  LinkRecorder links_;
   std::vector<std::pair<double, std::string>> frames_;
   // DT pulling angle pairs: (DT link, SW link, the DT end node they share).
   struct AnglePair {

@@ -281,7 +281,8 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
     history.add_channel(strip_columns()[c].quantity, *find_unit(strip_columns()[c].unit), columns[c]);
   history.set_metadata("source", "dtwire dem run " + in.file.filename().string());
   history.set_metadata("title", in.title);
-  history.set_metadata("label", in.title);
+  const std::string label = options.label.empty() ? in.title : options.label;
+  history.set_metadata("label", label);
   history.set_metadata("tool", in.tool);
   history.set_metadata("direction", direction);
   history.set_metadata("strip_width_m", format_number(g.width));
@@ -328,6 +329,7 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
   // largest_balance_error_percent from every DEM run's summary.
   nlohmann::json headline = {
       {"title", in.title},
+      {"label", label},
       {"tool", in.tool},
       {"direction", direction},
       {"strip_width_m", g.width},

@@ -10,6 +10,7 @@
 #include "campaign/campaign_lock.hpp"
 #include "campaign/campaign_report.hpp"
 #include "campaign/campaign_runner.hpp"
+#include "campaign/report_summary.hpp"
 #include "cli.hpp"
 #include "dtwire/core/error.hpp"
 
@@ -210,6 +211,55 @@ TEST(Campaign, DefaultCampaignGraphIsClosed) {
     EXPECT_TRUE(reads(run, "{out}/meshes/dt.msh")) << run;
   EXPECT_TRUE(reads("dem_driver", "{out}/export/single_wire_parameters.json"));
   EXPECT_TRUE(reads("export", "{out}/fit/parameters.json"));
+  // Every set's punch on one figure (issue 36).
+  for (const char* punch : {"punch_thesis", "punch_wirepm", "punch_fitted"})
+    EXPECT_TRUE(reads("dem_punch_figure", std::string("{out}/dem/") + punch + "/curve.csv")) << punch;
+}
+
+// The summary's mesh-scale table from fake runs (no DEM run needed): one row per set label with
+// its punch and strip figures against the thesis and published mesh figures; a set with a
+// blocked step names it, an expected set with no step is 'not yet run'.
+TEST(Campaign, MeshScaleTableJudgesEverySetFromItsSummaries) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_mesh_scale_table";
+  std::filesystem::remove_all(out);
+  auto step = [](const std::string& name, const std::string& label) {
+    return "[[step]]\nname = \"" + name + "\"\ncommand = [\"dem\", \"run\", \"x.toml\", \"--label\", \"" + label +
+           "\", \"-o\", \"{out}/" + name + "\"]\noutputs = [\"{out}/" + name + "/summary.json\"]\n";
+  };
+  const auto file = write_temp("dtwire_mesh_scale.toml", "name = \"m\"\n" + step("punch_thesis", "thesis published") +
+                                                             step("strip_thesis", "thesis published") +
+                                                             step("strip_wirepm", "WirePM published") +
+                                                             step("punch_fit", "straight-wire fit") + step("punch_other", "my set"));
+  const Campaign campaign = read_campaign(file);
+  auto write_summary = [&](const std::string& name, const std::string& text) {
+    std::filesystem::create_directories(out / name);
+    std::ofstream(out / name / "summary.json") << text;
+  };
+  write_summary("punch_thesis", R"({"label": "thesis published", "tool": "platter", "onset_displacement_mm": 236.2,
+                                    "peak_force_N": 57000.0, "displacement_at_peak_mm": 530.0, "sag_after_settling_mm": 97.9})");
+  write_summary("strip_thesis", R"({"label": "thesis published", "tool": "strip_tension", "strength_per_width_kN_per_m": 58.87,
+                                    "secant_EA_10_50_kN_per_m": 1165.0})");
+  write_summary("strip_wirepm", R"({"label": "WirePM published", "tool": "strip_tension", "strength_per_width_kN_per_m": 13.3,
+                                    "secant_EA_10_50_kN_per_m": null})");
+  write_summary("punch_other", R"({"label": "my set", "tool": "platter", "onset_displacement_mm": null,
+                                   "peak_force_N": 500.0, "displacement_at_peak_mm": 700.0, "sag_after_settling_mm": 10.0})");
+  std::vector<StepOutcome> outcomes;
+  for (const char* name : {"punch_thesis", "strip_thesis", "strip_wirepm", "punch_other"}) outcomes.push_back({name, StepStatus::Done, 0.0, 0, ""});
+  outcomes.push_back({"punch_fit", StepStatus::Blocked, 0.0, 0, ""});
+  const std::string md = summary_markdown(campaign, outcomes, out);
+  EXPECT_NE(md.find("| *thesis DEM punch (Previtali; validated against laboratory punches)* | 0.20 | 25 | 0.53 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| *published mesh, 8x10 / 2.7 mm (EN 15381 Annex D; manufacturer)* | | | | | 50 | about 500 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| thesis published | 0.236 (+18 %) | 57.0 (+128 %) | 0.530 (+0 %) | 98 | 58.9 (+18 %) | 1165 (+133 %) | "
+                    "[punch_thesis](#punch_thesis), [strip_thesis](#strip_thesis) |"),
+            std::string::npos) << md;
+  EXPECT_NE(md.find("| WirePM published | not run | | | | 13.3 (-73 %) | undefined | [strip_wirepm](#strip_wirepm) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| straight-wire fit | not run | | | | not run | | [punch_fit](#punch_fit) (blocked) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| as-made fit | not yet run | | | | | | |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| my set | no onset | 0.5 (-98 %) | 0.700 (+32 %) | 10 |"), std::string::npos) << md;
+  // Rows in the expected order, the campaign's other sets after them.
+  EXPECT_LT(md.find("| thesis published |"), md.find("| WirePM published |"));
+  EXPECT_LT(md.find("| as-made fit |"), md.find("| my set |"));
+  std::filesystem::remove_all(out);
 }
 
 TEST(Campaign, SecondCampaignIntoTheSameFolderIsRefusedByTheLock) {

@@ -128,6 +128,9 @@ class Engine {
   const EngineLink& link(std::size_t i) const;
   Vector3 link_direction(std::size_t i) const;  // unit, a -> b
   double link_length(std::size_t i) const;
+  // The length link i's law has been advanced to: the positions before the last step's move,
+  // so (this - initial length) is the law's axial displacement u exactly.
+  double link_law_length(std::size_t i) const;
   std::size_t broken_links() const;
   Tool& tool(std::size_t i);
   const Tool& tool(std::size_t i) const;

@@ -94,6 +94,9 @@ std::vector<Vector3> pretensioned_positions(const RunInput& input, const HexMesh
 struct RunOptions {
   std::filesystem::path out;
   std::string command_line;
+  // The curve's short name in plots and in the campaign's mesh-scale table (e.g. "thesis
+  // published"); empty: the input's title.
+  std::string label;
   int threads = 0;  // 0: the input's
   long parallel_threshold = -1;  // -1: the engine's default (EngineOptions)
   bool quiet = false;
