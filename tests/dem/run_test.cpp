@@ -12,6 +12,8 @@
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/dem/run.hpp"
 
+#include "run_cli.hpp"
+
 namespace dtwire::dem {
 namespace {
 
@@ -43,19 +45,8 @@ std::filesystem::path write_input(const std::string& name, const std::string& te
   return path;
 }
 
-struct Outcome {
-  int code;
-  std::string output;
-};
-Outcome run_cli(const std::string& arguments) {
-  const std::string command = std::string(DTWIRE_EXECUTABLE) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  char buffer[512];
-  while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
-  const int status = pclose(pipe);
-  return {WEXITSTATUS(status), output};
-}
+using Outcome = test::CliOutcome;
+Outcome run_cli(const std::string& arguments) { return test::run_dtwire(arguments); }
 
 void expect_bad_input(const std::string& name, const std::string& text, const std::string& field) {
   const auto path = write_input(name, text);
