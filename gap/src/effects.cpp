@@ -307,7 +307,12 @@ bool magnitudes_plausible(const std::vector<AppliedEffect>& effects, const Curve
   for (const AppliedEffect& a : effects) {
     const ParameterSpec spec = a.effect->parameters(scale).at(a.effect->magnitude);
     const double value = a.params.at(a.effect->magnitude), tolerance = 1e-9 * spec.width();
-    if (value < spec.plausible_lower - tolerance || value > spec.plausible_upper + tolerance) return false;
+    // Only a magnitude stronger than the plausible range is implausible; one between the neutral
+    // value and the range is a weak effect (e.g. no compliance in a mode whose curve is clean).
+    const double neutral = a.effect->neutral;
+    const bool beyond_lower = value < spec.plausible_lower - tolerance && value < neutral - tolerance;
+    const bool beyond_upper = value > spec.plausible_upper + tolerance && value > neutral + tolerance;
+    if (beyond_lower || beyond_upper) return false;
   }
   return true;
 }

@@ -86,8 +86,9 @@ case_ "--set: Material/Poisson ratio: 'Poisson ratio': expected a ratio" run "$p
 case_ "--set: Newton/Relative tolerance" run "$prm" --set 'Newton/Relative tolerance=0' $out
 case_ "--set: 'Geometry/Diamter (mm)=3'" run "$prm" --set 'Geometry/Diamter (mm)=3' $out
 case_ "--restart: Value -5 not in range" run "$prm" --restart -5 $out
-case_ "--threads: Value -1 not in range" fit "$fit" --threads -1 -o "$work/fit"
-case_ "--threads: Value 0 not in range" fit "$fit" --threads 0 -o "$work/fit"
+# --threads is an alias of --jobs; CLI11 names the option by its first long name.
+case_ "Value -1 not in range 1 to 1024" fit "$fit" --threads -1 -o "$work/fit"
+case_ "Value 0 not in range 1 to 1024" fit "$fit" --threads 0 -o "$work/fit"
 case_ "--trials: Value -1 not in range" gap selfcheck --trials -1
 case_ "--steps" export --params "$src/experiments/data/macroelement_thesis_params.json" --steps 0 --out "$work/export"
 case_ "no_such.prm" run no_such.prm $out
@@ -120,8 +121,11 @@ case_ ".: is the working directory or holds it" export --params "$thesis" --out 
 punch=$src/experiments/dem/punch_macro.toml
 sed -e 's|"\.\./data/|"'"$src"'/experiments/data/|' -e 's/^friction = 0.2$/friction = -0.2/' "$punch" > negative_friction.toml
 sed -e 's|"\.\./data/|"'"$src"'/experiments/data/|' -e 's/^frames = 15$/frames = -1/' "$punch" > frames_negative.toml
-case_ "negative_friction.toml:48:12: tool.friction: expected a Coulomb coefficient >= 0" dem run negative_friction.toml -o dem_out -q
-case_ "frames_negative.toml:52:10: output.frames: expected an integer in [0, 100000]" dem run frames_negative.toml -o dem_out -q
+# The line the error must name is where the edited key is, wherever the input puts it.
+friction_line=$(grep -n '^friction = -0.2$' negative_friction.toml | cut -d: -f1)
+frames_line=$(grep -n '^frames = -1$' frames_negative.toml | cut -d: -f1)
+case_ "negative_friction.toml:$friction_line:12: tool.friction: expected a Coulomb coefficient >= 0" dem run negative_friction.toml -o dem_out -q
+case_ "frames_negative.toml:$frames_line:10: output.frames: expected an integer in [0, 100000]" dem run frames_negative.toml -o dem_out -q
 case_ "--set: output.frames: expected an integer in [0, 100000]" dem run "$punch" --set output.frames=2.5 -o dem_out -q
 case_ "--set: dynamics.threads: expected an integer in [1, 256]" dem run "$punch" --set dynamics.threads=1.5 -o dem_out -q
 case_ "--set: dynamics.gravity_m_per_s2: expected an acceleration >= 0" dem run "$punch" --set dynamics.gravity_m_per_s2=-9.81 -o dem_out -q

@@ -81,8 +81,9 @@ ForceCurve augment(const ForceCurve& sim, const std::vector<AppliedEffect>& effe
 ForceCurve apply_effects(const ForceCurve& sim, std::vector<AppliedEffect> effects,
                          const CurveScale& scale);
 
-// Whether every effect's magnitude parameter lies in its plausible range: an effect fitted
-// outside it is reported as implausible and is never the cause (issue 37).
+// Whether no effect's magnitude is stronger than its plausible range (beyond it, away from the
+// neutral value): such an effect is reported as implausible and is never the cause (issue 37).
+// A magnitude between the neutral value and the range is a weak effect, not an implausible one.
 bool magnitudes_plausible(const std::vector<AppliedEffect>& effects, const CurveScale& scale);
 
 // 1 inside the plausible range, falling linearly to 0.2 at the fit bounds; product over params.
