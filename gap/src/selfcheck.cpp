@@ -48,11 +48,15 @@ std::vector<double> draw_params(const std::string& effect, const ForceCurve& sim
     return {uniform(rng, 0.2, 1.5), uniform(rng, 0.01, 0.08) * visible_peak_N};
   if (effect == "gauge_length") return {either_side(rng, 1.0, 1.05, 1.3, 0.85)};
   if (effect == "ductile_damage") {
+    // The parameter is the damage at the model's end, beyond the test's end: held below its
+    // plausible upper bound (with a margin for the noise), since a fitted magnitude beyond it is
+    // never the cause.
     const double total = sim.u.back();
     const double onset = uniform(rng, 0.2, 0.6) * end_m;
     const double visible = uniform(rng, 0.05, 0.3);  // damage reached at the test end
     const double x = (end_m - onset) / (total - onset);
-    return {onset * 1e3, std::min(0.95, visible / (x * x))};
+    const double upper = find_effect("ductile_damage").parameters(curve_scale(sim)).at(1).plausible_upper;
+    return {onset * 1e3, std::min(0.9 * upper, visible / (x * x))};
   }
   if (effect == "strain_rate") return {either_side(rng, 1.0, 1.04, 1.15, 0.88)};
   return {};
