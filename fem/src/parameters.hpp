@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "checks_parameters.hpp"
 #include "contact/contact_parameters.hpp"  // contact (issue 5)
 #include "dtwire/core/axis_csv.hpp"
 #include "hardening.hpp"
@@ -153,6 +154,7 @@ struct Parameters {
   OutputParameters output;
   contact::ContactParameters contact;  // contact (issue 5): rigid tools, none by default
   contact::WireContactParameters wire_contact;  // contact between the two wires of a DT mesh
+  RunChecks checks;  // the run's self-checks (issue 37)
 
   // Generalised end forces, moment and energy split in the curve (DT meshes, pull angles,
   // rotations, bonded grips).

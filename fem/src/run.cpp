@@ -2,6 +2,8 @@
 
 #include <deal.II/base/mpi.h>
 
+#include <nlohmann/json.hpp>
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -17,6 +19,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
@@ -24,6 +27,7 @@
 #include "dtwire/version.hpp"
 #include "contact/contact_curve.hpp"  // contact (issue 5)
 #include "link_kinematics.hpp"
+#include "run_checks.hpp"
 #include "solver.hpp"
 
 namespace dtwire::fem {
@@ -98,16 +102,11 @@ void add_generalised_channels(Curve& c, const std::vector<StepRecord>& records, 
     channel(std::string("end_moment_") + axes[a], Dimension::Moment, "Nm",
             [a](const StepRecord& r) { return r.end_moment[a]; });
   }
-  const auto stored = [](const StepRecord& r) {
-    return r.elastic_energy + r.plastic_dissipation + r.contact.friction_dissipation + r.contact.contact_energy +
-           r.wire_contact.friction_dissipation + r.wire_contact.contact_energy + r.grip.bond_energy +
-           r.grip.slip_dissipation;
-  };
   channel("external_work", Dimension::Energy, "J", [](const StepRecord& r) { return r.external_work; });
   // from the first record: an as-made specimen starts with the energy its forming left
-  const double initial = stored(records.front());
+  const double initial = stored_energy(records.front());
   channel("energy_balance_error", Dimension::Energy, "J",
-          [&](const StepRecord& r) { return r.external_work - (stored(r) - initial); });
+          [&](const StepRecord& r) { return r.external_work - (stored_energy(r) - initial); });
 }
 
 // The twist as a DEM link (link_kinematics.hpp): chord elongation, relative rotation of the top
@@ -278,6 +277,29 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
   return c;
 }
 
+// summary.json beside the curve (issue 37): "status" ("ok" or "failed"), the checks' largest
+// figures, and for a failed run the check (or the error) that stopped it.
+void write_summary_json(const std::filesystem::path& file, const RunGuard& guard, const RunChecks& bounds,
+                        const std::string& run_id, const std::optional<FailedCheck>& failed,
+                        const std::string& error) {
+  const bool ok = !failed && error.empty();
+  nlohmann::json summary = {{"run_id", run_id},
+                            {"status", ok ? "ok" : "failed"},
+                            {"largest_energy_balance_error_percent", 100 * guard.largest_balance_error()},
+                            {"max_energy_balance_error_percent", 100 * bounds.max_balance_error},
+                            {"largest_penetration_percent_of_diameter", 100 * guard.largest_penetration()},
+                            {"max_penetration_percent_of_diameter", 100 * bounds.max_penetration}};
+  if (failed)
+    summary["failed_check"] = {{"check", failed->check},          {"entry", failed->entry},
+                               {"step", failed->step},            {"displacement_mm", failed->displacement * 1e3},
+                               {"value_percent", 100 * failed->value}, {"bound_percent", 100 * failed->bound}};
+  if (!ok) summary["message"] = failed ? failed->message() : error;
+  write_file_atomically(file, [&](std::ostream& os) { os << summary.dump(2) << "\n"; });
+}
+
+// A check stopped the run inside the solver's step callback.
+struct CheckStop {};
+
 }  // namespace
 
 RunSummary run_experiment(const RunOptions& options) {
@@ -291,7 +313,7 @@ RunSummary run_experiment(const RunOptions& options) {
   if (root) {
     std::filesystem::create_directories(out);
     // Results of an earlier run in this folder would sit beside this run's log: remove them.
-    for (const char* stale : {"curve.csv", "curve.partial.csv", "results.h5", kTwistedPairStateFile})
+    for (const char* stale : {"curve.csv", "curve.partial.csv", "results.h5", "summary.json", kTwistedPairStateFile})
       std::filesystem::remove(out / stale);
     const auto state = out / kAsMadeStateFile;  // stale too, unless this run reads it
     const bool read_here = !parameters.forming.state_file.empty() && std::filesystem::exists(state) &&
@@ -333,13 +355,38 @@ RunSummary run_experiment(const RunOptions& options) {
   summary.curve_csv = out / "curve.csv";
   summary.results_h5 = out / "results.h5";
   summary.log = out / "run.log";
+  // The self-checks judge every converged step; the records are the same on every rank, so all
+  // ranks stop at the same step.
+  RunGuard guard(parameters.checks, parameters.geometry.diameter);
+  std::optional<FailedCheck> failed;
+  const auto write_partial = [&](const std::string& status) {
+    if (!root) return;
+    if (records.size() >= kMinimumCurvePoints) {
+      Curve partial = make_curve(records, options, parameters, run_id);
+      partial.set_metadata("status", "failed: " + status);
+      write_csv(partial, out / "curve.partial.csv");
+    }
+    write_summary_json(out / "summary.json", guard, parameters.checks, run_id, failed, status);
+  };
   try {
-    solver.run([&](const StepRecord& r) { records.push_back(r); });
-  } catch (const ComputationError&) {
-    if (root && records.size() >= kMinimumCurvePoints)
-      write_csv(make_curve(records, options, parameters, run_id), out / "curve.partial.csv");
+    solver.run([&](const StepRecord& r) {
+      records.push_back(r);
+      if ((failed = guard.check(r))) throw CheckStop{};
+    });
+  } catch (const CheckStop&) {
+    const std::string message = failed->message();
+    log << "failed: " << message << "\n";
+    log.flush();
+    write_partial(message);
+    throw ComputationError(message + "; the steps before it are in " + (out / "curve.partial.csv").string() +
+                           " (bounds: subsection Checks)");
+  } catch (const ComputationError& e) {
+    write_partial(e.what());
     throw;
   }
+  log << "checks: largest energy balance error " << 100 * guard.largest_balance_error() << " % of the external work (bound "
+      << 100 * parameters.checks.max_balance_error << " %), largest penetration " << 100 * guard.largest_penetration()
+      << " % of the diameter (bound " << 100 * parameters.checks.max_penetration << " %)\n";
   const auto& st = solver.statistics();
   summary.ranks = st.ranks;
   summary.dofs = st.dofs;
@@ -366,7 +413,8 @@ RunSummary run_experiment(const RunOptions& options) {
   log.flush();
   if (!root) return summary;
 
-  const Curve curve = make_curve(records, options, parameters, run_id);
+  Curve curve = make_curve(records, options, parameters, run_id);
+  curve.set_metadata("status", "ok");
   if (records.size() >= kMinimumCurvePoints) write_csv(curve, summary.curve_csv);
   else throw ComputationError("fewer than 3 load steps: no curve written");
   Results results;
@@ -377,6 +425,8 @@ RunSummary run_experiment(const RunOptions& options) {
   results.parameters.push_back({"steps", static_cast<double>(st.steps), "1", std::nullopt});
   results.parameters.push_back({"newton_iterations", static_cast<double>(st.newton_iterations), "1", std::nullopt});
   results.parameters.push_back({"mpi_ranks", static_cast<double>(st.ranks), "1", std::nullopt});
+  results.parameters.push_back({"largest_energy_balance_error", guard.largest_balance_error(), "1", std::nullopt});
+  results.parameters.push_back({"largest_penetration_of_diameter", guard.largest_penetration(), "1", std::nullopt});
   if (const StepRecord* f = first_failure(records)) {
     results.parameters.push_back({"failure_displacement", f->displacement, "m", std::nullopt});
     results.parameters.push_back({"failure_force", f->force, "N", std::nullopt});
@@ -434,6 +484,7 @@ RunSummary run_experiment(const RunOptions& options) {
   results.provenance = make_provenance(options.command_line, inputs);
   results.provenance.run_id = run_id;
   write_results(results, summary.results_h5);
+  write_summary_json(out / "summary.json", guard, parameters.checks, run_id, std::nullopt, "");
   return summary;
 }
 

@@ -1,0 +1,62 @@
+#include "run_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace dtwire::fem {
+
+std::string FailedCheck::message() const {
+  std::ostringstream text;
+  text << "check '" << check << "' failed at step " << step << " (displacement " << displacement * 1e3 << " mm)";
+  if (check == "finite_state") {
+    text << ": a force, displacement or energy is not finite";
+  } else {
+    text << ": " << 100.0 * value << " % against the bound " << 100.0 * bound << " % (Checks/" << entry << ")";
+  }
+  return text.str();
+}
+
+double stored_energy(const StepRecord& r) {
+  return r.elastic_energy + r.plastic_dissipation + r.contact.friction_dissipation + r.contact.contact_energy +
+         r.wire_contact.friction_dissipation + r.wire_contact.contact_energy + r.grip.bond_energy +
+         r.grip.slip_dissipation;
+}
+
+std::optional<FailedCheck> RunGuard::check(const StepRecord& r) {
+  FailedCheck failed;
+  failed.step = r.step;
+  failed.displacement = r.displacement;
+  const double stored = stored_energy(r);
+  const double penetration = std::max(r.contact.max_penetration, r.wire_contact.max_penetration);
+  if (!std::isfinite(r.force) || !std::isfinite(r.displacement) || !std::isfinite(stored) ||
+      !std::isfinite(r.external_work) || !std::isfinite(penetration)) {
+    failed.check = "finite_state";
+    return failed;
+  }
+  if (!initial_stored_) initial_stored_ = stored;  // an as-made wire starts with its forming's energy
+  largest_work_ = std::max(largest_work_, std::abs(r.external_work));
+  if (largest_work_ >= checks_.energy_floor) {
+    const double error = std::abs(r.external_work - (stored - *initial_stored_)) / largest_work_;
+    largest_balance_error_ = std::max(largest_balance_error_, error);
+    if (error > checks_.max_balance_error) {
+      failed.check = "energy_balance";
+      failed.entry = "Max energy balance error (%)";
+      failed.value = error;
+      failed.bound = checks_.max_balance_error;
+      return failed;
+    }
+  }
+  const double relative_penetration = penetration / diameter_;
+  largest_penetration_ = std::max(largest_penetration_, relative_penetration);
+  if (relative_penetration > checks_.max_penetration) {
+    failed.check = "penetration";
+    failed.entry = "Max penetration (% of diameter)";
+    failed.value = relative_penetration;
+    failed.bound = checks_.max_penetration;
+    return failed;
+  }
+  return std::nullopt;
+}
+
+}  // namespace dtwire::fem

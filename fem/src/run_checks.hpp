@@ -1,0 +1,44 @@
+#pragma once
+// The self-checks of a `dtwire run` (issue 37; docs/fem.md, "Checks"): evaluated on the record of
+// every converged load step, the first one that leaves its bound stops the run, which is then
+// reported as failed (exit 1) with its partial curve and summary.json marked failed. The bounds
+// are the .prm's `subsection Checks` (checks_parameters.hpp). No deal.II: plain records in.
+#include <optional>
+#include <string>
+
+#include "checks_parameters.hpp"
+#include "step_record.hpp"
+
+namespace dtwire::fem {
+
+struct FailedCheck {
+  std::string check;  // "energy_balance", "penetration", "finite_state"
+  std::string entry;  // the `Checks` entry of the bound ("" for finite_state)
+  unsigned step = 0;
+  double displacement = 0.0;        // m, the load path's displacement at that step
+  double value = 0.0, bound = 0.0;  // fractions (finite_state: none)
+  std::string message() const;
+};
+
+// Everything the wire stores or dissipates (J): elastic, plastic, friction and penalty energy of
+// tools and wires, grip bond energy and slip.
+double stored_energy(const StepRecord& r);
+
+class RunGuard {
+ public:
+  RunGuard(const RunChecks& checks, double wire_diameter) : checks_(checks), diameter_(wire_diameter) {}
+  // One converged step: the first check that fails, if any.
+  std::optional<FailedCheck> check(const StepRecord& r);
+  // The largest figures seen (fractions), for the log and results.h5.
+  double largest_balance_error() const { return largest_balance_error_; }
+  double largest_penetration() const { return largest_penetration_; }
+
+ private:
+  RunChecks checks_;
+  double diameter_;
+  std::optional<double> initial_stored_;
+  double largest_work_ = 0.0;
+  double largest_balance_error_ = 0.0, largest_penetration_ = 0.0;
+};
+
+}  // namespace dtwire::fem
