@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "dtwire/dem/engine.hpp"
 
@@ -99,6 +100,60 @@ TEST(DemEngine, CriticalStepIsAConservativeBoundAndTheSchemeDivergesAboveTheTrue
   std::vector<EngineLink> links;
   links.push_back({{0, 1, LinkTag::SingleWire}, elastic_bond(o.length)});
   EXPECT_THROW(Engine(nodes, std::move(links), options), std::invalid_argument);
+}
+
+// Rotational density scaling (EngineOptions::rotational_inertia_scale, issue 35): on a cantilever
+// link whose free node has the wire's radius, the spin of the node sets the critical step; a
+// heavier spin raises it up to the axial limit 2 / omega_axial, leaves the axial vibration's period
+// (closed form 2 pi sqrt(m / k)) and the static deflection under gravity unchanged.
+TEST(DemEngine, RotationalInertiaScaleRaisesTheStepAndLeavesStaticsAndAxialDynamicsAlone) {
+  const double mass = 0.0043, length = 0.05, k = elastic_bond_stiffness(length);
+  auto make = [&](double scale, double dt, const Vector3& gravity, double damping) {
+    NetNode root = make_node(Vector3::Zero(), mass, NodeFixity::Pinned), tip = make_node(Vector3(length, 0, 0), mass);
+    tip.radius = 0.00135;
+    tip.rotational_inertia = 0.4 * mass * tip.radius * tip.radius;
+    std::vector<NetNode> nodes{root, tip};
+    std::vector<EngineLink> links;
+    links.push_back({{0, 1, LinkTag::SingleWire}, elastic_bond(length)});
+    EngineOptions options;
+    options.gravity = gravity;
+    options.local_damping = damping;
+    options.rotational_inertia_scale = scale;
+    options.time_step = dt;
+    return Engine(nodes, std::move(links), options);
+  };
+  const double axial_limit = 2.0 / std::sqrt(k / mass);
+  const double step_1 = make(1.0, 0.0, Vector3::Zero(), 0.0).critical_time_step();
+  const double step_100 = make(100.0, 0.0, Vector3::Zero(), 0.0).critical_time_step();
+  std::cout << "critical step: spin x1 " << step_1 << " s, x100 " << step_100 << " s, axial limit " << axial_limit << " s\n";
+  EXPECT_GT(step_100, 1.2 * step_1);  // the spin limited the step
+  EXPECT_LE(step_100, axial_limit * (1.0 + 1e-12));
+
+  // Axial free vibration at the scaled spin's step: the period of the closed form.
+  const double period = 2.0 * kPi * std::sqrt(mass / k);
+  Engine vibrating = make(100.0, period / 2000.0, Vector3::Zero(), 0.0);
+  vibrating.impose_positions({Vector3::Zero(), Vector3(length + 1e-5, 0, 0)});
+  std::vector<double> crossings;
+  double previous = 1e-5, previous_time = 0.0;
+  while (vibrating.time() < 5.2 * period) {
+    vibrating.step();
+    const double u = vibrating.position(1).x() - length;
+    if (previous < 0.0 && u >= 0.0) crossings.push_back(previous_time + (vibrating.time() - previous_time) * (-previous) / (u - previous));
+    previous = u;
+    previous_time = vibrating.time();
+  }
+  ASSERT_GE(crossings.size(), 4u);
+  EXPECT_NEAR((crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1) / period, 1.0, 1e-4);
+
+  // Static tip deflection under a lateral gravity, relaxed with each spin: the same state.
+  const Vector3 lateral(0.0, 0.0, -9.81);
+  Engine light = make(1.0, 0.0, lateral, 0.7), heavy = make(100.0, 0.0, lateral, 0.7);
+  ASSERT_TRUE(light.relax(1e-8, 5000000).converged);
+  ASSERT_TRUE(heavy.relax(1e-8, 5000000).converged);
+  const double deflection = length - light.position(1).x() + std::abs(light.position(1).z());
+  std::cout << "tip: x1 " << light.position(1).transpose() << ", x100 " << heavy.position(1).transpose() << "\n";
+  ASSERT_GT(deflection, 0.0);
+  EXPECT_LT((light.position(1) - heavy.position(1)).norm(), 1e-4 * std::abs(light.position(1).z()));
 }
 
 TEST(DemEngine, HangingChainStaticExtensionMatchesClosedForm) {
