@@ -88,6 +88,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     std::vector<std::string> model_set, model_set_params;
     std::string model_cache;
     std::size_t model_runs = 3;
+    unsigned jobs = 1;
     double gauge_mm = 0.0, area_mm2 = 0.0;
     bool no_pairs = false;
     unsigned seed = 1;
@@ -130,6 +131,11 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--model-runs", options->model_runs,
                       "FE runs per model-only effect with --lab-summary, and search points per pair "
                       "with a model-only effect (each at most one FE run)")->capture_default_str();
+  command->add_option("--jobs", options->jobs,
+                      "With --lab-summary: model-only effects searched side by side, each run a "
+                      "process of its own (the diagnosis is the serial one)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024));
   command->add_option("--effects", options->effects,
                       "Comma-separated effects to test (default: all that apply): " +
                           gap::effect_names());
@@ -235,6 +241,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       summary_options.model = fe.run;
       summary_options.model_unsupported = fe.unsupported;
       summary_options.model_runs = options->model_runs;
+      summary_options.jobs = options->jobs;
       summary_options.try_pairs = !options->no_pairs;
       summary_options.seed = options->seed;
       const gap::SummaryDiagnosis d = gap::diagnose_summary(sim, summary, summary_options);

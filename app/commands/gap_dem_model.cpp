@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
 #include <sstream>
 
 #include "../campaign/step_process.hpp"
@@ -150,6 +151,9 @@ SimulationModel make_dem_model(const std::filesystem::path& toml, const DemModel
   auto runs = std::make_shared<int>(0);
   model.runs = runs.get();
   const std::filesystem::path work = model.work;
+  // `gap --jobs N` calls this from several threads: each run has its own folder; the counter
+  // and the console lines are shared.
+  auto shared = std::make_shared<std::mutex>();
   model.run_curve = [=, keep = runs](const std::vector<gap::AppliedEffect>& effects) {
     std::vector<std::string> arguments = base_arguments;
     std::string label = input.filename().string();
@@ -169,7 +173,10 @@ SimulationModel make_dem_model(const std::filesystem::path& toml, const DemModel
         for (const std::string& a : arguments) command << " '" << a << "'";
         command << "\n";
       }
-      std::cout << "  DEM run: " << label << std::flush;
+      {
+        const std::lock_guard<std::mutex> lock(*shared);
+        std::cout << "  DEM run: " << label << "\n" << std::flush;
+      }
       const int code = run_step_process(calibrate::dtwire_executable(), arguments, run / "command.log", [](double) {});
       // A run stopped by its own checks (exit 1, issue 37) keeps its curve up to the failed check,
       // marked `status: failed ...`: the diagnosis reads that part (a runaway after the peak
@@ -180,10 +187,13 @@ SimulationModel make_dem_model(const std::filesystem::path& toml, const DemModel
         throw ComputationError("DEM run (" + label + ") failed (exit " + std::to_string(code) + "), see " +
                                (run / "command.log").string());
       std::ofstream(run / "finished") << label << "\n";
+      const std::lock_guard<std::mutex> lock(*shared);
       ++*keep;
-      std::cout << (stopped ? " (stopped by its checks: " + read_csv(run / "out" / "curve.csv").metadata("status") +
-                                  "; its curve up to there)\n"
-                            : std::string(" (done)\n"));
+      std::cout << "  DEM run: " << label
+                << (stopped ? " stopped by its checks: " + read_csv(run / "out" / "curve.csv").metadata("status") +
+                                  "; its curve up to there\n"
+                            : std::string(" done\n"))
+                << std::flush;
     }
     return read_csv(run / "out" / "curve.csv");
   };

@@ -64,6 +64,7 @@ struct MeshOptions {
   std::string model, cache, json, report;
   std::vector<std::string> model_set, model_set_params;
   std::size_t model_runs = 4;  // a DEM response is far from linear in a mesh effect
+  unsigned jobs = 1;
 };
 
 }  // namespace
@@ -79,6 +80,9 @@ void add_gap_mesh_selfcheck_command(CLI::App& gap_command, CommandSet& commands)
   command->add_option("--model-runs", o->model_runs, "Runs per effect (and search points per pair)")
       ->capture_default_str()
       ->check(CLI::Range(1, 20));
+  command->add_option("--jobs", o->jobs, "Mesh effects searched side by side (one DEM run each)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1024));
   command->add_option("--json", o->json, "Write every trial as JSON");
   command->add_option("--report", o->report, "Write a Markdown summary");
   commands.add(command, [o] {
@@ -113,6 +117,7 @@ void add_gap_mesh_selfcheck_command(CLI::App& gap_command, CommandSet& commands)
       options.model = model.run;
       options.model_unsupported = model.unsupported;
       options.model_runs = o->model_runs;
+      options.jobs = o->jobs;
       const gap::SummaryDiagnosis d = gap::diagnose_summary(base, lab, options);
       const double shrink = d.cause == "none" || d.ranking.empty() ? 0.0 : d.ranking.front().shrink;
       if (trial.truth == "none") {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <mutex>
 
 #include "dtwire/calibrate/command_simulator.hpp"
 #include "dtwire/core/error.hpp"
@@ -71,9 +72,16 @@ SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem:
   model.runs = runs.get();
   model.work = work;
   // One FE run of an edited .prm (cached by its text).
+  // `gap --jobs N` calls the runner from several threads: the cache, the counter and the console
+  // lines are shared (each FE run has its own folder).
+  auto shared = std::make_shared<std::mutex>();
   const auto run = [=, keep = runs](const std::string& edited, const std::string& label) {
     const std::string key = sha256_text(edited);
-    if (const auto hit = cache->find(key); hit != cache->end()) return hit->second;
+    {
+      const std::lock_guard<std::mutex> lock(*shared);
+      if (const auto hit = cache->find(key); hit != cache->end()) return hit->second;
+      std::cout << "  FE run: " << label << "\n" << std::flush;
+    }
     calibrate::CommandSpecification spec;
     // $DTWIRE_FE_EXECUTABLE: a dtwire built with fem, when this one was built without it.
     const char* fe_executable = std::getenv("DTWIRE_FE_EXECUTABLE");
@@ -81,10 +89,10 @@ SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem:
     spec.arguments = {"run", "{input}", "--out", "{output}", "--quiet"};
     spec.input_template = edited;
     spec.work_directory = work;
-    std::cout << "  FE run: " << label << std::flush;
     const Curve curve = calibrate::CommandSimulator(spec).simulate({});
+    const std::lock_guard<std::mutex> lock(*shared);
     ++*keep;
-    std::cout << " (done)\n";
+    std::cout << "  FE run: " << label << " done\n" << std::flush;
     (*cache)[key] = curve;
     return curve;
   };

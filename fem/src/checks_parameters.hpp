@@ -10,9 +10,9 @@ class ParameterHandler;
 namespace dtwire::fem {
 
 struct RunChecks {
-  // |W_ext - (stored - stored at the first record)| / max(largest |W_ext| so far, energy floor).
-  // The account is second-order in the load step (trapezoidal work); valid runs of the test suite
-  // stay below 1 % (docs/fem.md, "Checks"), a missing or runaway term is tens of percent.
+  // The balance error |W_ext - (stored - stored at the first record)| beyond what the trapezoidal
+  // work cannot resolve (run_checks.hpp), over the largest |W_ext| so far: a missing or runaway
+  // term is tens of percent (docs/fem.md, "Checks").
   double max_balance_error = 0.05;
   double energy_floor = 0.01;  // J: below this work the balance is not judged (start-up offsets)
   // Largest penetration of a contact (tools or wire on wire) as a fraction of the wire diameter:

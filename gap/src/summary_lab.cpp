@@ -1,11 +1,15 @@
 #include "dtwire/gap/summary_lab.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <map>
 #include <optional>
 #include <random>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
@@ -365,6 +369,35 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
   else
     for (const std::string& name : options.effects) requested.push_back(&find_effect(name));
   std::mt19937 rng(options.seed);
+  const auto testable = [&](const EffectSpec& e) {
+    return !options.inapplicable.count(e.name) && (!e.needs_model || (options.model && !options.model_unsupported.count(e.name)));
+  };
+  // The model-only searches are independent of each other and of the random stream: with
+  // jobs > 1 they run first, side by side, and the loop below takes their results.
+  std::map<std::string, ModelSearch> searched;
+  std::vector<const EffectSpec*> to_search;
+  for (const EffectSpec* e : requested)
+    if (e->needs_model && testable(*e)) to_search.push_back(e);
+  if (options.jobs > 1 && to_search.size() > 1) {
+    std::vector<std::optional<ModelSearch>> results(to_search.size());
+    std::vector<std::exception_ptr> errors(to_search.size());
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+      for (std::size_t i = next++; i < to_search.size(); i = next++) {
+        try {
+          results[i] = search_model_effect(d.sim, scale, *to_search[i], lab, options.model, options.model_runs);
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      }
+    };
+    std::vector<std::thread> threads;
+    for (unsigned t = 0; t < std::min<std::size_t>(options.jobs, to_search.size()); ++t) threads.emplace_back(work);
+    for (std::thread& t : threads) t.join();
+    for (const std::exception_ptr& error : errors)
+      if (error) std::rethrow_exception(error);
+    for (std::size_t i = 0; i < to_search.size(); ++i) searched.emplace(to_search[i]->name, *results[i]);
+  }
   for (const EffectSpec* e : requested) {
     if (const auto inapplicable = options.inapplicable.find(e->name); inapplicable != options.inapplicable.end()) {
       d.not_tested.push_back(e->name);
@@ -381,7 +414,9 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     c.effect = e->name;
     ForceCurve model;
     if (e->needs_model) {
-      const ModelSearch s = search_model_effect(d.sim, scale, *e, lab, options.model, options.model_runs);
+      const auto done = searched.find(e->name);
+      const ModelSearch s = done != searched.end() ? done->second
+                                                   : search_model_effect(d.sim, scale, *e, lab, options.model, options.model_runs);
       c.fitted = {{e, {s.value}}};
       c.runs = s.runs;
       c.samples = s.samples;

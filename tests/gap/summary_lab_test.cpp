@@ -2,7 +2,11 @@
 // feature, curve features, and the diagnosis on a stand-in FE runner.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
+#include <mutex>
 #include <set>
+#include <thread>
 
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/summary_lab.hpp"
@@ -154,6 +158,43 @@ TEST(GapSummaryLab, PairOfModelOnlyEffectsIsRankedAboveEitherSingle) {
 
   options.try_pairs = false;
   EXPECT_EQ(diagnose_summary(stand_in_column_two({}), lab, options).ranking.size(), 2u);
+}
+
+// --jobs (issue 38): the model-only searches side by side give the serial diagnosis, the runs
+// going to the runner from more than one thread at once.
+TEST(GapSummaryLab, SearchesSideBySideGiveTheSerialDiagnosis) {
+  const EffectSpec& imperfection = find_effect("geometry_imperfection");
+  const EffectSpec& prestrain = find_effect("residual_stress");
+  const ForceCurve truth = stand_in_column_two({{&imperfection, {3.0}}, {&prestrain, {0.6}}});
+  const double peak = curve_feature(truth, "peak_force_N"), residual = curve_feature(truth, "residual_force_N");
+  const std::vector<SummaryFeature> lab = {{"peak_force_N", peak, 0.02 * peak},
+                                           {"residual_force_N", residual, 0.02 * residual}};
+  std::mutex guard;
+  std::set<std::thread::id> callers;
+  std::atomic<int> running{0}, most_at_once{0};
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection", "residual_stress"};
+  options.model = [&](const std::vector<AppliedEffect>& effects) {
+    const int now = ++running;
+    for (int seen = most_at_once; now > seen && !most_at_once.compare_exchange_weak(seen, now);) {
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // a run takes time
+    {
+      const std::lock_guard<std::mutex> lock(guard);
+      callers.insert(std::this_thread::get_id());
+    }
+    --running;
+    return stand_in_column_two(effects);
+  };
+  options.model_runs = 6;
+  const SummaryDiagnosis serial = diagnose_summary(stand_in_column_two({}), lab, options);
+  EXPECT_EQ(most_at_once, 1);
+  options.jobs = 2;
+  callers.clear();
+  const SummaryDiagnosis parallel = diagnose_summary(stand_in_column_two({}), lab, options);
+  EXPECT_EQ(most_at_once, 2);  // the two single searches overlapped
+  EXPECT_GE(callers.size(), 2u);
+  EXPECT_EQ(summary_json(parallel).dump(), summary_json(serial).dump());
 }
 
 }  // namespace

@@ -40,6 +40,9 @@ struct SummaryOptions {
                                // search points per pair with a model-only effect
   bool try_pairs = true;
   unsigned seed = 1;
+  // Model-only effects searched side by side (issue 38): each search's runs stay in their order,
+  // so the diagnosis is the serial one; the runner must then be safe to call from several threads.
+  unsigned jobs = 1;
 };
 
 struct SummaryCandidate {
