@@ -286,6 +286,8 @@ void write_summary_json(const std::filesystem::path& file, const RunGuard& guard
   nlohmann::json summary = {{"run_id", run_id},
                             {"status", ok ? "ok" : "failed"},
                             {"largest_energy_balance_error_percent", 100 * guard.largest_balance_error()},
+                            {"largest_energy_imbalance_percent", 100 * guard.largest_imbalance()},
+                            {"trapezoid_allowance_percent", 100 * guard.final_allowance()},
                             {"max_energy_balance_error_percent", 100 * bounds.max_balance_error},
                             {"largest_penetration_percent_of_diameter", 100 * guard.largest_penetration()},
                             {"max_penetration_percent_of_diameter", 100 * bounds.max_penetration}};
@@ -385,7 +387,8 @@ RunSummary run_experiment(const RunOptions& options) {
     throw;
   }
   log << "checks: largest energy balance error " << 100 * guard.largest_balance_error() << " % of the external work (bound "
-      << 100 * parameters.checks.max_balance_error << " %), largest penetration " << 100 * guard.largest_penetration()
+      << 100 * parameters.checks.max_balance_error << " %; imbalance " << 100 * guard.largest_imbalance()
+      << " %, the trapezoidal work's allowance " << 100 * guard.final_allowance() << " %), largest penetration " << 100 * guard.largest_penetration()
       << " % of the diameter (bound " << 100 * parameters.checks.max_penetration << " %)\n";
   const auto& st = solver.statistics();
   summary.ranks = st.ranks;

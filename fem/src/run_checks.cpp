@@ -61,6 +61,7 @@ std::optional<FailedCheck> RunGuard::check(const StepRecord& r) {
   largest_work_ = std::max(largest_work_, std::abs(r.external_work));
   if (largest_work_ >= checks_.energy_floor) {
     const double imbalance = std::abs(r.external_work - (stored - *initial_stored_));
+    largest_imbalance_ = std::max(largest_imbalance_, imbalance / largest_work_);
     const double error = std::max(0.0, imbalance - quadrature_allowance_) / largest_work_;
     largest_balance_error_ = std::max(largest_balance_error_, error);
     if (error > checks_.max_balance_error) {

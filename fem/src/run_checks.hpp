@@ -40,6 +40,10 @@ class RunGuard {
   // The largest figures seen (fractions), for the log and results.h5: the balance error beyond
   // the quadrature allowance, over the largest work.
   double largest_balance_error() const { return largest_balance_error_; }
+  // The imbalance before the allowance (largest over the steps) and the allowance at the end, both
+  // over the largest work: what the trapezoid could not resolve against what was left.
+  double largest_imbalance() const { return largest_imbalance_; }
+  double final_allowance() const { return largest_work_ > 0.0 ? quadrature_allowance_ / largest_work_ : 0.0; }
   double largest_penetration() const { return largest_penetration_; }
 
  private:
@@ -49,7 +53,7 @@ class RunGuard {
   std::optional<StepRecord> previous_;
   double quadrature_allowance_ = 0.0;  // J
   double largest_work_ = 0.0;
-  double largest_balance_error_ = 0.0, largest_penetration_ = 0.0;
+  double largest_balance_error_ = 0.0, largest_penetration_ = 0.0, largest_imbalance_ = 0.0;
 };
 
 }  // namespace dtwire::fem

@@ -171,20 +171,22 @@ case_failed "above the bound 0 % (checks.max_kinetic_share_percent)" kinetic dem
 case_failed "check 'energy_balance' failed" strip dem run "$src/experiments/dem/strip_tension_thesis.toml" --set mesh.width_m=0.3 \
   --set mesh.height_m=0.4 --set tool.clamp_depth_m=0.05 --set tool.travel_m=0.004 --set output.interval_s=0.05 --no-frames -q \
   --set checks.max_balance_error_percent=1e-9
-# An FE run whose energy balance leaves a bound no run can meet: exit 1 naming the check, the step
-# and the bound; the steps before it stay in curve.partial.csv, marked failed, and summary.json
-# says "failed". A short pull of the default wire (1 mm, elastic-plastic).
+# An FE run whose contact penetrates deeper than its bound (here 0: any penetration): exit 1
+# naming the check, the step and the bound; the steps before it stay in curve.partial.csv, marked
+# failed, and summary.json says "failed". Three-point bending cut to 1 mm of tool travel.
 total=$((total + 1))
-fe_short=(--set 'Boundary conditions/Load path (mm)=0:0, 1:1' --set 'Output/Fields=false' -q)
-output=$("$dtwire" run "$prm" "${fe_short[@]}" --set 'Checks/Max energy balance error (%)=1e-9' -o fe_balance 2>&1); code=$?
-if [ $code -eq 1 ] && [[ "$output" == *"check 'energy_balance' failed at step "* ]] &&
-   [[ "$output" == *"(Checks/Max energy balance error (%))"* ]] && grep -q '"status": "failed"' fe_balance/summary.json &&
-   grep -q "status: failed" fe_balance/curve.partial.csv && [ ! -e fe_balance/curve.csv ]; then
+bend=$src/experiments/default/sw_bending.prm
+output=$("$dtwire" run "$bend" --set 'Contact/Tool 1/Path (mm)=0: 0 0 0, 1: 1 0 0, 2: 1 0 0' --set 'Output/Fields=false' -q \
+         --set 'Checks/Max penetration (% of diameter)=0' -o fe_penetration 2>&1); code=$?
+if [ $code -eq 1 ] && [[ "$output" == *"check 'penetration' failed at step "* ]] &&
+   [[ "$output" == *"(Checks/Max penetration (% of diameter))"* ]] && grep -q '"status": "failed"' fe_penetration/summary.json &&
+   grep -q "status: failed" fe_penetration/curve.partial.csv && [ ! -e fe_penetration/curve.csv ]; then
   pass=$((pass + 1))
 else
-  echo "FAIL: an FE run beyond its energy balance bound -> exit $code:"; echo "$output" | head -5
+  echo "FAIL: an FE run beyond its penetration bound -> exit $code:"; echo "$output" | head -5
 fi
-# The same pull within the default bounds: exit 0, "status": "ok", the largest error well inside.
+fe_short=(--set 'Boundary conditions/Load path (mm)=0:0, 1:1' --set 'Output/Fields=false' -q)
+# A short pull of the default wire within the default bounds: exit 0, "status": "ok".
 total=$((total + 1))
 if "$dtwire" run "$prm" "${fe_short[@]}" -o fe_ok > /dev/null 2>&1 && grep -q '"status": "ok"' fe_ok/summary.json &&
    grep -q "status: ok" fe_ok/curve.csv; then
