@@ -293,7 +293,8 @@ void write_summary_json(const std::filesystem::path& file, const RunGuard& guard
                             {"max_penetration_percent_of_diameter", 100 * bounds.max_penetration}};
   if (failed)
     summary["failed_check"] = {{"check", failed->check},          {"entry", failed->entry},
-                               {"step", failed->step},            {"displacement_mm", failed->displacement * 1e3},
+                               {"step", failed->step},            {"pseudo_time", failed->time},
+                               {"displacement_mm", failed->displacement * 1e3},
                                {"value_percent", 100 * failed->value}, {"bound_percent", 100 * failed->bound}};
   if (!ok) summary["message"] = failed ? failed->message() : error;
   write_file_atomically(file, [&](std::ostream& os) { os << summary.dump(2) << "\n"; });

@@ -8,7 +8,8 @@ namespace dtwire::fem {
 
 std::string FailedCheck::message() const {
   std::ostringstream text;
-  text << "check '" << check << "' failed at step " << step << " (displacement " << displacement * 1e3 << " mm)";
+  text << "check '" << check << "' failed at step " << step << " (pseudo-time " << time << ", displacement "
+       << displacement * 1e3 << " mm)";
   if (check == "finite_state") {
     text << ": a force, displacement or energy is not finite";
   } else {
@@ -47,7 +48,15 @@ double stored_energy(const StepRecord& r) {
 std::optional<FailedCheck> RunGuard::check(const StepRecord& r) {
   FailedCheck failed;
   failed.step = r.step;
+  failed.time = r.time;
   failed.displacement = r.displacement;
+  const auto out_of_bound = [&failed](const char* check, const char* entry, double value, double bound) {
+    failed.check = check;
+    failed.entry = entry;
+    failed.value = value;
+    failed.bound = bound;
+    return failed;
+  };
   const double stored = stored_energy(r);
   const double penetration = std::max(r.contact.max_penetration, r.wire_contact.max_penetration);
   if (!std::isfinite(r.force) || !std::isfinite(r.displacement) || !std::isfinite(stored) ||
@@ -64,23 +73,13 @@ std::optional<FailedCheck> RunGuard::check(const StepRecord& r) {
     largest_imbalance_ = std::max(largest_imbalance_, imbalance / largest_work_);
     const double error = std::max(0.0, imbalance - quadrature_allowance_) / largest_work_;
     largest_balance_error_ = std::max(largest_balance_error_, error);
-    if (error > checks_.max_balance_error) {
-      failed.check = "energy_balance";
-      failed.entry = "Max energy balance error (%)";
-      failed.value = error;
-      failed.bound = checks_.max_balance_error;
-      return failed;
-    }
+    if (error > checks_.max_balance_error)
+      return out_of_bound("energy_balance", "Max energy balance error (%)", error, checks_.max_balance_error);
   }
   const double relative_penetration = penetration / diameter_;
   largest_penetration_ = std::max(largest_penetration_, relative_penetration);
-  if (relative_penetration > checks_.max_penetration) {
-    failed.check = "penetration";
-    failed.entry = "Max penetration (% of diameter)";
-    failed.value = relative_penetration;
-    failed.bound = checks_.max_penetration;
-    return failed;
-  }
+  if (relative_penetration > checks_.max_penetration)
+    return out_of_bound("penetration", "Max penetration (% of diameter)", relative_penetration, checks_.max_penetration);
   return std::nullopt;
 }
 

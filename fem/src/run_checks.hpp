@@ -16,6 +16,7 @@ struct FailedCheck {
   std::string check;  // "energy_balance", "penetration", "finite_state"
   std::string entry;  // the `Checks` entry of the bound ("" for finite_state)
   unsigned step = 0;
+  double time = 0.0;                // the step's pseudo-time (the paths' time axis)
   double displacement = 0.0;        // m, the load path's displacement at that step
   double value = 0.0, bound = 0.0;  // fractions (finite_state: none)
   std::string message() const;

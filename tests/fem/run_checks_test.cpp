@@ -60,7 +60,7 @@ TEST(RunChecks, MissingPlasticWorkFailsWhereItLeavesTheBound) {
   EXPECT_NEAR(failed->value, 0.25, 1e-12);
   EXPECT_EQ(failed->entry, "Max energy balance error (%)");
   const std::string message = failed->message();
-  EXPECT_NE(message.find("check 'energy_balance' failed at step 3 (displacement 3 mm)"), std::string::npos) << message;
+  EXPECT_NE(message.find("check 'energy_balance' failed at step 3 (pseudo-time 0, displacement 3 mm)"), std::string::npos) << message;
   EXPECT_NE(message.find("against the bound 5 % (Checks/Max energy balance error (%))"), std::string::npos) << message;
 }
 
