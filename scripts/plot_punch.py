@@ -8,13 +8,14 @@ usage: plot_punch.py OUT.png CSV [CSV ...]
 Each curve is labelled by its `# label:` line (`dem run --label`, else the run's title) and
 marked at its own peak; the legend sits below the axes so that it hides no curve.
 """
-import csv
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from plot_curves import read_curve as read_curve_columns  # noqa: E402  (same folder)
 
 THESIS_ONSET_M = 0.20
 THESIS_PEAK_KN = 25.0
@@ -23,26 +24,11 @@ ONSET_FORCE_KN = 1.0  # the onset of dem run's summary: force first at 1 kN
 
 
 def read_curve(path):
-    metadata, rows, header = {}, [], None
-    with open(path, newline="") as handle:
-        for line in handle:
-            text = line.strip()
-            if not text:
-                continue
-            if text.startswith("#"):
-                key, sep, value = text[1:].partition(":")
-                if sep and header is None:
-                    metadata[key.strip()] = value.strip()
-                continue
-            cells = next(csv.reader([text]))
-            if header is None:
-                header = cells
-            else:
-                rows.append(dict(zip(header, (float(c) for c in cells))))
+    metadata, header, values = read_curve_columns(path)
     for needed in ("tool_displacement_mm", "tool_force_N"):
         if header is None or needed not in header:
             sys.exit(f"{path}: no column {needed} (a dem run punch curve.csv is expected)")
-    return metadata, rows
+    return metadata, [dict(zip(header, row)) for row in values]
 
 
 def main():
