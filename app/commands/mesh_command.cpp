@@ -49,6 +49,8 @@ double estimated_cells(const meshes::MeshParameters& p) {
   const double n = r.block_cells;
   const double quads = n * n + 4.0 * n * (r.radial_cells + (p.coating > 0.0 ? r.coating_cells : 0));
   if (p.kind == meshes::WireKind::Single) return quads * std::ceil(p.length / r.axial_cell_length);
+  if (p.kind == meshes::WireKind::Segment)
+    return quads * (std::ceil((p.length + 2.0 * p.grip_length) / r.axial_cell_length) + 4.0);
   const double axis = p.twist_length + kPi * (p.diameter + 2.0 * p.coating + p.gap) * p.half_turns + 2.0 * p.arm_length;
   const double stations = std::ceil(axis / r.axial_cell_length) + std::ceil(kPi * p.half_turns / r.max_section_turn);
   return 2.0 * quads * stations;
@@ -62,8 +64,8 @@ void check_mesh_memory(const MeshOptions& options, const meshes::MeshParameters&
   if (!options.max_memory.empty()) max_memory = parse_byte_size(options.max_memory, "--max-memory");
   std::ostringstream what;
   what << "about " << std::setprecision(3) << cells << " hexahedra at level " << p.level
-       << (p.kind == meshes::WireKind::Single ? ", length " : ", twist-length and arm-length ")
-       << (p.kind == meshes::WireKind::Single ? 1000.0 * p.length : 1000.0 * p.twist_length) << " mm";
+       << (p.kind != meshes::WireKind::DoubleTwist ? ", length " : ", twist-length and arm-length ")
+       << (p.kind != meshes::WireKind::DoubleTwist ? 1000.0 * p.length : 1000.0 * p.twist_length) << " mm";
   if (p.kind == meshes::WireKind::DoubleTwist) what << ", " << 1000.0 * p.arm_length << " mm";
   check_memory(kMeshProgramBytes + kBytesPerCell * cells, max_memory, options.prm.empty() ? "mesh" : options.prm, what.str());
 }
@@ -113,17 +115,25 @@ int run_mesh(const MeshOptions& options) {
   return 0;
 }
 
+const char* kind_description(meshes::WireKind kind) {
+  switch (kind) {
+    case meshes::WireKind::Single: return "Single wire of diameter d and length L with grips at both ends";
+    case meshes::WireKind::DoubleTwist: return "Double twist: two wires twisted through n half turns, with four SW arms";
+    case meshes::WireKind::Segment:
+      return "One SW segment as the mesh has it: out of a twist, a bend, the slanted run, a bend into the next "
+             "twist; grips inside the twists, the chord along z";
+  }
+  return "";
+}
+
 void add_kind(CLI::App& mesh, CommandSet& commands, meshes::WireKind kind) {
-  const bool dt = kind == meshes::WireKind::DoubleTwist;
   auto options = std::make_shared<MeshOptions>();
   options->kind = kind;
-  CLI::App* command = mesh.add_subcommand(
-      dt ? "dt" : "sw", dt ? "Double twist: two wires twisted through n half turns, with four SW arms"
-                           : "Single wire of diameter d and length L with grips at both ends");
+  CLI::App* command = mesh.add_subcommand(meshes::kind_name(kind), kind_description(kind));
   const meshes::MeshParameters defaults = meshes::default_parameters(kind);
   command->add_option("--prm", options->prm, "Parameter file (set name = value; same names and units as the options)");
   for (const meshes::ParameterField& field : meshes::parameter_fields()) {
-    if (!(dt ? field.double_twist : field.single_wire)) continue;
+    if (!meshes::used_by(field, kind)) continue;
     options->values[field.name] = meshes::user_value(defaults, field);
     const std::string unit = field.unit == "1" ? "" : " (" + field.unit + ")";
     CLI::Option* option = command->add_option("--" + field.name, options->values[field.name], field.help + unit);
@@ -150,6 +160,7 @@ void add_mesh_command(CLI::App& root, CommandSet& commands) {
   commands.add(mesh, [] { return kExitBadInput; });
   add_kind(*mesh, commands, meshes::WireKind::Single);
   add_kind(*mesh, commands, meshes::WireKind::DoubleTwist);
+  add_kind(*mesh, commands, meshes::WireKind::Segment);
 }
 
 }  // namespace dtwire::app

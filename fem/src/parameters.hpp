@@ -30,6 +30,9 @@ struct GeometryParameters {
   // Set when the mesh file is a double twist (two wires: material ids 1-6 and 11-16); its
   // boundary ids are then kept as written by `dtwire mesh dt` (docs/meshes.md).
   bool double_twist = false;
+  // Cleared when a single-wire mesh file's axis leaves the z axis (`dtwire mesh segment`): the
+  // diameter is then read off its end face and no neck section is tracked.
+  bool straight_axis = true;
 };
 
 struct MaterialParameters {

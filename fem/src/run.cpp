@@ -225,7 +225,7 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
   c.add_channel_si("force", Dimension::Force, f, *find_unit("N"));
   c.add_channel_si("plastic_dissipation", Dimension::Energy, d, *find_unit("J"));
   c.add_channel_si("elastic_energy", Dimension::Energy, e, *find_unit("J"));
-  if (!p.geometry.double_twist) c.add_channel_si("neck_radius", Dimension::Length, r, *find_unit("mm"));
+  if (!p.geometry.double_twist && p.geometry.straight_axis) c.add_channel_si("neck_radius", Dimension::Length, r, *find_unit("mm"));
   if (p.material.failure.enabled()) {
     std::vector<double> damage;
     for (const auto& s : records) damage.push_back(s.damage);

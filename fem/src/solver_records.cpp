@@ -122,7 +122,7 @@ double WireSolver::Impl::neck_radius() const {
   // The surface vertex layer nearest the imperfection centre (mid-length without imperfection);
   // every rank holds all coarse cells, so the layer is the same everywhere.
   const auto& g = prm.geometry;
-  if (g.double_twist) return 0.0;  // no single neck section
+  if (g.double_twist || !g.straight_axis) return 0.0;  // no single neck section
   const double z_ref = g.imperfection > 0.0 ? g.imperfection_centre : 0.5 * g.length;
   double z_layer = 0.0;
   for (const auto& cell : triangulation.active_cell_iterators())  // all coarse cells, any owner

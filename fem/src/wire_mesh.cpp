@@ -43,7 +43,19 @@ void read_wire_mesh(GeometryParameters& g, dealii::Triangulation<3>& target) {
     target.copy_triangulation(wire);
     return;
   }
-  g.diameter = 2.0 * r_max;
+  // The end face is a section of the wire wherever the axis runs (a bent segment's vertices lie
+  // far from the z axis, so their distance to it is no radius).
+  Point<3> face_centre;
+  std::vector<Point<3>> face_vertices;
+  for (const auto& cell : wire.active_cell_iterators())
+    for (const auto f : cell->face_indices())
+      if (cell->face(f)->at_boundary() && cell->face(f)->boundary_id() == kBottom)
+        for (const auto v : cell->face(f)->vertex_indices()) face_vertices.push_back(cell->face(f)->vertex(v));
+  for (const auto& v : face_vertices) face_centre += v / static_cast<double>(face_vertices.size());
+  double r_face = 0.0;
+  for (const auto& v : face_vertices) r_face = std::max(r_face, v.distance(face_centre));
+  g.straight_axis = face_vertices.empty() || r_max < 1.5 * r_face;
+  g.diameter = 2.0 * (g.straight_axis ? r_max : r_face);
   // A quarter-section mesh (x >= 0, y >= 0) has plane boundary faces on x = 0 and y = 0: they
   // become the symmetry planes and the model a quarter section. A full wire has none (its
   // lateral faces lie on the circle).

@@ -103,12 +103,14 @@ MeshCheck check_mesh(const WireMesh& wire_mesh) {
 }
 
 std::string format_check_markdown(const MeshParameters& p, const WireMesh& wire_mesh, const MeshCheck& c) {
-  const bool dt = p.kind == WireKind::DoubleTwist;
+  const char* kind_title = p.kind == WireKind::DoubleTwist ? "double twist"
+                     : p.kind == WireKind::Segment   ? "SW segment between two twists"
+                                                     : "single wire";
   std::ostringstream md;
-  md << "### Mesh check: " << (dt ? "double twist" : "single wire") << ", level " << p.level << "\n\n";
+  md << "### Mesh check: " << kind_title << ", level " << p.level << "\n\n";
   md << "| parameter | value |\n|---|---|\n";
   for (const ParameterField& field : parameter_fields())
-    if (dt ? field.double_twist : field.single_wire)
+    if (used_by(field, p.kind))
       md << "| " << field.name << " | " << number(user_value(p, field), 6)
          << (field.unit == "1" ? "" : " " + field.unit) << " |\n";
   md << "\n| figure | value |\n|---|---|\n";

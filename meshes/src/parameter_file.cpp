@@ -35,7 +35,6 @@ std::size_t trim_end(const std::string& line, std::size_t end) {
 
 void parse_parameter_text(const std::string& text, const std::string& source,
                           MeshParameters& parameters, FieldLocations& locations) {
-  const bool dt = parameters.kind == WireKind::DoubleTwist;
   std::istringstream lines(text);
   std::string line;
   int number = 0;
@@ -60,14 +59,14 @@ void parse_parameter_text(const std::string& text, const std::string& source,
       std::string known;
       std::vector<std::string> names;
       for (const auto& f : parameter_fields())
-        if (dt ? f.double_twist : f.single_wire) {
+        if (used_by(f, parameters.kind)) {
           known += (known.empty() ? "" : ", ") + f.name;
           names.push_back(f.name);
         }
       fail(name_start, "unknown parameter '" + written + "'" + did_you_mean(name, names) + ", expected one of: " + known);
     }
-    if (!(dt ? field->double_twist : field->single_wire))
-      fail(name_start, "parameter '" + written + "' is not used by mesh " + (dt ? "dt" : "sw"));
+    if (!used_by(*field, parameters.kind))
+      fail(name_start, "parameter '" + written + "' is not used by mesh " + kind_name(parameters.kind));
     if (seen.count(name)) fail(name_start, "parameter '" + written + "' is set twice (first on line " +
                                                std::to_string(seen[name].line) + ")");
     const std::size_t value_start = skip_space(line, equals + 1);

@@ -33,27 +33,46 @@ MeshParameters default_parameters(WireKind kind) {
 const std::vector<ParameterField>& parameter_fields() {
   using P = MeshParameters;
   static const std::vector<ParameterField> fields = {
-      {"d", "mm", "steel wire diameter", true, true, &P::diameter, nullptr},
-      {"length", "mm", "wire length (SW)", true, false, &P::length, nullptr},
-      {"twist-length", "mm", "twist length L_dt (40 rockfall, 35 gabion)", false, true,
+      {"d", "mm", "steel wire diameter", true, true, true, &P::diameter, nullptr},
+      {"length", "mm", "wire length (SW); axis length from twist to twist (segment)", true, false, true,
+       &P::length, nullptr},
+      {"twist-length", "mm", "twist length L_dt (40 rockfall, 35 gabion)", false, true, true,
        &P::twist_length, nullptr},
-      {"half-turns", "1", "half turns of the wire pair over the twist", false, true, nullptr,
+      {"half-turns", "1", "half turns of the wire pair over the twist", false, true, true, nullptr,
        &P::half_turns},
-      {"arm-length", "mm", "axis length of each SW arm beyond the twist", false, true,
+      {"arm-length", "mm", "axis length of each SW arm beyond the twist", false, true, false,
        &P::arm_length, nullptr},
-      {"arm-angle", "deg", "angle between each arm and the twist axis (8x10: asin(40/60))",
-       false, true, &P::arm_angle, nullptr},
-      {"bend-radius", "mm", "axis bend radius where an arm leaves the twist", false, true,
+      {"arm-angle", "deg", "angle between each arm (segment: its straight part) and the twist axis (8x10: asin(40/60))",
+       false, true, true, &P::arm_angle, nullptr},
+      {"bend-radius", "mm", "axis bend radius where a wire leaves or enters a twist", false, true, true,
        &P::bend_radius, nullptr},
-      {"gap", "mm", "clearance between the two wire surfaces in the twist", false, true, &P::gap,
+      {"gap", "mm", "clearance between the two wire surfaces in the twist", false, true, true, &P::gap,
        nullptr},
-      {"coating", "mm", "PVC sheath thickness t (0: no coating)", true, true, &P::coating,
+      {"coating", "mm", "PVC sheath thickness t (0: no coating)", true, true, true, &P::coating,
        nullptr},
-      {"grip-length", "mm", "gripped length at each wire end (0: no grip regions)", true, true,
-       &P::grip_length, nullptr},
-      {"level", "1", "refinement level 0..3", true, true, nullptr, &P::level},
+      {"grip-length", "mm", "gripped length at each wire end (segment: held inside each twist; 0: no grip regions)",
+       true, true, true, &P::grip_length, nullptr},
+      {"level", "1", "refinement level 0..3", true, true, true, nullptr, &P::level},
   };
   return fields;
+}
+
+bool used_by(const ParameterField& field, WireKind kind) {
+  switch (kind) {
+    case WireKind::Single: return field.single_wire;
+    case WireKind::DoubleTwist: return field.double_twist;
+    case WireKind::Segment: return field.segment;
+  }
+  return false;
+}
+
+const char* kind_name(WireKind kind) {
+  switch (kind) {
+    case WireKind::Single: return "sw";
+    case WireKind::DoubleTwist: return "dt";
+    case WireKind::Segment: return "segment";
+  }
+  return "";
 }
 
 const ParameterField* find_parameter_field(const std::string& name) {
@@ -84,7 +103,6 @@ void throw_field_error(const FieldLocations& locations, const std::string& field
 double maximum_gap(const MeshParameters& parameters) { return 0.05 * parameters.diameter; }
 
 void validate(const MeshParameters& p, const FieldLocations& where) {
-  const bool dt = p.kind == WireKind::DoubleTwist;
   auto mm = [](double metres) { return format(metres * 1e3) + " mm"; };
   if (!(p.diameter > 0)) throw_field_error(where, "d", "expected a diameter > 0 mm, got " + mm(p.diameter));
   if (p.level < 0 || p.level > 3)
@@ -93,7 +111,7 @@ void validate(const MeshParameters& p, const FieldLocations& where) {
     throw_field_error(where, "coating", "expected a thickness >= 0 mm, got " + mm(p.coating));
   if (!(p.grip_length >= 0))
     throw_field_error(where, "grip-length", "expected a length >= 0 mm, got " + mm(p.grip_length));
-  if (!dt) {
+  if (p.kind == WireKind::Single) {
     if (!(p.length > 2 * p.grip_length))
       throw_field_error(where, "length",
                         "expected a wire length > 2 x grip-length = " + mm(2 * p.grip_length) +
@@ -106,6 +124,9 @@ void validate(const MeshParameters& p, const FieldLocations& where) {
                           std::to_string(p.half_turns));
   if (!(p.twist_length > 0))
     throw_field_error(where, "twist-length", "expected a length > 0 mm, got " + mm(p.twist_length));
+  // A segment's length is checked against its two bends where its axis is built.
+  if (p.kind == WireKind::Segment && !(p.length > 0))
+    throw_field_error(where, "length", "expected an axis length > 0 mm between the twists, got " + mm(p.length));
   if (!(p.gap >= 0))
     throw_field_error(where, "gap", "expected a gap >= 0 mm (wires must not interpenetrate), got " + mm(p.gap));
   if (p.gap > maximum_gap(p))

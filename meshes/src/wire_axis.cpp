@@ -48,6 +48,16 @@ AxisPiece bend_piece(const Station& start, const Vec3& direction, double radius,
           radius * angle, WirePart::Free};
 }
 
+AxisPiece rigidly_moved(const AxisPiece& piece, const Vec3& origin, const Vec3& axis, double angle) {
+  auto at = piece.at;
+  return {[=](double s) {
+            const Station station = at(s);
+            return Station{rotate(station.point - origin, axis, angle), rotate(station.tangent, axis, angle),
+                           rotate(station.normal, axis, angle)};
+          },
+          piece.length, piece.part, piece.min_layers};
+}
+
 SampledAxis sample_axis(const std::vector<AxisPiece>& pieces, double cell_length) {
   SampledAxis axis;
   for (const AxisPiece& piece : pieces) {

@@ -129,6 +129,42 @@ std::vector<AxisPiece> double_twist_axis(const MeshParameters& p, int wire, cons
   return pieces;
 }
 
+std::vector<AxisPiece> segment_axis(const MeshParameters& p, const FieldLocations& where) {
+  const AxisPiece helix = helix_piece(p, 0);
+  const Station leave = helix.at(helix.length);  // wire A leaves the first twist here
+  const double side = leave.point.x > 0 ? 1 : -1;
+  const Vec3 run{side * std::sin(p.arm_angle), 0, std::cos(p.arm_angle)};
+  // The half turn about the midpoint's normal to the mesh plane maps the segment onto itself run
+  // backwards, so it enters the next twist along the leaving tangent with y reversed.
+  const Vec3 enter{leave.tangent.x, -leave.tangent.y, leave.tangent.z};
+  const double angle = std::acos(std::clamp(dot(leave.tangent, run), -1.0, 1.0));
+  const double straight = p.length - 2 * p.bend_radius * angle;
+  if (!(straight > 0))
+    throw_field_error(where, "length",
+                      "expected an axis length between the twists > its two bends (2 x " +
+                          mm(p.bend_radius * angle) + "), got " + mm(p.length));
+  std::vector<AxisPiece> pieces;
+  pieces.push_back(straight_piece({leave.point - p.grip_length * leave.tangent, leave.tangent, leave.normal},
+                                  p.grip_length, WirePart::StartGrip));
+  Station cursor = leave;
+  auto bend_towards = [&](const Vec3& direction) {
+    if (angle <= 1e-12) return;
+    pieces.push_back(bend_piece(cursor, direction, p.bend_radius, angle));
+    cursor = pieces.back().at(pieces.back().length);
+    cursor.tangent = direction;
+  };
+  bend_towards(run);
+  pieces.push_back(straight_piece(cursor, straight, WirePart::Free));
+  cursor.point = cursor.point + straight * run;
+  bend_towards(enter);
+  pieces.push_back(straight_piece(cursor, p.grip_length, WirePart::EndGrip));
+  // The chord (in the (x, z) plane by the symmetry) turned onto +z about y, its start at 0.
+  const Vec3 chord = cursor.point - leave.point;
+  const double turn = std::atan2(chord.x, chord.z);
+  for (AxisPiece& piece : pieces) piece = rigidly_moved(piece, leave.point, {0, -1, 0}, turn);
+  return pieces;
+}
+
 WireMesh build_wire_mesh(const MeshParameters& p, const FieldLocations& where) {
   validate(p, where);
   const bool dt = p.kind == WireKind::DoubleTwist;
@@ -137,6 +173,13 @@ WireMesh build_wire_mesh(const MeshParameters& p, const FieldLocations& where) {
   WireMesh result;
   result.steel_radius = 0.5 * p.diameter;
   result.coating = p.coating;
+  if (p.kind == WireKind::Segment) {
+    const SampledAxis axis = sample_axis(segment_axis(p, where), res.axial_cell_length);
+    sweep_wire(result.mesh, section, axis, 0, false);
+    result.axis_lengths = {axis.length};
+    result.axes = {axis_samples(axis)};
+    return result;
+  }
   if (!dt) {
     const Station start{{0, 0, 0}, {0, 0, 1}, {1, 0, 0}};
     const double g = p.grip_length;

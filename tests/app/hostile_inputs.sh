@@ -23,6 +23,7 @@ sed 's/set Diameter (mm) *=.*/set Diameter (mm) = 0/' "$prm" > diameter_zero.prm
 printf 'subsection Geometry\n  set Length (mm) = 60\n' > unclosed.prm
 printf 'subsection Geometry\n  Length (mm) = 60\nend\n' > no_set.prm
 printf 'end\n' > stray_end.prm
+printf 'set arm-length = 30\n' > arm_length_segment.prm
 echo "garbage" > garbage.msh
 : > empty.msh
 printf '$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\nxx\n' > broken.msh
@@ -109,6 +110,9 @@ case_ "boundary.presag_m: given with pretension_strain" dem run "$src/experiment
 case_ "links.sw.parameters.slideb: not a parameter of the thesis law" dem run "$src/experiments/dem/punch_macro.toml" --set 'links.sw.parameters.slideb=1.0' -o dem_out -q
 case_ "empty_mesh.prm: no 'set <name> = <value>' line" mesh dt --prm empty_mesh.prm -o mesh.msh
 case_ "typo_mesh.prm:7:5: unknown parameter 'twist-lenght' (did you mean 'twist-length'?)" mesh dt --prm typo_mesh.prm -o mesh.msh
+case_ "--length: expected an axis length between the twists > its two bends" mesh segment --length 8 -o segment.msh
+case_ "parameter 'arm-length' is not used by mesh segment" mesh segment --prm arm_length_segment.prm -o segment.msh
+[ -e segment.msh ] && { echo "FAIL: a refused segment mesh left its output"; total=$((total + 1)); }
 case_ "parameter[6].name': the thesis simulator reads no parameter 'm_ff' (did you mean 'm_f'?)" fit m_ff.toml --synthesize synthesized
 case_ "simulator.fixed.slideb': the thesis law reads no parameter 'slideb' (did you mean 'slide_b'?)" fit fixed_typo.toml --synthesize synthesized
 case_ "foreign: holds 'notes.txt', which this command does not write" export --params "$thesis" --out foreign

@@ -114,3 +114,51 @@ TEST(DoubleTwist, ArmsLeaveAtTheArmAngleInTheMeshPlane) {
     EXPECT_NEAR(start.tangent.y, 0.0, 1e-12);
   }
 }
+
+// The SW segment between two twists (issue 36): its axis against the closed forms of the DT's
+// own axes, which it reuses (helix tangent at the twist end, bends of bend-radius).
+TEST(Segment, ChordAlongZBendsAtTheTwistTangentAndHalfTurnSymmetry) {
+  MeshParameters p = default_parameters(WireKind::Segment);
+  const auto pieces = segment_axis(p);
+  ASSERT_EQ(pieces.size(), 5u);  // grip, bend, straight, bend, grip
+  const Station leave = pieces[1].at(0), enter = pieces[4].at(0);
+  const Station first = pieces.front().at(0), last = pieces.back().at(pieces.back().length);
+  // The chord runs along +z from the origin.
+  EXPECT_NEAR(norm(leave.point), 0.0, 1e-15);
+  EXPECT_NEAR(enter.point.x, 0.0, 1e-12);
+  EXPECT_NEAR(enter.point.y, 0.0, 1e-12);
+  // Leaving and entering tangents make the closed-form bend angle acos(cos(lay) cos(arm angle))
+  // with the straight part, and the segment maps onto itself under the half turn about y
+  // through its midpoint.
+  const double lay = helix_lay_angle(p);
+  const double bend = std::acos(std::cos(lay) * std::cos(p.arm_angle));
+  const Vec3 run = pieces[2].at(0).tangent;
+  EXPECT_NEAR(std::acos(dot(leave.tangent, run)), bend, 1e-9);
+  EXPECT_NEAR(std::acos(dot(enter.tangent, run)), bend, 1e-9);
+  const Vec3 middle = 0.5 * (leave.point + enter.point);
+  const Vec3 turned = {2 * middle.x - first.point.x, first.point.y, 2 * middle.z - first.point.z};
+  EXPECT_NEAR(distance(turned, last.point), 0.0, 1e-12);
+  // Axis length between the twists is `length`; the grips add grip-length each.
+  double free_length = 0;
+  for (std::size_t k = 1; k + 1 < pieces.size(); ++k) free_length += pieces[k].length;
+  EXPECT_NEAR(free_length, p.length, 1e-12);
+  // Chord = the two arcs' chords (2 R sin(bend / 2) along the bisector of their end tangents)
+  // plus the straight part.
+  const double arc_chord = 2 * p.bend_radius * std::sin(0.5 * bend);
+  const Vec3 chord = arc_chord * normalized(leave.tangent + run) + pieces[2].length * run +
+                     arc_chord * normalized(run + enter.tangent);
+  EXPECT_NEAR(distance(chord, enter.point - leave.point), 0.0, 1e-12);
+  EXPECT_NEAR(pieces[2].length, p.length - 2 * p.bend_radius * bend, 1e-12);
+}
+
+TEST(Segment, VolumeWithinHalfPercentOfTubeAndGripsAsSingleWire) {
+  MeshParameters p = default_parameters(WireKind::Segment);
+  const WireMesh mesh = build_wire_mesh(p);
+  const MeshCheck check = check_mesh(mesh);
+  const double tube = kPi * 0.25 * p.diameter * p.diameter * (p.length + 2 * p.grip_length);
+  EXPECT_NEAR(check.steel_volume / tube, 1.0, 0.005);
+  EXPECT_GT(check.min_scaled_jacobian, 0.5);
+  EXPECT_EQ(mesh.wire_count, 1);
+  EXPECT_EQ(check.faces_per_boundary.count(4), 1u);  // grip laterals the FE holds
+  EXPECT_EQ(check.faces_per_boundary.count(5), 1u);
+}

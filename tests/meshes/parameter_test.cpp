@@ -146,3 +146,11 @@ TEST(ParameterFile, SyntaxErrorsNameLineAndColumn) {
   EXPECT_TRUE(contains(parse_error(""), "dt.prm: no 'set <name> = <value>' line")) << parse_error("");
   EXPECT_TRUE(contains(parse_error("# only a comment\n\n"), "no 'set <name> = <value>' line"));
 }
+
+TEST(ParameterErrors, SegmentTooShortForItsTwoBendsNamesLength) {
+  MeshParameters p = default_parameters(WireKind::Segment);
+  p.length = 8e-3;  // two 4.2 mm bends do not fit
+  EXPECT_TRUE(contains(build_error(p), "length")) << build_error(p);
+  EXPECT_TRUE(contains(parse_error("set arm-length = 30\n", WireKind::Segment), "not used by mesh segment"))
+      << parse_error("set arm-length = 30\n", WireKind::Segment);
+}

@@ -7,12 +7,17 @@
 
 namespace dtwire::meshes {
 
-enum class WireKind { Single, DoubleTwist };
+// Single: a straight wire. DoubleTwist: the twist with four SW arms. Segment: one SW segment of
+// the mesh as it runs between two twists (it leaves a twist, bends, runs slanted, bends into
+// the next twist; wire_geometry.hpp).
+enum class WireKind { Single, DoubleTwist, Segment };
+// The `dtwire mesh` subcommand of a kind: "sw", "dt", "segment".
+const char* kind_name(WireKind kind);
 
 struct MeshParameters {
   WireKind kind = WireKind::Single;
   double diameter = 2.7e-3;        // steel wire diameter d
-  double length = 60e-3;           // SW: wire length (Dundee SW segment)
+  double length = 60e-3;           // SW: wire length (Dundee SW segment); segment: axis length between the twists
   double twist_length = 40e-3;     // DT: twist length L_dt (40 mm rockfall, 35 mm gabion)
   int half_turns = 3;              // DT: half turns n of the pair (EN 10223-3)
   double arm_length = 30e-3;       // DT: axis length of each SW arm beyond the twist
@@ -44,10 +49,12 @@ struct ParameterField {
   std::string help;
   bool single_wire;  // used by `mesh sw`
   bool double_twist; // used by `mesh dt`
+  bool segment;      // used by `mesh segment`
   double MeshParameters::*real = nullptr;
   int MeshParameters::*integer = nullptr;
 };
 const std::vector<ParameterField>& parameter_fields();
+bool used_by(const ParameterField& field, WireKind kind);
 const ParameterField* find_parameter_field(const std::string& name);
 
 // Sets a field from a value in its user unit (mm, deg, count).

@@ -34,6 +34,10 @@ AxisPiece straight_piece(const Station& start, double length, WirePart part);
 // the frame is rotation-minimising (turned about the bend's binormal).
 AxisPiece bend_piece(const Station& start, const Vec3& direction, double radius, double angle);
 
+// The piece moved rigidly: `origin` goes to 0, then everything turns about the unit `axis` by
+// `angle` (points, tangents and section directions alike).
+AxisPiece rigidly_moved(const AxisPiece& piece, const Vec3& origin, const Vec3& axis, double angle);
+
 struct SampledAxis {
   std::vector<Station> stations;
   // Curvature vector d(tangent)/ds at each station (1/m, towards the centre of curvature),
