@@ -85,8 +85,13 @@ std::string dem_effect_unsupported(const std::string& effect, const dem::RunInpu
              " links use the " + set->law + " law";
     return "";
   }
-  if (effect == "discretisation")
-    return "the engine has two nodes per wire; three per wire with bending stiffness is not implemented yet";
+  if (effect == "discretisation") {
+    if (base.mesh.nodes_per_wire == 3) return "the input already has three nodes per wire (mesh.nodes_per_wire = 3)";
+    for (const dem::LinkTag tag : {dem::LinkTag::SingleWire, dem::LinkTag::DoubleTwist})
+      if (const dem::LinkSetInput* set = link_set(base, tag); set && set->law == "wirepm")
+        return "the " + dem::link_tag_name(tag) + " links are wirepm (axial force only): a middle node would be a hinge";
+    return "";
+  }
   return "not a mesh-level effect";
 }
 
@@ -107,6 +112,9 @@ std::vector<std::string> dem_effect_entries(const dem::RunInput& base, const std
       }
     } else if (name == "edge_sliding") {
       if (p >= 0.5) entries.push_back("boundary.support=\"slider\"");
+    } else if (name == "discretisation") {
+      // Searched on {2, 3}: 2 is the input's own two-node mesh.
+      if (p >= 2.5) entries.push_back("mesh.nodes_per_wire=3");
     } else if (name == "slack_state") {
       if (p <= 0.0) continue;
       entries.push_back("boundary.pretension_strain=0.0");

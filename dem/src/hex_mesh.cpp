@@ -46,8 +46,11 @@ HexMeshSize hex_mesh_size(const HexMeshSpec& spec) {
   const double even = std::ceil(0.5 * columns), odd = columns - even;
   const double total = even * twists(0) + odd * twists(1);
   HexMeshSize size;
-  size.nodes = 2.0 * total;
-  size.links = 3.0 * total + (spec.selvedge ? 2.0 * std::max(twists(0), twists(1)) : 0.0);
+  const double wire_links = 3.0 * total;  // an upper bound: a twist and two SW links per twist
+  const double selvedge_links = spec.selvedge ? 2.0 * std::max(twists(0), twists(1)) : 0.0;
+  const bool split = spec.nodes_per_wire == 3;
+  size.nodes = 2.0 * total + (split ? wire_links : 0.0);
+  size.links = (split ? 2.0 : 1.0) * wire_links + selvedge_links;
   return size;
 }
 
@@ -59,6 +62,8 @@ HexMesh generate_hex_mesh(const HexMeshSpec& spec) {
   require_positive(spec.twist_length, "twist_length_m");
   require_positive(spec.wire_diameter, "wire_diameter_m");
   require_positive(spec.node_radius, "node_radius_m");
+  if (spec.nodes_per_wire != 2 && spec.nodes_per_wire != 3)
+    throw std::invalid_argument("nodes_per_wire: expected 2 or 3, found " + std::to_string(spec.nodes_per_wire));
   if (spec.twist_length >= spec.opening_height)
     throw std::invalid_argument("twist_length_m: must be shorter than the opening height");
   if (spec.width < spec.opening_width)
@@ -115,7 +120,26 @@ HexMesh generate_hex_mesh(const HexMeshSpec& spec) {
     }
   }
 
-  // Masses from the wire steel (half of each segment to each end node).
+  for (std::size_t l = 0; l < mesh.net.links.size(); ++l) mesh.net.links[l].wire = static_cast<int>(l);
+  mesh.twist_end_nodes = mesh.net.nodes.size();
+  if (spec.nodes_per_wire == 3) {
+    // Each SW and DT link becomes two half-links through a node at its midpoint.
+    std::vector<NetLink> split;
+    split.reserve(2 * mesh.net.links.size());
+    for (const NetLink& link : mesh.net.links) {
+      if (link.tag == LinkTag::Selvedge) {
+        split.push_back(link);
+        continue;
+      }
+      const Vector3 middle = 0.5 * (mesh.net.nodes[link.a].position + mesh.net.nodes[link.b].position);
+      const int m = add_node(middle.x(), middle.y(), -1);
+      split.push_back({link.a, m, link.tag, link.wire, 2});
+      split.push_back({m, link.b, link.tag, link.wire, 2});
+    }
+    mesh.net.links = std::move(split);
+  }
+
+  // Masses from the wire steel (half of each link to each of its two nodes).
   const double area = kPi * spec.wire_diameter * spec.wire_diameter / 4.0;
   const double selvedge_area = kPi * spec.selvedge_diameter * spec.selvedge_diameter / 4.0;
   const double turns = 0.5 * spec.twist_half_turns;
@@ -144,6 +168,7 @@ HexMesh generate_hex_mesh(const HexMeshSpec& spec) {
     node.mass = spec.node_mass > 0.0 ? spec.node_mass : lumped[n];
     node.rotational_inertia = 0.4 * node.mass * spec.node_radius * spec.node_radius;
     mesh.net_mass += node.mass;
+    if (n >= mesh.twist_end_nodes) continue;  // a middle node: inside its wire, on no boundary
     unsigned sides = 0;
     if (column_of[n] == 0) sides |= kLeft;
     if (column_of[n] == mesh.columns - 1) sides |= kRight;

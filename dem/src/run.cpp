@@ -72,22 +72,28 @@ BuiltNet build_net(const RunInput& in) {
     if (set == in.link_sets.end()) throw InputError(in.file.string(), "links." + tag + ": missing: no law set for the " + tag + " links");
     ParameterMap parameters = set->second.parameters;
     const double link_length = (built.mesh.net.nodes[link.b].position - built.mesh.net.nodes[link.a].position).norm();
-    if (set->second.length == "link") parameters = rescale_to_link_length(parameters, link_length);
+    // A part of a split wire takes the whole wire's set (as the two-node mesh would give it),
+    // then the share that makes the parts in series reproduce it (length_rescaling.hpp).
+    const double wire_length = link.parts * link_length;
+    const std::size_t wire = link.wire >= 0 ? static_cast<std::size_t>(link.wire) : l;
+    if (set->second.length == "link") parameters = rescale_to_link_length(parameters, wire_length);
     if (set->second.law == "wirepm") {
       // As YADE: the reference length is the link's own length; each link its own seed.
-      parameters["reference_length_m"] = link_length;
-      if (!parameters.count("seed")) parameters["seed"] = static_cast<double>(l + 1);
+      parameters["reference_length_m"] = wire_length;
+      if (!parameters.count("seed")) parameters["seed"] = static_cast<double>(wire + 1);
     }
     // Thoeni et al. 2013: slack lambda_u l0 r of link l; WirePM as YADE's type 2 (seed -1: its
-    // lambda_u is this link's lambda_u r), the other laws shifted by DistortedLaw.
+    // lambda_u is this link's lambda_u r), the other laws shifted by DistortedLaw. The parts of
+    // a split wire share the wire's draw, so each takes its share of the wire's slack.
     const Distortion& distortion = set->second.distortion;
-    const double variate = distortion_variate(distortion, l);
+    const double variate = distortion_variate(distortion, wire);
     const bool distorted = distortion.mode != DistortionMode::None && distortion.lambda_u > 0.0;
     if (distorted && set->second.law == "wirepm") {
       parameters["lambda_u"] = distortion.lambda_u * variate;
       parameters["seed"] = -1.0;
     }
     try {
+      if (link.parts > 1) parameters = split_in_series(set->second.law, parameters, link.parts);
       std::unique_ptr<ContactLaw> law = make_contact_law(set->second.law, parameters);
       if (distorted && set->second.law != "wirepm")
         law = std::make_unique<DistortedLaw>(std::move(law), distortion.lambda_u * link_length * variate);

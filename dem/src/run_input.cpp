@@ -278,7 +278,7 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
 
   const toml::table* mesh = r.table(root, "mesh");
   if (!mesh) r.fail(nullptr, "mesh", "missing table");
-  r.check_keys(*mesh, "mesh.", {"pattern", "width_m", "height_m", "selvedge", "node_mass_kg", "node_radius_m"});
+  r.check_keys(*mesh, "mesh.", {"pattern", "width_m", "height_m", "selvedge", "node_mass_kg", "node_radius_m", "nodes_per_wire"});
   in.pattern = r.text(*mesh, "mesh.", "pattern", in.pattern);
   try {
     in.mesh = hex_pattern(in.pattern);
@@ -290,6 +290,7 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   in.mesh.selvedge = r.boolean(*mesh, "mesh.", "selvedge", false);
   in.mesh.node_mass = r.ranged(*mesh, "mesh.", "node_mass_kg", 0.0, 0.0, kHuge, "a mass >= 0 kg (0: from the wire)");
   in.mesh.node_radius = r.number(*mesh, "mesh.", "node_radius_m", in.mesh.node_radius, true);
+  in.mesh.nodes_per_wire = static_cast<int>(r.integer(*mesh, "mesh.", "nodes_per_wire", 2, 2, 3));
   if (in.mesh.width < in.mesh.opening_width)
     r.fail(mesh->get("width_m"), "mesh.width_m", "the panel is narrower than one mesh opening (" +
                                                       std::to_string(in.mesh.opening_width) + " m)");
@@ -309,6 +310,10 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
       r.fail(links, "links." + name, "missing: no law set for the " + name + " links");
     }
     in.link_sets[tag] = read_link_set(r, *set, "links." + name + ".");
+    if (in.mesh.nodes_per_wire == 3 && tag != LinkTag::Selvedge && in.link_sets[tag].law == "wirepm")
+      r.fail(mesh->get("nodes_per_wire"), "mesh.nodes_per_wire",
+             "3 needs links with bending stiffness (thesis, macro3d, parallel_bond); the wirepm " + name +
+                 " links carry axial force only, so each middle node would be a hinge");
   }
 
   if (const toml::table* boundary = r.table(root, "boundary")) {

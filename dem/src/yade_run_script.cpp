@@ -38,6 +38,11 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
   const std::string file = in.file.string();
   if (in.tool != "platter") throw InputError(file, "tool.kind: the YADE export covers the platter punch only");
   if (!in.force_levels.empty()) throw InputError(file, "tool.force_levels_N: the YADE export covers the monotonic punch only");
+  // YADE's WirePM links carry axial force only, so a middle node would be a hinge there, and its
+  // net material finds double twists by consecutive ids, which a split twist no longer has.
+  if (in.mesh.nodes_per_wire != 2)
+    throw InputError(file, "mesh.nodes_per_wire: the YADE export needs 2 (one WirePM link per wire); found " +
+                               std::to_string(in.mesh.nodes_per_wire));
   if (in.mesh.selvedge) throw InputError(file, "mesh.selvedge: YADE's WirePM would take selvedge links between consecutive ids for double twists");
   const LinkSetInput& sw = in.link_sets.at(LinkTag::SingleWire);
   const LinkSetInput& dt = in.link_sets.at(LinkTag::DoubleTwist);

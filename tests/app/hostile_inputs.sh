@@ -141,6 +141,10 @@ case_ "--set: tool.corner_plane_m: expected a distance in (side_m / 2, 3 side_m 
 case_ "--set: mesh.width_m: the panel is narrower than one mesh opening" dem run "$src/experiments/dem/strip_tension_thesis.toml" --set mesh.width_m=0.05 -o dem_out -q
 case_ "--set: checks.max_balance_error_percent: expected a percentage >= 0" dem run "$punch" --set checks.max_balance_error_percent=-1 -o dem_out -q
 case_ "--set: checks.max_energy_error: unknown key" dem run "$punch" --set checks.max_energy_error=1 -o dem_out -q
+case_ "--set: mesh.nodes_per_wire: expected an integer in [2, 3]" dem run "$punch" --set mesh.nodes_per_wire=4 -o dem_out -q
+case_ "--set: mesh.nodes_per_wire: expected an integer in [2, 3]" dem run "$punch" --set mesh.nodes_per_wire=2.5 -o dem_out -q
+case_ "--set: mesh.nodes_per_wire: 3 needs links with bending stiffness" dem run "$src/experiments/dem/punch_wirepm.toml" --set mesh.nodes_per_wire=3 -o dem_out -q
+case_ "mesh.nodes_per_wire: the YADE export needs 2" dem run "$punch" --set mesh.nodes_per_wire=3 --yade-script yade.py -o dem_out -q
 # Resources: a 2000 x 2000 m panel is refused by its memory estimate in a moment, before anything
 # is built; --max-memory lowers the limit; VTU frames beyond the free disk are refused.
 start=$(date +%s)

@@ -122,7 +122,8 @@ TEST(DemRunDistortion, MacroElementLinksAreWrappedWithTheSameSlack) {
   text.replace(text.find(sw_params), sw_params.size(), kData + "macroelement_thesis_params.json");
   const std::string backbone = "backbone = \"" + kData + "sw_2.7mm_dem_backbone.csv\"\n";
   text.erase(text.find(backbone), backbone.size());
-  const BuiltNet built = build_net(read_run_input(write_input("thesis.toml", text)));
+  const auto path = write_input("thesis.toml", text);
+  const BuiltNet built = build_net(read_run_input(path));
   std::size_t wrapped = 0;
   for (std::size_t k = 0; k < built.links.size(); ++k) {
     const NetLink& link = built.mesh.net.links[k];
@@ -135,6 +136,27 @@ TEST(DemRunDistortion, MacroElementLinksAreWrappedWithTheSameSlack) {
     ++wrapped;
   }
   EXPECT_GT(wrapped, 20U);
+  // Three nodes per wire: both halves of wire w take the wire's draw, each half its share of
+  // the wire's slack (0.1 x half the length x r_w), so the wire's slack is the two-node mesh's.
+  // (The dt links too take the thesis set: WirePM links cannot be split.)
+  const std::string dt_params = kData + "wirepm_dt_2.7mm.json";
+  text.replace(text.find(dt_params), dt_params.size(), kData + "macroelement_thesis_params.json");
+  text.erase(text.find(backbone), backbone.size());
+  text.insert(text.find("[links.dt]\n") + 11, "law = \"thesis\"\nwire_type = \"double_twist\"\n");
+  const BuiltNet split = build_net(read_run_input(write_input("thesis_split.toml", text), {"mesh.nodes_per_wire=3"}));
+  std::size_t halves = 0;
+  for (std::size_t k = 0; k < split.links.size(); ++k) {
+    const NetLink& link = split.mesh.net.links[k];
+    if (link.tag != LinkTag::SingleWire) continue;
+    const auto* law = dynamic_cast<const DistortedLaw*>(split.links[k].law.get());
+    ASSERT_NE(law, nullptr) << "link " << k;
+    ASSERT_EQ(link.parts, 2);
+    const NetLink& whole = built.mesh.net.links[static_cast<std::size_t>(link.wire)];
+    const double length = (built.mesh.net.nodes[whole.b].position - built.mesh.net.nodes[whole.a].position).norm();
+    ASSERT_NEAR(law->slack(), 0.5 * 0.1 * length * yade_triangular_variate(7, static_cast<std::size_t>(link.wire)), 1e-15 * length);
+    ++halves;
+  }
+  EXPECT_EQ(halves, 2 * wrapped);
 }
 
 TEST(DemRunDistortion, YadeScriptCarriesTypeTwoLambdauSeedAndOurSlacks) {

@@ -142,20 +142,119 @@ TEST(DemHexMesh, BoundarySidesSelvedgeGabionAndErrors) {
   EXPECT_THROW(hex_pattern("6x8"), std::invalid_argument);
 }
 
-// The counts the memory check uses (issue 37) without building the mesh: the nodes exactly, the
-// links as an upper bound, within 5 % on the 3 x 3 m punch panel (edge twists have fewer wires).
+// Three nodes per wire: every SW and DT link of the two-node mesh becomes two half-links through
+// a node at its midpoint; the twist-end nodes, their sides and the selvedge links are those of
+// the two-node mesh; the steel is shared among the wire's nodes, so the mass per area and the
+// net's mass are unchanged.
+TEST(DemHexMesh, ThreeNodesPerWireSplitsEachWireAndKeepsTheMassPerArea) {
+  HexMeshSpec spec = hex_pattern("8x10_2.7mm");
+  spec.width = 1.0;
+  spec.height = 1.0;
+  spec.selvedge = true;
+  const HexMesh two = generate_hex_mesh(spec);
+  spec.nodes_per_wire = 3;
+  const HexMesh three = generate_hex_mesh(spec);
+  const std::size_t ends = two.net.nodes.size();
+  ASSERT_EQ(three.twist_end_nodes, ends);
+  EXPECT_EQ(two.twist_end_nodes, ends);
+  for (std::size_t n = 0; n < ends; ++n) {
+    EXPECT_EQ(three.net.nodes[n].position, two.net.nodes[n].position);
+    EXPECT_EQ(three.sides[n], two.sides[n]) << "node " << n;
+  }
+  std::size_t wires = 0, selvedge = 0;
+  std::vector<int> halves_of(two.net.links.size(), 0);
+  for (std::size_t l = 0; l < three.net.links.size(); ++l) {
+    const NetLink& link = three.net.links[l];
+    ASSERT_GE(link.wire, 0);
+    const NetLink& whole = two.net.links[static_cast<std::size_t>(link.wire)];
+    EXPECT_EQ(link.tag, whole.tag);
+    if (link.tag == LinkTag::Selvedge) {
+      ++selvedge;
+      EXPECT_EQ(link.parts, 1);
+      EXPECT_EQ(link.a, whole.a);
+      EXPECT_EQ(link.b, whole.b);
+      continue;
+    }
+    EXPECT_EQ(link.parts, 2);
+    ++halves_of[static_cast<std::size_t>(link.wire)];
+    // a -> middle, then middle -> b; the middle node at the wire's midpoint, on no boundary.
+    const bool first = link.a == whole.a;
+    const int middle = first ? link.b : link.a;
+    EXPECT_EQ(first ? link.a : link.b, first ? whole.a : whole.b);
+    if (!first) {
+      EXPECT_EQ(link.b, whole.b);
+    }
+    ASSERT_GE(static_cast<std::size_t>(middle), ends);
+    const Vector3 midpoint = 0.5 * (two.net.nodes[whole.a].position + two.net.nodes[whole.b].position);
+    EXPECT_LT((three.net.nodes[middle].position - midpoint).norm(), 1e-15);
+    EXPECT_EQ(three.sides[middle], 0u);
+    EXPECT_EQ(three.net.nodes[middle].radius, spec.node_radius);
+    ++wires;
+  }
+  std::size_t whole_wires = 0;
+  for (std::size_t l = 0; l < two.net.links.size(); ++l)
+    if (two.net.links[l].tag != LinkTag::Selvedge) {
+      ++whole_wires;
+      EXPECT_EQ(halves_of[l], 2) << "wire " << l;
+    }
+  EXPECT_GT(selvedge, 0u);
+  EXPECT_EQ(wires, 2 * whole_wires);
+  EXPECT_EQ(three.net.nodes.size(), ends + whole_wires);
+
+  // Mass: a middle node carries half its wire, a twist end a quarter of each wire it ends
+  // (half its two-node mass inside the panel); the totals are the two-node mesh's.
+  const double area = kPi * 0.0027 * 0.0027 / 4.0;
+  const double helix = three.twist_wire_factor;
+  for (std::size_t l = 0; l < three.net.links.size(); ++l) {
+    const NetLink& link = three.net.links[l];
+    if (link.tag == LinkTag::Selvedge || link.a < static_cast<int>(ends)) continue;  // the half from the middle node
+    const double steel = 7850.0 * area * (link.tag == LinkTag::DoubleTwist ? 2.0 * 0.04 * helix : 0.05);
+    EXPECT_NEAR(three.net.nodes[link.a].mass, 0.5 * steel, 1e-15) << "middle node " << link.a;
+  }
+  for (std::size_t n = 0; n < ends; ++n)
+    if (two.sides[n] == 0) {
+      EXPECT_NEAR(three.net.nodes[n].mass, 0.5 * two.net.nodes[n].mass, 1e-15) << "node " << n;
+    }
+  EXPECT_NEAR(three.net_mass, two.net_mass, 1e-12 * two.net_mass);
+  EXPECT_DOUBLE_EQ(three.mass_per_area, two.mass_per_area);
+  EXPECT_NEAR(three.mass_per_area, 1.48, 0.01);
+
+  for (const int bad : {1, 4}) {
+    spec.nodes_per_wire = bad;
+    try {
+      generate_hex_mesh(spec);
+      FAIL() << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("nodes_per_wire"), std::string::npos);
+    }
+  }
+}
+
+// The counts the memory check uses (issue 37) without building the mesh: with two nodes per
+// wire the nodes exactly, the links as an upper bound, within 5 % on the 3 x 3 m punch panel
+// (edge twists have fewer wires); with three, the middle nodes as the links, an upper bound.
 TEST(DemHexMesh, SizeWithoutBuildingMatchesTheMesh) {
   for (const auto& [width, height, selvedge] : {std::tuple{3.0, 3.0, false}, std::tuple{0.6, 0.45, false},
                                                 std::tuple{1.0, 0.99, true}, std::tuple{0.08, 0.1, false}}) {
-    HexMeshSpec spec;
-    spec.width = width;
-    spec.height = height;
-    spec.selvedge = selvedge;
-    const HexMesh mesh = generate_hex_mesh(spec);
-    const HexMeshSize size = hex_mesh_size(spec);
-    EXPECT_EQ(size.nodes, static_cast<double>(mesh.net.nodes.size())) << width << " x " << height;
-    EXPECT_GE(size.links, static_cast<double>(mesh.net.links.size())) << width << " x " << height;
-    if (width >= 3.0) EXPECT_LT(size.links, 1.05 * static_cast<double>(mesh.net.links.size()));
+    for (const int nodes_per_wire : {2, 3}) {
+      HexMeshSpec spec;
+      spec.width = width;
+      spec.height = height;
+      spec.selvedge = selvedge;
+      spec.nodes_per_wire = nodes_per_wire;
+      const HexMesh mesh = generate_hex_mesh(spec);
+      const HexMeshSize size = hex_mesh_size(spec);
+      const auto nodes = static_cast<double>(mesh.net.nodes.size()), links = static_cast<double>(mesh.net.links.size());
+      if (nodes_per_wire == 2) {
+        EXPECT_EQ(size.nodes, nodes) << width << " x " << height;
+      }
+      EXPECT_GE(size.nodes, nodes) << width << " x " << height;
+      EXPECT_GE(size.links, links) << width << " x " << height;
+      if (width >= 3.0) {
+        EXPECT_LT(size.nodes, 1.05 * nodes);
+        EXPECT_LT(size.links, 1.05 * links);
+      }
+    }
   }
 }
 

@@ -85,6 +85,71 @@ TEST(DemRun, BadInputsExitTwoNamingTheField) {
                    "links.dt.parameters.slideb");
 }
 
+// `[mesh] nodes_per_wire`: 2 or 3, an integer; 3 with WirePM links (axial only: each middle node
+// a hinge) is refused; nothing is written for a refused input.
+TEST(DemRun, NodesPerWireIsCheckedWhereItIsRead) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_dem_run_test" / "out_nodes_per_wire";
+  for (const std::string value : {"4", "2.5", "1", "\"3\""}) {
+    std::filesystem::remove_all(out);
+    const auto path = write_input("nodes_per_wire.toml", small_punch("height_m = 0.6\n", "height_m = 0.6\nnodes_per_wire = " + value + "\n"));
+    const Outcome o = run_cli("dem run " + path.string() + " -q -o " + out.string());
+    EXPECT_EQ(o.code, 2) << value << ": " << o.output;
+    EXPECT_NE(o.output.find("nodes_per_wire.toml:6:18: mesh.nodes_per_wire: expected an integer in [2, 3]"), std::string::npos)
+        << value << ": " << o.output;
+    EXPECT_FALSE(std::filesystem::exists(out)) << value;
+  }
+  const auto wirepm = write_input("nodes_per_wire_wirepm.toml", small_punch("height_m = 0.6\n", "height_m = 0.6\nnodes_per_wire = 3\n"));
+  const Outcome o = run_cli("dem run " + wirepm.string() + " -q -o " + out.string());
+  EXPECT_EQ(o.code, 2) << o.output;
+  EXPECT_NE(o.output.find("mesh.nodes_per_wire: 3 needs links with bending stiffness"), std::string::npos) << o.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// The small punch with the thesis sets.
+std::string thesis_punch(const std::string& mesh_extra, const std::string& link_extra = "") {
+  std::string text = small_punch("height_m = 0.6\n", "height_m = 0.6\n" + mesh_extra);
+  for (const char* tag : {"sw", "dt"}) {
+    const std::string file = std::string("wirepm_") + tag + "_2.7mm.json";
+    const std::string backbone = "backbone = \"" + kData + "sw_2.7mm_dem_backbone.csv\"\n";
+    text.replace(text.find(kData + file), (kData + file).size(), kData + "macroelement_thesis_params.json");
+    text.replace(text.find(backbone), backbone.size(),
+                 std::string("law = \"thesis\"\nwire_type = \"") + (std::string(tag) == "sw" ? "single_wire" : "double_twist") +
+                     "\"\n" + link_extra);
+  }
+  return text;
+}
+
+// Three nodes per wire in the run: each half-link takes the whole wire's set (as calibrated with
+// length = "set", rescaled to the wire's length with "link") at twice its stiffness, so that the
+// two halves in series are the two-node mesh's link; the YADE export refuses it.
+TEST(DemRun, HalfLinksTakeTheWholeWiresSetInEitherLengthMode) {
+  for (const std::string length : {"set", "link"}) {
+    const RunInput input = read_run_input(write_input("three_" + length + ".toml",
+                                                      thesis_punch("nodes_per_wire = 3\n", "length = \"" + length + "\"\n")));
+    ASSERT_EQ(input.mesh.nodes_per_wire, 3);
+    const BuiltNet built = build_net(input);
+    std::size_t checked = 0;
+    for (const EngineLink& link : built.links) {
+      ASSERT_EQ(link.link.parts, 2);  // no selvedge in this panel
+      const auto& set = input.link_sets.at(link.link.tag).parameters;
+      const double wire_length = link.link.tag == LinkTag::SingleWire ? 0.05 : 0.04;
+      const double whole_EA = set.at("EA_N") * (length == "link" ? set.at("reference_length_m") / wire_length : 1.0);
+      std::unique_ptr<ContactLaw> probe = link.law->clone();
+      probe->update((Vector6() << 1e-8, 0, 0, 0, 0, 0).finished());
+      EXPECT_NEAR(probe->forces()[0], 2.0 * whole_EA * 1e-8, 1e-9 * whole_EA * 1e-8) << length;
+      ++checked;
+    }
+    EXPECT_EQ(checked, built.links.size());
+    EXPECT_EQ(built.mesh.net.nodes.size(), built.mesh.twist_end_nodes + built.links.size() / 2);
+    try {
+      yade_run_script(input);
+      ADD_FAILURE() << "the YADE export took three nodes per wire";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("mesh.nodes_per_wire"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // `dem run --set TABLE.KEY=VALUE` replaces an entry; the value is TOML and is checked as the
 // file's; a malformed entry names --set.
 TEST(DemRun, SetEntriesOverrideTheFileAndAreChecked) {

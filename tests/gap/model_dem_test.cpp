@@ -38,8 +38,10 @@ TEST_F(GapDemModel, EachEffectIsSwitchedOnThroughTheRunInput) {
   const dem::RunInput base = read_dem_model(toml, {});
   const auto entries = dem_effect_entries(
       base, {effect("mesh_distortion", 0.1), effect("edge_sliding", 1.0), effect("slack_state", 80.0),
-             effect("dt_weakening", 0.6), effect("sw_softening", 0.2)});
+             effect("dt_weakening", 0.6), effect("sw_softening", 0.2), effect("discretisation", 3.0)});
   const dem::RunInput edited = dem::read_run_input(toml, entries);  // the entries are valid input
+  EXPECT_EQ(base.mesh.nodes_per_wire, 2);
+  EXPECT_EQ(edited.mesh.nodes_per_wire, 3);
   EXPECT_EQ(edited.support, dem::EdgeSupport::Slider);
   EXPECT_DOUBLE_EQ(edited.wall_below, 0.08);
   EXPECT_DOUBLE_EQ(edited.pretension_strain, 0.0);
@@ -60,17 +62,20 @@ TEST_F(GapDemModel, EachEffectIsSwitchedOnThroughTheRunInput) {
   // Neutral values change nothing.
   EXPECT_TRUE(dem_effect_entries(base, {effect("mesh_distortion", 0.0), effect("edge_sliding", 0.0),
                                         effect("slack_state", 0.0), effect("dt_weakening", 1.0),
-                                        effect("sw_softening", 1.0)}).empty());
+                                        effect("sw_softening", 1.0), effect("discretisation", 2.0)}).empty());
 }
 
 TEST_F(GapDemModel, AnEffectTheInputCannotShowIsNamedWithTheReason) {
   const dem::RunInput punch = read_dem_model(toml, {});
-  EXPECT_NE(dem_effect_unsupported("discretisation", punch).find("two nodes per wire"), std::string::npos);
+  EXPECT_EQ(dem_effect_unsupported("discretisation", punch), "");
+  const dem::RunInput three = read_dem_model(toml, {{"mesh.nodes_per_wire=3"}, {}, {}});
+  EXPECT_NE(dem_effect_unsupported("discretisation", three).find("already has three"), std::string::npos);
   EXPECT_EQ(dem_effect_unsupported("edge_sliding", punch), "");
   const dem::RunInput sliding = read_dem_model(toml, {{"boundary.support=\"slider\""}, {}, {}});
   EXPECT_NE(dem_effect_unsupported("edge_sliding", sliding).find("already slide"), std::string::npos);
   const dem::RunInput wirepm = read_dem_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dem/punch_wirepm.toml", {});
   EXPECT_NE(dem_effect_unsupported("dt_weakening", wirepm).find("wirepm"), std::string::npos);
+  EXPECT_NE(dem_effect_unsupported("discretisation", wirepm).find("hinge"), std::string::npos);
   const dem::RunInput strip =
       read_dem_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dem/strip_tension_thesis.toml", {});
   EXPECT_NE(dem_effect_unsupported("slack_state", strip).find("strip"), std::string::npos);

@@ -11,8 +11,15 @@
 // the twists (50 mm long). The two nodes of a twist get consecutive indices (YADE's WirePM finds
 // double twists that way). Optional selvedge links join consecutive twists of the first and last
 // columns (a thicker edge wire, tag selvedge).
-// Node mass: half the steel of every wire segment ending at the node (a twist is two wires on a
-// helix of three half turns), so the mass per area is that of the real mesh; or a given mass.
+// Three nodes per wire (Previtali ch. 3.4, study 1): every SW and DT link is split at its
+// midpoint by a middle node into two half-links in series (the same tag; each keeps the whole
+// link's index in `wire`, `parts` = 2), so that the wire bends between its ends; selvedge links
+// stay whole. Middle nodes come after all twist-end nodes (the twist-end indices and their
+// boundary sides are those of the two-node mesh; middle nodes are never on a boundary) and
+// have the twist-end nodes' contact radius.
+// Node mass: half the steel of every link ending at the node (a twist is two wires on a helix
+// of three half turns): with three nodes per wire a middle node carries half its wire and each
+// end a quarter, so the mass per area is that of the real mesh either way; or a given mass.
 #include <string>
 #include <vector>
 
@@ -33,6 +40,7 @@ struct HexMeshSpec {
   double node_radius = 0.0054;        // contact radius (Thoeni et al. 2013) [m]
   double node_mass = 0.0;             // [kg]; 0: lumped from the wire
   double steel_density = 7850.0;      // [kg/m^3]
+  int nodes_per_wire = 2;             // 2 (one link per wire) or 3 (split at the midpoint)
 };
 
 // "8x10_2.7mm" (rockfall net: 40 mm twists) or "8x10_3.1mm" (gabion: 35 mm twists);
@@ -48,6 +56,7 @@ struct HexMesh {
   double mass_per_area = 0.0;       // of the repeating cell (the real mesh) [kg/m^2]
   double net_mass = 0.0;            // sum of node masses [kg]
   double twist_wire_factor = 1.0;   // helix length / twist length
+  std::size_t twist_end_nodes = 0;  // nodes [0, this) end twists; the rest are middle nodes
 };
 
 // The node and link counts generate_hex_mesh would give (links: an upper bound, edge twists
@@ -59,7 +68,7 @@ struct HexMeshSize {
 HexMeshSize hex_mesh_size(const HexMeshSpec& spec);
 
 // Throws std::invalid_argument naming the field ("width_m", ...) for a panel smaller than one
-// opening or non-positive dimensions.
+// opening, non-positive dimensions or nodes_per_wire other than 2 or 3.
 HexMesh generate_hex_mesh(const HexMeshSpec& spec);
 
 }  // namespace dtwire::dem

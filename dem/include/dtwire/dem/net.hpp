@@ -36,6 +36,11 @@ std::string link_tag_name(LinkTag tag);  // "sw", "dt", "selvedge"
 struct NetLink {
   int a = 0, b = 0;  // node indices; the local x axis points from a to b
   LinkTag tag = LinkTag::SingleWire;
+  // The generator's link index in the two-node mesh this link is, or is a part of (a wire split
+  // at its midpoint keeps its distortion draw); -1: not from the generator.
+  int wire = -1;
+  // The number of equal links in series the wire is split into (1: the whole wire).
+  int parts = 1;
 };
 
 struct Net {
