@@ -15,9 +15,9 @@ ParameterMap rescale_to_link_length(const ParameterMap& parameters, double link_
   auto scale = [&](const char* name, double factor) {
     if (const auto found = out.find(name); found != out.end()) found->second *= factor;
   };
-  for (const char* name : {"EA_N", "EI_Nm2_per_deg_convention", "k_F", "axial_stiffness_N_per_m",
+  for (const char* name : {"EA_N", "EI_Nm2_per_deg_convention", "k_F", "k_M", "axial_stiffness_N_per_m",
                            "bending_stiffness_Nm_per_rad", "shear_stiffness_N_per_m", "torsion_stiffness_Nm_per_rad",
-                           "k_F_per_m"})
+                           "k_F_per_m", "k_M_per_rad"})
     scale(name, stiffer);
   for (const char* name : {"W1_J", "W2_J"}) scale(name, 1.0 / stiffer);
   out["reference_length_m"] = link_length;

@@ -101,6 +101,7 @@ TEST(LengthRescaling, EqualStrainGivesEqualForceAndWorkPerLength) {
   EXPECT_DOUBLE_EQ(link.at("EA_N"), set.at("EA_N") * 1.2);
   EXPECT_DOUBLE_EQ(link.at("EI_Nm2_per_deg_convention"), set.at("EI_Nm2_per_deg_convention") * 1.2);
   EXPECT_DOUBLE_EQ(link.at("k_F"), set.at("k_F") * 1.2);
+  EXPECT_DOUBLE_EQ(link.at("k_M"), set.at("k_M") * 1.2);
   EXPECT_DOUBLE_EQ(link.at("W1_J"), set.at("W1_J") / 1.2);
   EXPECT_DOUBLE_EQ(link.at("N0_N"), set.at("N0_N"));
   EXPECT_DOUBLE_EQ(link.at("reference_length_m"), 0.05);
@@ -111,6 +112,18 @@ TEST(LengthRescaling, EqualStrainGivesEqualForceAndWorkPerLength) {
     return law->forces()[0];
   };
   EXPECT_NEAR(force(link, 0.05), force(set, 0.06), 1e-9 * force(set, 0.06));
+  // Bent to the same curvature well past the moment capacity, with a slow moment hardening
+  // (k_M 0.5 per degree, so that the plastic rotation's hardening shows): the same moment.
+  ParameterMap slow = set;
+  slow["k_M"] = 0.5;
+  const ParameterMap slow_link = rescale_to_link_length(slow, 0.05);
+  const double curvature_deg_per_m = 500.0;  // 30 deg over the 0.06 m bond (first yield near 10 deg)
+  auto moment = [&](const ParameterMap& p, double length) {
+    auto law = make_contact_law("thesis", p);
+    for (int k = 1; k <= 200; ++k) law->update(test::generalised(0.0, curvature_deg_per_m * length / 200 * M_PI / 180));
+    return law->forces()[4];
+  };
+  EXPECT_NEAR(moment(slow_link, 0.05), moment(slow, 0.06), 1e-6 * std::abs(moment(slow, 0.06)));
   ParameterMap no_length = set;
   no_length.erase("reference_length_m");
   EXPECT_THROW(rescale_to_link_length(no_length, 0.05), std::invalid_argument);

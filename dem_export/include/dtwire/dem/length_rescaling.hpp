@@ -5,9 +5,11 @@
 // force with kEA times the gap increment whatever the link's length, so a set is used as
 // calibrated ("set", the plugin's way). At equal strain and equal plastic work per unit length:
 //   axial stiffness EA_N and bending stiffness (per rotation) scale as L_ref / L,
-//   k_F (1/m: hardening per metre of plastic elongation) as L_ref / L,
+//   k_F (1/m: hardening per metre of plastic elongation) and k_M (per degree of plastic
+//   rotation: a link's rotation at a given curvature grows with its length) as L_ref / L,
 //   the damage works W1_J, W2_J as L / L_ref;
-// forces (N0, Nult, Nc), m_f, beta_f, k_M (per degree of rotation) and the shapes are kept.
+// forces (N0, Nult, Nc), m_f, beta_f and the shapes are kept (the calibrate module's
+// dem_specimen scales a set the same way).
 // Both the thesis names and macro3d's own names are rescaled. Standard library only.
 //
 // A link split at its midpoint into `parts` equal links in series (dem run's
@@ -20,8 +22,7 @@
 // k_F, k_M), the damage works W1, W2 and the reference length (the plastic-strain break) are
 // divided by n, and macro3d's bending_axial_coupling kappa is multiplied by n^2 (its
 // c = kappa L_ref / 24 in s_e = u - u_p + c |w|^2 must grow n times while L_ref shrinks n
-// times); forces, moment capacities, shapes and ratios are kept. Unlike the length rescaling
-// above, k_M is scaled: here the rotation itself is shared between the parts. A parallel
+// times); forces, moment capacities, shapes and ratios are kept. A parallel
 // bond's length_m is divided by n. WirePM links are refused: axial force only, so a middle node
 // between two of them would be a hinge.
 #include <string>
