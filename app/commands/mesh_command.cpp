@@ -49,7 +49,7 @@ double estimated_cells(const meshes::MeshParameters& p) {
   const double n = r.block_cells;
   const double quads = n * n + 4.0 * n * (r.radial_cells + (p.coating > 0.0 ? r.coating_cells : 0));
   if (p.kind == meshes::WireKind::Single) return quads * std::ceil(p.length / r.axial_cell_length);
-  if (p.kind == meshes::WireKind::Segment)
+  if (p.kind == meshes::WireKind::Segment)  // five pieces, each rounding its layers up once
     return quads * (std::ceil((p.length + 2.0 * p.grip_length) / r.axial_cell_length) + 4.0);
   const double axis = p.twist_length + kPi * (p.diameter + 2.0 * p.coating + p.gap) * p.half_turns + 2.0 * p.arm_length;
   const double stations = std::ceil(axis / r.axial_cell_length) + std::ceil(kPi * p.half_turns / r.max_section_turn);
