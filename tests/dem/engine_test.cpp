@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "net_node_support.hpp"
 #include "dtwire/dem/engine.hpp"
 
 namespace dtwire::dem {
@@ -13,15 +14,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-NetNode make_node(const Vector3& p, double mass, NodeFixity fixity = NodeFixity::Free) {
-  NetNode node;
-  node.position = p;
-  node.mass = mass;
-  node.rotational_inertia = 0.4 * mass * 0.0054 * 0.0054;
-  node.radius = 0.0054;
-  node.fixity = fixity;
-  return node;
-}
+using test::make_node;
 
 // A linear elastic bond: k_n = E A / L.
 std::unique_ptr<ContactLaw> elastic_bond(double length) {

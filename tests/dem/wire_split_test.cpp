@@ -12,6 +12,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "net_node_support.hpp"
 #include "dtwire/dem/engine.hpp"
 #include "dtwire/dem/length_rescaling.hpp"
 #include "dtwire/dem/thesis_macroelement.hpp"
@@ -30,15 +31,7 @@ ParameterMap thesis_single_wire() {
           {"alpha_d", 2.7}, {"slide_a", 0.0}, {"slide_b", 0.0}};
 }
 
-NetNode make_node(const Vector3& p, double mass, NodeFixity fixity) {
-  NetNode node;
-  node.position = p;
-  node.mass = mass;
-  node.rotational_inertia = 0.4 * mass * 0.0054 * 0.0054;
-  node.radius = 0.0054;
-  node.fixity = fixity;
-  return node;
-}
+using test::make_node;
 
 struct PullCurve {
   std::vector<double> elongation, force;  // [m], [N]
