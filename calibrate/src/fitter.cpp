@@ -304,9 +304,16 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   std::vector<StartEnd> ends;
   for (const auto& st : result.starts) ends.push_back({st.state == "done" ? st.end : std::vector<double>{}, st.cost});
   const bool stepped_here = evaluator.last_jacobian_point() == summary.x;  // uncertainty_at's Jacobian
+  std::vector<double> correlation;
+  if (result.correlation)
+    for (Eigen::Index i = 0; i < result.correlation->rows(); ++i)
+      for (Eigen::Index j = 0; j < result.correlation->cols(); ++j) correlation.push_back((*result.correlation)(i, j));
   result.identification = identify(parameters, result.values, result.sigma,
                                    stepped_here ? evaluator.last_step_failures() : std::vector<std::string>{},
-                                   result.cost, result.residual_variance, ends, options.identification_tolerance);
+                                   result.cost, result.residual_variance, ends, options.identification_tolerance,
+                                   covariance_doubts(parameters, u.insensitive,
+                                                     result.covariance_status == "positive definite", result.sigma,
+                                                     correlation));
   for (std::size_t i = 0; i < n; ++i)
     if (!result.identification[i].identified) {
       std::ostringstream text;

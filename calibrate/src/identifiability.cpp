@@ -27,9 +27,10 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
                                      const std::vector<double>& values, const std::vector<double>& sigma,
                                      const std::vector<std::string>& failed_steps,
                                      double cost, double residual_variance, const std::vector<StartEnd>& starts,
-                                     double tolerance) {
+                                     double tolerance, const std::vector<std::string>& covariance_doubts) {
   const std::size_t n = parameters.size();
-  if (values.size() != n || (!sigma.empty() && sigma.size() != n) || (!failed_steps.empty() && failed_steps.size() != n))
+  if (values.size() != n || (!sigma.empty() && sigma.size() != n) || (!failed_steps.empty() && failed_steps.size() != n) ||
+      (!covariance_doubts.empty() && covariance_doubts.size() != n))
     throw std::invalid_argument("identify: sizes of parameters, values and sigma differ");
   if (!(tolerance > 0.0)) throw std::invalid_argument("identify: tolerance must be > 0");
   const double inf = std::numeric_limits<double>::infinity();
@@ -47,6 +48,7 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
     if (!failed_steps.empty() && !failed_steps[i].empty())
       reasons.push_back("at the edge of the region where the simulator runs (a finite-difference step failed: " +
                         failed_steps[i] + ")");
+    if (!covariance_doubts.empty() && !covariance_doubts[i].empty()) reasons.push_back(covariance_doubts[i]);
     if (!sigma.empty() && !(2.0 * id.relative_sigma <= tolerance))
       reasons.push_back("2 sigma = " + percent(2.0 * id.relative_sigma) + " of the value (Jacobian; tolerance " +
                         percent(tolerance) + ")");
@@ -67,6 +69,33 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
     for (std::size_t k = 0; k < reasons.size(); ++k) id.reason += (k ? "; " : "") + reasons[k];
   }
   return out;
+}
+
+std::vector<std::string> covariance_doubts(const std::vector<ParameterDefinition>& parameters,
+                                           const std::vector<std::size_t>& insensitive, bool positive_definite,
+                                           const std::vector<double>& sigma, const std::vector<double>& correlation) {
+  const std::size_t n = parameters.size();
+  if ((!sigma.empty() && sigma.size() != n) || (!correlation.empty() && correlation.size() != n * n))
+    throw std::invalid_argument("covariance_doubts: sizes of parameters, sigma and correlation differ");
+  std::vector<std::string> doubts(n);
+  for (std::size_t j : insensitive)
+    if (j < n) doubts[j] = "does not affect the residuals at the answer (a zero Jacobian column)";
+  if (positive_definite || sigma.empty()) return doubts;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!doubts[i].empty()) continue;
+    if (!(sigma[i] > 0.0) || !std::isfinite(sigma[i])) {
+      doubts[i] = "a variance of zero or not finite in a covariance that is not positive definite";
+      continue;
+    }
+    if (correlation.empty()) continue;
+    for (std::size_t j = 0; j < n; ++j)
+      if (j != i && std::abs(correlation[i * n + j]) > 0.95) {
+        doubts[i] = "correlated with '" + parameters[j].name + "' (r = " + number(correlation[i * n + j]) +
+                    ") in a covariance that is not positive definite: the sigma is not a standard error";
+        break;
+      }
+  }
+  return doubts;
 }
 
 }  // namespace dtwire::calibrate

@@ -81,5 +81,30 @@ TEST(LogarithmicParameter, CoordinateIsTheLogOfValueOverScale) {
   EXPECT_THROW(validate({bad}), std::invalid_argument);
 }
 
+// Rule 5: a pseudo-inverse covariance (not positive definite) reports a variance of about zero
+// along the null direction it drops; such sigmas vouch for nothing. Seen on the SW section fit's
+// recovery: k_M with sigma 0 (its column zero) and k_F with a relative sigma of 1e-9 at r = -0.998
+// with m_f were both called identified before.
+TEST(Identifiability, ASemiDefiniteCovarianceVouchesForNothingAlongItsNullDirection) {
+  const auto params = two_parameters();
+  // Positive definite: the correlation alone is the 2-sigma rule's business.
+  auto doubts = covariance_doubts(params, {}, true, {1e-6, 1e-6}, {1, 0.99, 0.99, 1});
+  EXPECT_TRUE(doubts[0].empty() && doubts[1].empty());
+  // A zero Jacobian column is a doubt whatever the covariance.
+  doubts = covariance_doubts(params, {1}, true, {1e-6, 1e-6}, {1, 0, 0, 1});
+  EXPECT_TRUE(doubts[0].empty());
+  EXPECT_NE(doubts[1].find("zero Jacobian column"), std::string::npos) << doubts[1];
+  // Semi-definite: a zero variance and a correlation above 0.95 are doubts, a weak one is not.
+  doubts = covariance_doubts(params, {}, false, {0.0, 1e-7}, {1, 0.2, 0.2, 1});
+  EXPECT_NE(doubts[0].find("variance of zero"), std::string::npos) << doubts[0];
+  EXPECT_TRUE(doubts[1].empty()) << doubts[1];
+  doubts = covariance_doubts(params, {}, false, {1e-7, 1e-7}, {1, -0.998, -0.998, 1});
+  EXPECT_NE(doubts[0].find("correlated with 'b'"), std::string::npos) << doubts[0];
+  const auto ids = identify(params, {100, 100}, {1e-7, 1e-7}, {}, 1.0, 0.01, {}, 0.05, doubts);
+  EXPECT_FALSE(ids[0].identified);
+  EXPECT_FALSE(ids[1].identified);
+  EXPECT_THROW(covariance_doubts(params, {}, false, {1.0}, {}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace dtwire::calibrate

@@ -16,7 +16,11 @@
 //     fits the data as well (a point of the parameter's profile likelihood below the 95 %
 //     threshold), so the data do not fix the parameter to tol even where the linearisation says
 //     they do (a curved valley, another minimum of equal depth). Venzon & Moolgavkar (1988),
-//     Raue et al. (2009), Bioinformatics 25:1923, for the profile-likelihood definition.
+//     Raue et al. (2009), Bioinformatics 25:1923, for the profile-likelihood definition;
+//  5. the covariance cannot vouch for it (`covariance_doubts`): its Jacobian column is zero, or
+//     the covariance is only semi-definite (the pseudo-inverse drops a null direction of J^T J
+//     and reports a variance of about zero for the parameters along it) and this parameter has a
+//     variance of zero or a correlation above 0.95 with another.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -41,11 +45,19 @@ struct StartEnd {
 
 // `sigma` empty: no covariance; `failed_steps`: per parameter the failure of its first
 // finite-difference step at the answer (empty string: none; empty vector: not known).
-// `tolerance` relative, > 0.
+// `tolerance` relative, > 0. `covariance_doubts`: per parameter why its sigma cannot be trusted
+// (empty string: no doubt; empty vector: none known), see covariance_doubts() below.
 std::vector<Identification> identify(const std::vector<ParameterDefinition>& parameters,
                                      const std::vector<double>& values, const std::vector<double>& sigma,
                                      const std::vector<std::string>& failed_steps,
                                      double cost, double residual_variance, const std::vector<StartEnd>& starts,
-                                     double tolerance);
+                                     double tolerance, const std::vector<std::string>& covariance_doubts = {});
+
+// Rule 5's reasons from the fit's covariance facts: `insensitive` the parameters whose Jacobian
+// column is zero; when `positive_definite` is false, a variance of zero (or not finite) and a
+// correlation above 0.95 (row-major n x n `correlation`) are doubts too.
+std::vector<std::string> covariance_doubts(const std::vector<ParameterDefinition>& parameters,
+                                           const std::vector<std::size_t>& insensitive, bool positive_definite,
+                                           const std::vector<double>& sigma, const std::vector<double>& correlation);
 
 }  // namespace dtwire::calibrate
