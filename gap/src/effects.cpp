@@ -38,26 +38,28 @@ std::vector<EffectSpec> make_catalogue() {
                                         {"gain_grown_in_neck_1", 0.0, 1.0, 0.0, 1.0, {}, 0.0}};
     };
     e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale& s) {
-      // s(u) = 1 + (s0 - 1) w(u), w = 1 - g u/u_end + h y (2 - y), y the travel past the simulated
-      // peak force over the travel from it to the end (docs/gap.md, the catalogue):
+      // s(u) = 1 + (s0 - 1)(1 - g u/u_end)(1 +- h y (2 - y)), + for s0 > 1, y the travel past
+      // the simulated peak force over the travel from it to the end (docs/gap.md, the catalogue):
       // g > 0: adiabatic heating eats the gain as plastic work accumulates (the thermal term
       //   1 - T*^m of Johnson and Cook 1983, to first order linear in the travel);
       // g < 0: a rate sensitivity that grows with strain (the fcc relation of Zerilli and
       //   Armstrong 1987, J. Appl. Phys. 61:1816, where the rate term multiplies the hardening);
       // h: past the peak (Considere: the neck starts) the strain localises and the neck's strain
-      //   rate rises; the gain is logarithmic in the rate, so it grows fastest at the onset and
-      //   levels off, y (2 - y).
+      //   rate rises, so s rises: a gain grows, a deficit (a test slower than the model's
+      //   reference rate) shrinks; the gain is logarithmic in the rate, so it changes fastest at
+      //   the onset and levels off, y (2 - y).
       // g >= -1 and h <= 1: each growth at most doubles the gain (in ln(rate ratio): the ratio
-      // squared). w stays in [0, 3], so s stays on the side of 1 that s0 is on: the rate cannot
-      // stand in for damage or slip. g = h = 0 (or absent) is the constant factor.
+      // squared) and the neck at most cancels a deficit, so s stays on the side of 1 that s0 is
+      // on: the rate cannot stand in for damage or slip. g = h = 0 (or absent) is the constant
+      // factor.
       const double lost = p.size() > 1 ? p[1] : 0.0;
-      const double neck = p.size() > 2 ? p[2] : 0.0;
+      const double neck = (p.size() > 2 ? p[2] : 0.0) * (p[0] >= 1.0 ? 1.0 : -1.0);
       const double span = s.max_displacement_m - s.peak_displacement_m;
       ForceCurve out = sim;
       const double compliance = 1.0 / s.initial_stiffness_N_per_m;
       for (std::size_t i = 0; i < sim.size(); ++i) {
         const double y = span > 0 ? std::clamp((sim.u[i] - s.peak_displacement_m) / span, 0.0, 1.0) : 0.0;
-        const double w = 1.0 - lost * sim.u[i] / s.max_displacement_m + neck * y * (2.0 - y);
+        const double w = (1.0 - lost * sim.u[i] / s.max_displacement_m) * (1.0 + neck * y * (2.0 - y));
         const double factor = 1.0 + (p[0] - 1.0) * w;
         out.f[i] = factor * sim.f[i];
         out.u[i] = sim.u[i] + (factor - 1.0) * sim.f[i] * compliance;
