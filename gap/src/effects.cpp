@@ -59,7 +59,10 @@ std::vector<EffectSpec> make_catalogue() {
       const double compliance = 1.0 / s.initial_stiffness_N_per_m;
       for (std::size_t i = 0; i < sim.size(); ++i) {
         const double y = span > 0 ? std::clamp((sim.u[i] - s.peak_displacement_m) / span, 0.0, 1.0) : 0.0;
-        const double w = (1.0 - lost * sim.u[i] / s.max_displacement_m) * (1.0 + neck * y * (2.0 - y));
+        // The travel clamped to the simulated test: a model run that goes further (--model)
+        // keeps the bounds.
+        const double x = std::clamp(sim.u[i] / s.max_displacement_m, 0.0, 1.0);
+        const double w = (1.0 - lost * x) * (1.0 + neck * y * (2.0 - y));
         const double factor = 1.0 + (p[0] - 1.0) * w;
         out.f[i] = factor * sim.f[i];
         out.u[i] = sim.u[i] + (factor - 1.0) * sim.f[i] * compliance;

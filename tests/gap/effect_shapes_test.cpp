@@ -88,6 +88,15 @@ TEST(GapEffectShapes, RateGainGrowsOverTheTestAndInTheNeck) {
           EXPECT_LE(std::abs(factor - 1.0), 4.0 * std::abs(s0 - 1.0) + 1e-12);
         }
       }
+  // A curve that runs beyond the simulated test (a --model run) keeps the bounds: the travel is
+  // clamped to the test.
+  ForceCurve longer = sim;
+  for (double& u : longer.u) u *= 1.5;
+  for (double s0 : {0.9, 1.1}) {
+    const ForceCurve faded = apply_effects(longer, {{&find_effect("strain_rate"), {s0, 1.0, 0.0}}}, s);
+    for (std::size_t i = 1; i < sim.size(); ++i)
+      EXPECT_GE((faded.f[i] / longer.f[i] - 1.0) * (s0 - 1.0), -1e-15) << "u " << longer.u[i];
+  }
   // A curve whose force rises to its end has no neck: the neck parameter does nothing there.
   ForceCurve rising;
   for (int k = 0; k <= 100; ++k) {
