@@ -27,23 +27,43 @@ std::vector<EffectSpec> make_catalogue() {
     EffectSpec e;
     e.name = "strain_rate";
     e.description = "rate scaling of the flow stress, sigma' = s sigma (Johnson-Cook: "
-                    "s = 1 + C ln(rate ratio)); elastic slope unchanged";
+                    "s = 1 + C ln(rate ratio)); elastic slope unchanged; the gain may fade or grow "
+                    "over the test and grow in the neck";
     e.order = 0;
     e.magnitude = 0;
     e.neutral = 1.0;
     e.parameters = [](const CurveScale&) {
       return std::vector<ParameterSpec>{{"stress_factor_1", 0.6, 1.6, 0.9, 1.15, {}, {}},
-                                        {"gain_lost_at_end_1", 0.0, 1.0, 0.0, 1.0, {}, 0.0}};
+                                        {"gain_lost_at_end_1", -1.0, 1.0, -1.0, 1.0, {}, 0.0},
+                                        {"gain_grown_in_neck_1", 0.0, 1.0, 0.0, 1.0, {}, 0.0}};
     };
     e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale& s) {
-      // Adiabatic heating eats the rate gain as plastic work accumulates: a share g of it is
-      // lost linearly over the test, s(u) = 1 + (s0 - 1)(1 - g u / u_end) (g = 0: constant).
-      // The factor stays between 1 and s0, so it cannot stand in for damage.
+      // s(u) = 1 + (s0 - 1)(1 - g u/u_end)(1 +- h y (2 - y)), + for s0 > 1, y the travel past
+      // the simulated peak force over the travel from it to the end (docs/gap.md, the catalogue):
+      // g > 0: adiabatic heating eats the gain as plastic work accumulates (the thermal term
+      //   1 - T*^m of Johnson and Cook 1983, to first order linear in the travel);
+      // g < 0: a rate sensitivity that grows with strain (the fcc relation of Zerilli and
+      //   Armstrong 1987, J. Appl. Phys. 61:1816, where the rate term multiplies the hardening);
+      // h: past the peak (Considere: the neck starts) the strain localises and the neck's strain
+      //   rate rises, so s rises: a gain grows, a deficit (a test slower than the model's
+      //   reference rate) shrinks; the gain is logarithmic in the rate, so it changes fastest at
+      //   the onset and levels off, y (2 - y).
+      // g >= -1 and h <= 1: each growth at most doubles the gain (in ln(rate ratio): the ratio
+      // squared) and the neck at most cancels a deficit, so s stays on the side of 1 that s0 is
+      // on: the rate cannot stand in for damage or slip. g = h = 0 (or absent) is the constant
+      // factor.
       const double lost = p.size() > 1 ? p[1] : 0.0;
+      const double neck = (p.size() > 2 ? p[2] : 0.0) * (p[0] >= 1.0 ? 1.0 : -1.0);
+      const double span = s.max_displacement_m - s.peak_displacement_m;
       ForceCurve out = sim;
       const double compliance = 1.0 / s.initial_stiffness_N_per_m;
       for (std::size_t i = 0; i < sim.size(); ++i) {
-        const double factor = 1.0 + (p[0] - 1.0) * (1.0 - lost * sim.u[i] / s.max_displacement_m);
+        const double y = span > 0 ? std::clamp((sim.u[i] - s.peak_displacement_m) / span, 0.0, 1.0) : 0.0;
+        // The travel clamped to the simulated test: a model run that goes further (--model)
+        // keeps the bounds.
+        const double x = std::clamp(sim.u[i] / s.max_displacement_m, 0.0, 1.0);
+        const double w = (1.0 - lost * x) * (1.0 + neck * y * (2.0 - y));
+        const double factor = 1.0 + (p[0] - 1.0) * w;
         out.f[i] = factor * sim.f[i];
         out.u[i] = sim.u[i] + (factor - 1.0) * sim.f[i] * compliance;
       }
@@ -250,7 +270,9 @@ CurveScale curve_scale(const ForceCurve& sim) {
   CurveScale s;
   s.peak_force_N = 0.0;
   s.max_displacement_m = 0.0;
+  s.peak_displacement_m = 0.0;
   for (std::size_t i = 0; i < sim.size(); ++i) {
+    if (sim.f[i] > s.peak_force_N) s.peak_displacement_m = sim.u[i];
     s.peak_force_N = std::max(s.peak_force_N, sim.f[i]);
     s.max_displacement_m = std::max(s.max_displacement_m, sim.u[i]);
   }
@@ -263,6 +285,7 @@ CurveScale curve_scale(const ForceCurve& sim) {
   s.initial_stiffness_N_per_m = k > 0 ? k : s.peak_force_N / std::max(s.max_displacement_m, 1e-12);
   if (!(s.peak_force_N > 0)) s.peak_force_N = 1.0;
   if (!(s.max_displacement_m > 0)) s.max_displacement_m = 1.0;
+  s.peak_displacement_m = std::clamp(s.peak_displacement_m, 0.0, s.max_displacement_m);
   return s;
 }
 

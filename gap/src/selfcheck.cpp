@@ -137,8 +137,9 @@ SelfcheckTrial run_independent_trial(const Base& base, const std::vector<std::st
   const ForceCurve& sim = base.curve;
   std::normal_distribution<double> normal(0.0, 1.0);
   std::vector<independent::Setting> settings(effects.size());
-  for (independent::Setting& s : settings) {
-    s.shape = static_cast<int>(uniform(rng, 0, independent::kShapes - 1e-9));
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    independent::Setting& s = settings[e];
+    s.shape = static_cast<int>(uniform(rng, 0, independent::shape_count(effects[e]) - 1e-9));
     for (int k = 0; k < 4; ++k) s.draws.push_back(uniform(rng, 0, 1));
   }
   std::vector<ForceCurve> labs;

@@ -2,6 +2,7 @@
 // neutral value, follows its physical form elsewhere, and the diagnosis recovers it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -21,7 +22,7 @@ TEST(GapEffectShapes, NeutralShapeGivesTheEarlierForm) {
   const CurveScale s = curve_scale(sim);
   const ForceCurve linear = with(sim, "machine_compliance", {0.5, 1.0});
   const ForceCurve scaled_u = with(sim, "gauge_length", {1.2, 0.0});
-  const ForceCurve constant = with(sim, "strain_rate", {1.1, 0.0});
+  const ForceCurve constant = with(sim, "strain_rate", {1.1, 0.0, 0.0});
   for (std::size_t i = 0; i < sim.size(); ++i) {
     EXPECT_DOUBLE_EQ(linear.u[i], sim.u[i] + 0.5e-6 * sim.f[i]);
     EXPECT_DOUBLE_EQ(scaled_u.u[i], 1.2 * sim.u[i]);
@@ -32,6 +33,7 @@ TEST(GapEffectShapes, NeutralShapeGivesTheEarlierForm) {
   EXPECT_EQ(with(sim, "machine_compliance", {0.5}).u, linear.u);
   EXPECT_EQ(with(sim, "gauge_length", {1.2}).u, scaled_u.u);
   EXPECT_EQ(with(sim, "strain_rate", {1.1}).f, constant.f);
+  EXPECT_EQ(with(sim, "strain_rate", {1.1, 0.0}).f, constant.f);
 }
 
 TEST(GapEffectShapes, ShapesFollowTheirPhysicalForms) {
@@ -51,6 +53,57 @@ TEST(GapEffectShapes, ShapesFollowTheirPhysicalForms) {
     EXPECT_NEAR(fading.f[i], (1.0 + 0.1 * (1.0 - u / s.max_displacement_m)) * f, 1e-9 * s.peak_force_N);
   }
   EXPECT_NEAR(fading.f.back(), sim.f.back(), 1e-9 * s.peak_force_N);
+}
+
+// The rate gain growing over the test (g < 0) and in the neck (h, past the simulated peak force;
+// issue 37), and the bounds that keep the factor on the side of 1 its start is on.
+TEST(GapEffectShapes, RateGainGrowsOverTheTestAndInTheNeck) {
+  const ForceCurve sim = voce_tension_curve();
+  const CurveScale s = curve_scale(sim);
+  ASSERT_GT(s.peak_displacement_m, 0.5 * s.max_displacement_m);  // the Voce wire necks
+  ASSERT_LT(s.peak_displacement_m, s.max_displacement_m);
+  const ForceCurve growing = with(sim, "strain_rate", {1.1, -1.0, 0.0});
+  const ForceCurve necking = with(sim, "strain_rate", {1.1, 0.0, 1.0});
+  const ForceCurve slower = with(sim, "strain_rate", {0.9, 0.0, 1.0});
+  for (std::size_t i = 0; i < sim.size(); ++i) {
+    const double f = sim.f[i], u = sim.u[i];
+    // Doubled by the end of the test.
+    EXPECT_NEAR(growing.f[i], (1.0 + 0.1 * (1.0 + u / s.max_displacement_m)) * f, 1e-9 * s.peak_force_N);
+    // Constant up to the peak, then y (2 - y) of the gain added: doubled at the end; a deficit
+    // (s0 < 1) shrinks instead, to none at the end.
+    const double y = std::max(0.0, (u - s.peak_displacement_m) / (s.max_displacement_m - s.peak_displacement_m));
+    EXPECT_NEAR(necking.f[i], (1.0 + 0.1 * (1.0 + y * (2.0 - y))) * f, 1e-9 * s.peak_force_N);
+    EXPECT_NEAR(slower.f[i], (1.0 - 0.1 * (1.0 - y * (2.0 - y))) * f, 1e-9 * s.peak_force_N);
+  }
+  // Over the whole bounds, s stays >= 1 for s0 >= 1 and <= 1 for s0 <= 1: neither a fading nor
+  // a growing gain can turn into a softening (damage) or a hardening of the other sign.
+  for (double s0 : {0.6, 0.95, 1.0, 1.05, 1.6})
+    for (double g : {-1.0, -0.5, 0.0, 0.5, 1.0})
+      for (double h : {0.0, 0.5, 1.0}) {
+        const ForceCurve r = with(sim, "strain_rate", {s0, g, h});
+        for (std::size_t i = 1; i < sim.size(); ++i) {
+          const double factor = r.f[i] / sim.f[i];
+          if (s0 >= 1.0) EXPECT_GE(factor, 1.0 - 1e-12) << s0 << " " << g << " " << h;
+          if (s0 <= 1.0) EXPECT_LE(factor, 1.0 + 1e-12) << s0 << " " << g << " " << h;
+          EXPECT_LE(std::abs(factor - 1.0), 4.0 * std::abs(s0 - 1.0) + 1e-12);
+        }
+      }
+  // A curve that runs beyond the simulated test (a --model run) keeps the bounds: the travel is
+  // clamped to the test.
+  ForceCurve longer = sim;
+  for (double& u : longer.u) u *= 1.5;
+  for (double s0 : {0.9, 1.1}) {
+    const ForceCurve faded = apply_effects(longer, {{&find_effect("strain_rate"), {s0, 1.0, 0.0}}}, s);
+    for (std::size_t i = 1; i < sim.size(); ++i)
+      EXPECT_GE((faded.f[i] / longer.f[i] - 1.0) * (s0 - 1.0), -1e-15) << "u " << longer.u[i];
+  }
+  // A curve whose force rises to its end has no neck: the neck parameter does nothing there.
+  ForceCurve rising;
+  for (int k = 0; k <= 100; ++k) {
+    rising.u.push_back(1e-4 * k);
+    rising.f.push_back(1000.0 * std::sqrt(k / 100.0));
+  }
+  EXPECT_EQ(with(rising, "strain_rate", {1.1, 0.3, 1.0}).f, with(rising, "strain_rate", {1.1, 0.3, 0.0}).f);
 }
 
 // Hertzian compliance (m = 2/3) with 0.3 % load noise: the linear spring alone leaves a toe-like

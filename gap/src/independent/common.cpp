@@ -50,6 +50,8 @@ ForceCurve apply(const std::string& effect, const ForceCurve& base, const Settin
   throw std::invalid_argument("no independent generator for effect " + effect);
 }
 
+int shape_count(const std::string& effect) { return effect == "strain_rate" ? 3 : 2; }
+
 std::string shape_name(const std::string& effect, int shape) {
   static const std::vector<std::pair<std::string, std::vector<std::string>>> names = {
       {"machine_compliance", {"seating_log_compliance", "power_law_compliance"}},
@@ -57,7 +59,7 @@ std::string shape_name(const std::string& effect, int shape) {
       {"initial_slack", {"cubic_toe", "bilinear_toe"}},
       {"gauge_length", {"drifting_knife_edge", "zero_offset_and_scale"}},
       {"ductile_damage", {"late_exponential", "linear"}},
-      {"strain_rate", {"rate_jump", "adiabatic_softening"}}};
+      {"strain_rate", {"rate_jump", "adiabatic_softening", "hardening_rate_sensitivity"}}};
   for (const auto& [name, shapes] : names)
     if (name == effect) return shapes.at(static_cast<std::size_t>(shape));
   return "none";

@@ -11,7 +11,7 @@
 namespace dtwire::gap::independent {
 
 struct Setting {
-  int shape = 0;               // 0 or 1: which physical form of the effect
+  int shape = 0;               // which physical form of the effect (0 .. shape_count - 1)
   std::vector<double> draws;   // uniform (0, 1) numbers fixing the magnitudes (shared by repeats)
   double scatter = 1.0;        // specimen-to-specimen factor on the magnitude
   double end_m = 0.0;          // test end on the base model
@@ -19,7 +19,8 @@ struct Setting {
   double stiffness_N_per_m = 0.0;  // initial stiffness of the base model
 };
 
-inline constexpr int kShapes = 2;
+// Physical forms per effect: two each, three for strain_rate (its growing gain, issue 37).
+int shape_count(const std::string& effect);
 
 // Magnitude in [lo, hi] from draw `k` of the setting, times its scatter.
 double magnitude(const Setting& s, std::size_t k, double lo, double hi);

@@ -19,6 +19,9 @@ struct CurveScale {
   double peak_force_N = 1.0;
   double max_displacement_m = 1.0;
   double initial_stiffness_N_per_m = 1.0;
+  // Where the force first peaks (a tension test's neck starts there, Considere); at most
+  // max_displacement_m, equal to it when the force rises to the end.
+  double peak_displacement_m = 1.0;
 };
 CurveScale curve_scale(const ForceCurve& sim);
 
