@@ -33,17 +33,23 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
     throw std::invalid_argument("identify: sizes of parameters, values and sigma differ");
   if (!(tolerance > 0.0)) throw std::invalid_argument("identify: tolerance must be > 0");
   const double inf = std::numeric_limits<double>::infinity();
+  // Rules 1, 3 and 4 judge the parameters' own values; rule 2 the box of the fitted values.
+  const std::vector<double> resolved = resolve_offsets(parameters, values);
+  std::vector<StartEnd> resolved_ends;
+  for (const StartEnd& s : starts)
+    resolved_ends.push_back({s.values.size() == n ? resolve_offsets(parameters, s.values) : std::vector<double>{}, s.cost});
   std::vector<Identification> out(n);
   for (std::size_t i = 0; i < n; ++i) {
     const ParameterDefinition& p = parameters[i];
     Identification& id = out[i];
-    const double magnitude = std::abs(values[i]);
+    const double magnitude = std::abs(resolved[i]);
     id.relative_sigma = sigma.empty() || magnitude == 0.0 ? inf : sigma[i] / magnitude;
     std::vector<std::string> reasons;
     if (sigma.empty()) reasons.push_back("no covariance (rank-deficient Jacobian)");
     const double at = 1e-6 * (p.upper - p.lower);
-    if (values[i] <= p.lower + at) reasons.push_back("ended at its lower bound " + number(p.lower));
-    if (values[i] >= p.upper - at) reasons.push_back("ended at its upper bound " + number(p.upper));
+    const std::string its = p.offset_from.empty() ? "its" : "its offset " + coordinate_name(p) + " at the offset's";
+    if (values[i] <= p.lower + at) reasons.push_back("ended at " + its + " lower bound " + number(p.lower));
+    if (values[i] >= p.upper - at) reasons.push_back("ended at " + its + " upper bound " + number(p.upper));
     if (!failed_steps.empty() && !failed_steps[i].empty())
       reasons.push_back("at the edge of the region where the simulator runs (a finite-difference step failed: " +
                         failed_steps[i] + ")");
@@ -53,9 +59,9 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
     // The other end inside the 95 % likelihood region farthest from this value.
     double farthest = 0.0;
     const StartEnd* witness = nullptr;
-    for (const StartEnd& s : starts) {
+    for (const StartEnd& s : resolved_ends) {
       if (s.values.size() != n || !(s.cost - cost <= kLikelihoodRatioCost * residual_variance)) continue;
-      const double away = magnitude > 0.0 ? std::abs(s.values[i] - values[i]) / magnitude : inf;
+      const double away = magnitude > 0.0 ? std::abs(s.values[i] - resolved[i]) / magnitude : inf;
       if (away > tolerance && away > farthest) farthest = away, witness = &s;
     }
     if (witness)

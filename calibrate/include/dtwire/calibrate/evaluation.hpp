@@ -89,7 +89,8 @@ class ProblemEvaluator {
   const std::vector<double>& last_jacobian_point() const { return last_jacobian_point_; }
   const std::vector<std::string>& last_step_failures() const { return last_step_failures_; }
 
-  // Simulated curves (one per experiment) at parameter values (SI).
+  // Simulated curves (one per experiment) at fitted values (SI; offsets not yet resolved, as
+  // from_scaled gives them).
   std::vector<Curve> simulate(const std::vector<double>& values);
 
   EvaluationStatistics statistics() const;

@@ -39,9 +39,11 @@ struct StartEnd {
   double cost = 0.0;
 };
 
-// `sigma` empty: no covariance; `failed_steps`: per parameter the failure of its first
-// finite-difference step at the answer (empty string: none; empty vector: not known).
-// `tolerance` relative, > 0.
+// `values` and the starts' values: the fitted values (an offset parameter's offset, to which its
+// bounds apply; rule 2); rules 1, 3 and 4 judge the parameters' own values (offsets resolved,
+// parameter.hpp), with `sigma` their standard deviations (empty: no covariance). `failed_steps`:
+// per parameter the failure of its first finite-difference step at the answer (empty string:
+// none; empty vector: not known). `tolerance` relative, > 0.
 std::vector<Identification> identify(const std::vector<ParameterDefinition>& parameters,
                                      const std::vector<double>& values, const std::vector<double>& sigma,
                                      const std::vector<std::string>& failed_steps,
