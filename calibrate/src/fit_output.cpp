@@ -102,6 +102,7 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
     json entry = {{"name", p.name}, {"value", result.values[i]}, {"unit", p.unit},
                   {"sigma", result.sigma.empty() ? json(nullptr) : finite_or_null(result.sigma[i])},
                   {"lower", lower[i]}, {"upper", upper[i]}, {"initial", initial[i]}, {"fitted", true}};
+    if (i < result.secant_sigma.size()) entry["secant_sigma"] = finite_or_null(result.secant_sigma[i]);
     if (i < result.identification.size()) {
       entry["identified"] = result.identification[i].identified;
       entry["relative_sigma"] = finite_or_null(result.identification[i].relative_sigma);

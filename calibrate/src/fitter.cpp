@@ -283,6 +283,41 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
     result.warnings.push_back("covariance could not be computed (rank-deficient Jacobian)");
   }
 
+  // The secant covariance: each parameter's own value stepped by +-tol/2 of itself (bounds and
+  // failed runs make a side one-sided), for the identification's rule 3 (identifiability.hpp).
+  if (u.covariance) {
+    std::vector<double> steps(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      const double own = std::abs(result.values[j]) > 0 ? std::abs(result.values[j]) : parameters[j].upper - parameters[j].lower;
+      steps[j] = 0.5 * options.identification_tolerance * own / parameters[j].derivative(summary.x[j]);
+    }
+    lsq::Problem secant = problem;
+    secant.residuals_and_jacobian = [&evaluator, steps](const std::vector<double>& z, std::vector<double>& r,
+                                                        std::vector<double>& J) {
+      evaluator.residuals_and_secant_jacobian(z, steps, r, J);
+    };
+    try {
+      const lsq::Uncertainty s = lsq::uncertainty_at(secant, engine, summary.x);
+      if (s.covariance) {
+        Eigen::MatrixXd fitted_cov(n, n);
+        for (std::size_t i = 0; i < n; ++i)
+          for (std::size_t j = 0; j < n; ++j)
+            fitted_cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+                (*s.covariance)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
+                parameters[i].derivative(summary.x[i]) * parameters[j].derivative(summary.x[j]);
+        const Eigen::MatrixXd cov = resolve_covariance(parameters, fitted_cov);
+        for (std::size_t i = 0; i < n; ++i)
+          result.secant_sigma.push_back(std::sqrt(std::max(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 0.0)));
+      } else {
+        result.warnings.push_back("the secant Jacobian at the identification tolerance's scale is rank-deficient: "
+                                  "identification judged by the finite-difference Jacobian alone");
+      }
+    } catch (const ComputationError& error) {
+      result.warnings.push_back(std::string("no secant Jacobian at the identification tolerance's scale (") + error.what() +
+                                "): identification judged by the finite-difference Jacobian alone");
+    }
+  }
+
   // Identifiability: singular values of the Jacobian with unit-norm columns.
   for (std::size_t j : u.insensitive)
     result.warnings.push_back("parameter '" + coordinate_name(parameters[j]) + "' does not affect the residuals at the optimum");
@@ -315,7 +350,8 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   const bool stepped_here = evaluator.last_jacobian_point() == summary.x;  // uncertainty_at's Jacobian
   result.identification = identify(parameters, result.fitted_values, result.sigma,
                                    stepped_here ? evaluator.last_step_failures() : std::vector<std::string>{},
-                                   result.cost, result.residual_variance, ends, options.identification_tolerance);
+                                   result.cost, result.residual_variance, ends, options.identification_tolerance,
+                                   result.secant_sigma);
   for (std::size_t i = 0; i < n; ++i)
     if (!result.identification[i].identified) {
       std::ostringstream text;

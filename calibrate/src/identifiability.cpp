@@ -27,9 +27,10 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
                                      const std::vector<double>& values, const std::vector<double>& sigma,
                                      const std::vector<std::string>& failed_steps,
                                      double cost, double residual_variance, const std::vector<StartEnd>& starts,
-                                     double tolerance) {
+                                     double tolerance, const std::vector<double>& secant_sigma) {
   const std::size_t n = parameters.size();
-  if (values.size() != n || (!sigma.empty() && sigma.size() != n) || (!failed_steps.empty() && failed_steps.size() != n))
+  if (values.size() != n || (!sigma.empty() && sigma.size() != n) || (!failed_steps.empty() && failed_steps.size() != n) ||
+      (!secant_sigma.empty() && (sigma.empty() || secant_sigma.size() != n)))
     throw std::invalid_argument("identify: sizes of parameters, values and sigma differ");
   if (!(tolerance > 0.0)) throw std::invalid_argument("identify: tolerance must be > 0");
   const double inf = std::numeric_limits<double>::infinity();
@@ -43,7 +44,9 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
     const ParameterDefinition& p = parameters[i];
     Identification& id = out[i];
     const double magnitude = std::abs(resolved[i]);
-    id.relative_sigma = sigma.empty() || magnitude == 0.0 ? inf : sigma[i] / magnitude;
+    const bool secant_wider = !secant_sigma.empty() && secant_sigma[i] > sigma[i];
+    const double judged = sigma.empty() ? inf : secant_wider ? secant_sigma[i] : sigma[i];
+    id.relative_sigma = sigma.empty() || magnitude == 0.0 ? inf : judged / magnitude;
     std::vector<std::string> reasons;
     if (sigma.empty()) reasons.push_back("no covariance (rank-deficient Jacobian)");
     const double at = 1e-6 * (p.upper - p.lower);
@@ -54,8 +57,11 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
       reasons.push_back("at the edge of the region where the simulator runs (a finite-difference step failed: " +
                         failed_steps[i] + ")");
     if (!sigma.empty() && !(2.0 * id.relative_sigma <= tolerance))
-      reasons.push_back("2 sigma = " + percent(2.0 * id.relative_sigma) + " of the value (Jacobian; tolerance " +
-                        percent(tolerance) + ")");
+      reasons.push_back("2 sigma = " + percent(2.0 * id.relative_sigma) + " of the value " +
+                        (secant_wider ? "(secant over +-" + percent(0.5 * tolerance) + "; the Jacobian's " +
+                                            percent(2.0 * sigma[i] / magnitude) + "; "
+                                      : "(Jacobian; ") +
+                        "tolerance " + percent(tolerance) + ")");
     // The other end inside the 95 % likelihood region farthest from this value.
     double farthest = 0.0;
     const StartEnd* witness = nullptr;

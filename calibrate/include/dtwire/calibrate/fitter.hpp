@@ -64,6 +64,9 @@ struct FitResult {
   // The optimiser's values: an offset parameter's offset (else its value), with their sigma.
   std::vector<double> fitted_values;
   std::vector<double> fitted_sigma;
+  // Of the parameters' own values, from the secant Jacobian at the identification tolerance's
+  // scale (identifiability.hpp, rule 3); empty if not computed (no covariance, a failed run).
+  std::vector<double> secant_sigma;
   // "positive definite", or why not (then sigma are not standard errors: a direction of the
   // parameters has no finite variance); in parameters.json, the report and on the console.
   std::string covariance_status;
