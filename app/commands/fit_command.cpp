@@ -135,6 +135,11 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
       std::cout << "  " << result.parameters[i].name << " = " << result.values[i]
                 << (result.sigma.empty() ? std::string() : " +- " + std::to_string(result.sigma[i])) << " "
                 << result.parameters[i].unit
+                << (result.parameters[i].offset_from.empty() || i >= result.fitted_values.size()
+                        ? std::string()
+                        : " (fitted as " + result.parameters[i].offset_from + " + " +
+                              std::to_string(result.fitted_values[i]) +
+                              (i < result.fitted_sigma.size() ? " +- " + std::to_string(result.fitted_sigma[i]) : "") + ")")
                 << (i < result.identification.size() && !result.identification[i].identified
                         ? "  NOT IDENTIFIED: " + result.identification[i].reason
                         : std::string())

@@ -288,6 +288,44 @@ void ProblemEvaluator::residuals_and_jacobian(const std::vector<double>& z,
   }
 }
 
+void ProblemEvaluator::residuals_and_secant_jacobian(const std::vector<double>& z, const std::vector<double>& steps,
+                                                     std::vector<double>& residuals, std::vector<double>& jacobian) {
+  const std::size_t n = z.size(), m = residual_count_;
+  if (steps.size() != n) throw std::invalid_argument("residuals_and_secant_jacobian: one step per coordinate");
+  std::vector<std::vector<double>> points{z};
+  std::vector<std::pair<std::size_t, double>> columns{{n, 0.0}};  // (column, signed step) per point
+  for (std::size_t j = 0; j < n; ++j) {
+    const double lower = parameters_[j].to_coordinate(parameters_[j].lower);
+    const double upper = parameters_[j].to_coordinate(parameters_[j].upper);
+    for (const double step : {steps[j], -steps[j]}) {
+      if (z[j] + step > upper || z[j] + step < lower) continue;
+      std::vector<double> p = z;
+      p[j] += step;
+      points.push_back(p);
+      columns.emplace_back(j, step);
+    }
+  }
+  std::vector<Outcome> outcomes = evaluate_points(points);
+  if (!outcomes[0].failure.empty()) throw ComputationError(outcomes[0].failure);
+  residuals = outcomes[0].residuals;
+  jacobian.assign(m * n, 0.0);
+  std::vector<std::vector<std::size_t>> sides(n);
+  for (std::size_t k = 1; k < points.size(); ++k)
+    if (outcomes[k].failure.empty()) sides[columns[k].first].push_back(k);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (sides[j].empty())
+      throw ComputationError("secant for parameter '" + parameters_[j].name + "': no side runs");
+    // Two sides: the central difference (r+ - r-) / 2s; one: one-sided from the point.
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::size_t a = sides[j].front();
+      jacobian[i * n + j] =
+          sides[j].size() == 2
+              ? (outcomes[a].residuals[i] - outcomes[sides[j].back()].residuals[i]) / (2.0 * columns[a].second)
+              : (outcomes[a].residuals[i] - residuals[i]) / columns[a].second;
+    }
+  }
+}
+
 std::vector<Curve> ProblemEvaluator::simulate(const std::vector<double>& values) {
   std::vector<Curve> curves;
   const ParameterValues named = to_values(parameters_, values);

@@ -96,6 +96,41 @@ void check_parameters_are_read(const FitDefinition& def, const std::vector<Table
   }
 }
 
+// offset_from (parameter.hpp): names another fitted parameter, closes no cycle; an offset's
+// reference lies within its bounds (a reference of the parameter's own value, or an order the
+// bounds exclude, such as Nult below N0, is caught here) and needs its base's reference.
+void check_offsets(const std::vector<ParameterDefinition>& parameters, const std::vector<Table>& tables) {
+  std::vector<std::string> names;
+  for (const auto& p : parameters) names.push_back(p.name);
+  for (std::size_t i = 0; i < parameters.size(); ++i) {
+    const ParameterDefinition& p = parameters[i];
+    if (p.offset_from.empty()) continue;
+    const Table& t = tables[i];
+    if (p.offset_from == p.name)
+      t.fail(t.get("offset_from"), "offset_from", "names the parameter itself (expected another fitted parameter)");
+    const auto base = std::find(names.begin(), names.end(), p.offset_from);
+    if (base == names.end())
+      t.fail(t.get("offset_from"), "offset_from",
+             "'" + p.offset_from + "' names no other [[parameter]] of this file" + did_you_mean(p.offset_from, names));
+    if (p.reference) {
+      if (*p.reference < p.lower || *p.reference > p.upper)
+        t.fail(t.get("reference"), "reference",
+               "expected the reference of the offset " + coordinate_name(p) + ", within [lower, upper]");
+      if (!parameters[static_cast<std::size_t>(base - names.begin())].reference)
+        t.fail(t.get("reference"), "reference",
+               "the offset's reference needs one of '" + p.offset_from + "' too (the reference of " + p.name + " is theirs summed)");
+    }
+  }
+  try {
+    offset_bases(parameters);
+  } catch (const std::invalid_argument& error) {  // only a cycle is left
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+      if (std::string(error.what()).rfind("parameter '" + parameters[i].name + "'", 0) == 0)
+        tables[i].fail(tables[i].get("offset_from"), "offset_from", error.what());
+    tables.front().fail(nullptr, "offset_from", error.what());
+  }
+}
+
 dem::ParameterMap read_fixed_json(const std::filesystem::path& path, const std::string& section,
                                   const Table& t, const std::string& section_key = "fixed_parameters_section") {
   std::ifstream in(path);
@@ -429,24 +464,30 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
   for (const toml::node& node : *parameters->as_array()) {
     const Table p(*node.as_table(), "parameter[" + std::to_string(++index) + "]", name);
     parameter_tables.push_back(p);
-    p.only({"name", "unit", "initial", "lower", "upper", "scale", "reference"});
+    p.only({"name", "unit", "initial", "lower", "upper", "scale", "reference", "offset_from"});
     ParameterDefinition d;
     d.name = p.text("name");
     d.unit = p.text("unit", "1");
+    d.offset_from = p.text("offset_from", "");
+    if (p.has("offset_from") && d.offset_from.empty())
+      p.fail(p.get("offset_from"), "offset_from", "expected the name of another fitted parameter");
     d.initial = p.number("initial");
     d.lower = p.number("lower");
     d.upper = p.number("upper");
     d.scale = p.number("scale", 0.0);
     if (p.has("reference")) d.reference = p.number("reference");
-    if (!(d.lower < d.upper)) p.fail(p.get("upper"), "upper", "expected upper > lower");
+    // An offset parameter's numbers are those of its offset: say so where they are refused.
+    const std::string of_offset = d.offset_from.empty() ? "" : " (of the offset " + coordinate_name(d) + ")";
+    if (!(d.lower < d.upper)) p.fail(p.get("upper"), "upper", "expected upper > lower" + of_offset);
     if (d.initial < d.lower || d.initial > d.upper)
-      p.fail(p.get("initial"), "initial", "expected a value within [lower, upper]");
+      p.fail(p.get("initial"), "initial", "expected a value within [lower, upper]" + of_offset);
     if (d.scale < 0) p.fail(p.get("scale"), "scale", "expected a number > 0");
     d.logarithmic = log_parameters && d.lower > 0 && d.upper >= 10 * d.lower;
     for (const auto& other : def.parameters)
       if (other.name == d.name) p.fail(p.get("name"), "name", "parameter '" + d.name + "' defined twice");
     def.parameters.push_back(d);
   }
+  check_offsets(def.parameters, parameter_tables);
 
   const toml::node* experiments = root.get("experiment");
   if (!experiments || !experiments->is_array_of_tables())
@@ -590,8 +631,9 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
       const CommandSpecification spec = command_experiment(x, command, resolve, def.inputs);
       auto simulator = std::make_shared<CommandSimulator>(spec);
       // Every placeholder must have a value (a parameter or a fixed value).
-      ParameterValues probe;
-      for (const auto& p : def.parameters) probe[p.name] = p.initial;
+      std::vector<double> initial;
+      for (const auto& p : def.parameters) initial.push_back(p.initial);
+      const ParameterValues probe = to_values(def.parameters, initial);
       try {
         simulator->instantiate(probe);
       } catch (const ComputationError& error) {

@@ -1,5 +1,6 @@
 #include "dtwire/calibrate/fit_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <ostream>
@@ -87,19 +88,35 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
   }
 
   // Parameters: the fitted ones with sigma and bounds, then the fixed ones (so the file holds a
-  // complete law parameter set for `dtwire export`).
+  // complete law parameter set for `dtwire export`). Values, sigma, bounds, initial and
+  // reference are the parameters' own (offsets resolved: the range the box gives them); an
+  // offset parameter's own numbers follow under "offset".
+  const std::vector<double> lower = resolved_lower(result.parameters), upper = resolved_upper(result.parameters);
+  std::vector<double> initial;
+  for (const auto& p : result.parameters) initial.push_back(p.initial);
+  initial = resolve_offsets(result.parameters, initial);
+  const std::vector<std::optional<double>> references = resolved_references(result.parameters);
   json parameters = json::array();
   for (std::size_t i = 0; i < n; ++i) {
     const auto& p = result.parameters[i];
     json entry = {{"name", p.name}, {"value", result.values[i]}, {"unit", p.unit},
                   {"sigma", result.sigma.empty() ? json(nullptr) : finite_or_null(result.sigma[i])},
-                  {"lower", p.lower}, {"upper", p.upper}, {"initial", p.initial}, {"fitted", true}};
+                  {"lower", lower[i]}, {"upper", upper[i]}, {"initial", initial[i]}, {"fitted", true}};
+    if (i < result.secant_sigma.size()) entry["secant_sigma"] = finite_or_null(result.secant_sigma[i]);
     if (i < result.identification.size()) {
       entry["identified"] = result.identification[i].identified;
       entry["relative_sigma"] = finite_or_null(result.identification[i].relative_sigma);
       if (!result.identification[i].identified) entry["not_identified_because"] = result.identification[i].reason;
     }
-    if (p.reference) entry["reference"] = *p.reference;
+    if (references[i]) entry["reference"] = *references[i];
+    if (!p.offset_from.empty()) {
+      entry["offset_from"] = p.offset_from;
+      json offset = {{"value", i < result.fitted_values.size() ? json(result.fitted_values[i]) : json(nullptr)},
+                     {"sigma", i < result.fitted_sigma.size() ? finite_or_null(result.fitted_sigma[i]) : json(nullptr)},
+                     {"lower", p.lower}, {"upper", p.upper}, {"initial", p.initial}};
+      if (p.reference) offset["reference"] = *p.reference;
+      entry["offset"] = offset;
+    }
     parameters.push_back(entry);
     store.parameters.push_back({p.name, result.values[i], p.unit,
                                 result.sigma.empty() ? std::nullopt : std::optional<double>(result.sigma[i])});
@@ -114,8 +131,11 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
   }
 
   json starts = json::array();
+  const auto resolved = [&](const std::vector<double>& fitted) {
+    return fitted.size() == n ? resolve_offsets(result.parameters, fitted) : fitted;
+  };
   for (const auto& s : result.starts)
-    starts.push_back({{"start", s.start}, {"end", s.end}, {"cost", finite_or_null(s.cost)},
+    starts.push_back({{"start", resolved(s.start)}, {"end", resolved(s.end)}, {"cost", finite_or_null(s.cost)},
                       {"iterations", s.iterations}, {"state", s.state}, {"message", s.message}});
 
   json root;
@@ -165,12 +185,24 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
     for (std::size_t i = 0; i < n; ++i) {
       const auto& p = result.parameters[i];
       s << "| " << p.name << " | " << number(result.values[i], 5) << " | "
-        << (result.sigma.empty() ? std::string("n/a") : number(result.sigma[i], 2)) << " | " << p.unit
-        << " | [" << number(p.lower) << ", " << number(p.upper) << "] | "
-        << (p.reference ? number(*p.reference, 5) : std::string("")) << " | "
+        << (result.sigma.empty() ? std::string("n/a") : number(result.sigma[i], 2)) << " | " << p.unit << " | "
+        << (p.offset_from.empty() ? "" : p.offset_from + " + ") << "[" << number(p.lower) << ", " << number(p.upper)
+        << "] | " << (references[i] ? number(*references[i], 5) : std::string("")) << " | "
         << (i >= result.identification.size() ? std::string("") : result.identification[i].identified ? "yes" : "**NO**")
         << " |\n";
     }
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& p = result.parameters[i];
+      if (p.offset_from.empty() || i >= result.fitted_values.size()) continue;
+      s << "\n" << p.name << " was fitted as its offset from " << p.offset_from << ": " << coordinate_name(p) << " = "
+        << number(result.fitted_values[i], 5)
+        << (i < result.fitted_sigma.size() ? " +- " + number(result.fitted_sigma[i], 2) : std::string()) << " " << p.unit
+        << " within [" << number(p.lower) << ", " << number(p.upper) << "]"
+        << (p.reference ? ", reference " + number(*p.reference, 5) : std::string()) << ".";
+    }
+    if (std::any_of(result.parameters.begin(), result.parameters.end(),
+                    [](const ParameterDefinition& p) { return !p.offset_from.empty(); }))
+      s << "\n";
     s << "\n| curve | channel | points | RMSE | NRMSE | R^2 |\n|---|---|---|---|---|---|\n";
     for (const auto& q : result.quality)
       s << "| " << q.experiment << " | " << q.quantity << " | " << q.points << " | " << number(q.rmse, 3)

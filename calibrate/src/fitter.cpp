@@ -147,7 +147,8 @@ std::string fit_identity(const ProblemEvaluator& evaluator, const FitOptions& op
   }
   for (const auto& p : evaluator.parameters())
     text << "parameter " << p.name << " " << p.initial << " " << p.lower << " " << p.upper << " "
-         << p.effective_scale() << (p.logarithmic ? " log" : "") << "\n";
+         << p.effective_scale() << (p.logarithmic ? " log" : "")
+         << (p.offset_from.empty() ? "" : " offset_from " + p.offset_from) << "\n";
   text << "options " << options.max_iterations << " " << static_cast<int>(options.loss) << " "
        << options.loss_scale << " " << options.starts << " " << options.seed << " "
        << options.function_tolerance << " " << options.parameter_tolerance << " "
@@ -234,20 +235,26 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   }
   result.completed = true;
   result.best_start = *summary.best;
-  result.values = evaluator.from_scaled(summary.x);
+  result.fitted_values = evaluator.from_scaled(summary.x);
+  result.values = resolve_offsets(parameters, result.fitted_values);
   result.cost = summary.cost;
   result.residual_variance = 2.0 * result.cost / static_cast<double>(m - n);
 
   // Covariance in z (the engine's grouped sandwich: each curve channel its own variance,
-  // since curves are weighted by the user, not necessarily by their noise), then in SI.
+  // since curves are weighted by the user, not necessarily by their noise), then of the fitted
+  // values in SI, then of the parameters' own values (offsets resolved: A Cov A^T).
   const lsq::Uncertainty u = lsq::uncertainty_at(problem, engine, summary.x);
   if (u.covariance) {
-    Eigen::MatrixXd cov(n, n), corr(n, n);
+    Eigen::MatrixXd fitted_cov(n, n), corr(n, n);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j)
-        cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+        fitted_cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
             (*u.covariance)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
             parameters[i].derivative(summary.x[i]) * parameters[j].derivative(summary.x[j]);
+    for (std::size_t i = 0; i < n; ++i)
+      result.fitted_sigma.push_back(
+          std::sqrt(std::max(fitted_cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 0.0)));
+    const Eigen::MatrixXd cov = resolve_covariance(parameters, fitted_cov);
     for (std::size_t i = 0; i < n; ++i) result.sigma.push_back(std::sqrt(std::max(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 0.0)));
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j) {
@@ -276,9 +283,44 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
     result.warnings.push_back("covariance could not be computed (rank-deficient Jacobian)");
   }
 
+  // The secant covariance: each parameter's own value stepped by +-tol/2 of itself (bounds and
+  // failed runs make a side one-sided), for the identification's rule 3 (identifiability.hpp).
+  if (u.covariance) {
+    std::vector<double> steps(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      const double own = std::abs(result.values[j]) > 0 ? std::abs(result.values[j]) : parameters[j].upper - parameters[j].lower;
+      steps[j] = 0.5 * options.identification_tolerance * own / parameters[j].derivative(summary.x[j]);
+    }
+    lsq::Problem secant = problem;
+    secant.residuals_and_jacobian = [&evaluator, steps](const std::vector<double>& z, std::vector<double>& r,
+                                                        std::vector<double>& J) {
+      evaluator.residuals_and_secant_jacobian(z, steps, r, J);
+    };
+    try {
+      const lsq::Uncertainty s = lsq::uncertainty_at(secant, engine, summary.x);
+      if (s.covariance) {
+        Eigen::MatrixXd fitted_cov(n, n);
+        for (std::size_t i = 0; i < n; ++i)
+          for (std::size_t j = 0; j < n; ++j)
+            fitted_cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+                (*s.covariance)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
+                parameters[i].derivative(summary.x[i]) * parameters[j].derivative(summary.x[j]);
+        const Eigen::MatrixXd cov = resolve_covariance(parameters, fitted_cov);
+        for (std::size_t i = 0; i < n; ++i)
+          result.secant_sigma.push_back(std::sqrt(std::max(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 0.0)));
+      } else {
+        result.warnings.push_back("the secant Jacobian at the identification tolerance's scale is rank-deficient: "
+                                  "identification judged by the finite-difference Jacobian alone");
+      }
+    } catch (const ComputationError& error) {
+      result.warnings.push_back(std::string("no secant Jacobian at the identification tolerance's scale (") + error.what() +
+                                "): identification judged by the finite-difference Jacobian alone");
+    }
+  }
+
   // Identifiability: singular values of the Jacobian with unit-norm columns.
   for (std::size_t j : u.insensitive)
-    result.warnings.push_back("parameter '" + parameters[j].name + "' does not affect the residuals at the optimum");
+    result.warnings.push_back("parameter '" + coordinate_name(parameters[j]) + "' does not affect the residuals at the optimum");
   result.singular_values = u.singular_values;
   const auto& sv = u.singular_values;
   for (std::size_t i = 0; i < sv.size(); ++i) {
@@ -286,7 +328,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
       std::ostringstream direction;
       direction << std::setprecision(3);
       for (std::size_t j = 0; j < sv.size(); ++j)
-        direction << (j ? ", " : "") << parameters[j].name << " "
+        direction << (j ? ", " : "") << coordinate_name(parameters[j]) << " "
                   << u.singular_directions(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(i));
       result.warnings.push_back("poorly identified direction (singular value ratio " +
                                 std::to_string(sv[i] / sv[0]) + "): " + direction.str());
@@ -295,8 +337,10 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   for (std::size_t i = 0; i < n; ++i) {
     const auto& p = parameters[i];
     const double tol = 1e-6 * (p.upper - p.lower);
-    if (result.values[i] <= p.lower + tol || result.values[i] >= p.upper - tol)
-      result.warnings.push_back("parameter '" + p.name + "' ended at a bound; its sigma is not meaningful");
+    if (result.fitted_values[i] <= p.lower + tol || result.fitted_values[i] >= p.upper - tol)
+      result.warnings.push_back("parameter '" + p.name + "' ended at a bound" +
+                                (p.offset_from.empty() ? "" : " of its offset " + coordinate_name(p)) +
+                                "; its sigma is not meaningful");
   }
 
   // Which parameters the data identify (the Jacobian's covariance, the bounds and the other
@@ -308,9 +352,10 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   if (result.correlation)
     for (Eigen::Index i = 0; i < result.correlation->rows(); ++i)
       for (Eigen::Index j = 0; j < result.correlation->cols(); ++j) correlation.push_back((*result.correlation)(i, j));
-  result.identification = identify(parameters, result.values, result.sigma,
+  result.identification = identify(parameters, result.fitted_values, result.sigma,
                                    stepped_here ? evaluator.last_step_failures() : std::vector<std::string>{},
                                    result.cost, result.residual_variance, ends, options.identification_tolerance,
+                                   result.secant_sigma,
                                    covariance_doubts(parameters, u.insensitive,
                                                      result.covariance_status == "positive definite", result.sigma,
                                                      correlation));
@@ -323,7 +368,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
     }
 
   // Fitted curves and per-curve quality.
-  const auto curves = evaluator.simulate(result.values);
+  const auto curves = evaluator.simulate(result.fitted_values);
   for (std::size_t e = 0; e < curves.size(); ++e) {
     const auto& experiment = evaluator.experiments()[e];
     result.fitted.push_back(simulated_at_target(experiment, curves[e]));

@@ -27,37 +27,50 @@ std::vector<Identification> identify(const std::vector<ParameterDefinition>& par
                                      const std::vector<double>& values, const std::vector<double>& sigma,
                                      const std::vector<std::string>& failed_steps,
                                      double cost, double residual_variance, const std::vector<StartEnd>& starts,
-                                     double tolerance, const std::vector<std::string>& covariance_doubts) {
+                                     double tolerance, const std::vector<double>& secant_sigma,
+                                     const std::vector<std::string>& covariance_doubts) {
   const std::size_t n = parameters.size();
   if (values.size() != n || (!sigma.empty() && sigma.size() != n) || (!failed_steps.empty() && failed_steps.size() != n) ||
+      (!secant_sigma.empty() && (sigma.empty() || secant_sigma.size() != n)) ||
       (!covariance_doubts.empty() && covariance_doubts.size() != n))
     throw std::invalid_argument("identify: sizes of parameters, values and sigma differ");
   if (!(tolerance > 0.0)) throw std::invalid_argument("identify: tolerance must be > 0");
   const double inf = std::numeric_limits<double>::infinity();
+  // Rules 1, 3 and 4 judge the parameters' own values; rule 2 the box of the fitted values.
+  const std::vector<double> resolved = resolve_offsets(parameters, values);
+  std::vector<StartEnd> resolved_ends;
+  for (const StartEnd& s : starts)
+    resolved_ends.push_back({s.values.size() == n ? resolve_offsets(parameters, s.values) : std::vector<double>{}, s.cost});
   std::vector<Identification> out(n);
   for (std::size_t i = 0; i < n; ++i) {
     const ParameterDefinition& p = parameters[i];
     Identification& id = out[i];
-    const double magnitude = std::abs(values[i]);
-    id.relative_sigma = sigma.empty() || magnitude == 0.0 ? inf : sigma[i] / magnitude;
+    const double magnitude = std::abs(resolved[i]);
+    const bool secant_wider = !secant_sigma.empty() && secant_sigma[i] > sigma[i];
+    const double judged = sigma.empty() ? inf : secant_wider ? secant_sigma[i] : sigma[i];
+    id.relative_sigma = sigma.empty() || magnitude == 0.0 ? inf : judged / magnitude;
     std::vector<std::string> reasons;
     if (sigma.empty()) reasons.push_back("no covariance (rank-deficient Jacobian)");
     const double at = 1e-6 * (p.upper - p.lower);
-    if (values[i] <= p.lower + at) reasons.push_back("ended at its lower bound " + number(p.lower));
-    if (values[i] >= p.upper - at) reasons.push_back("ended at its upper bound " + number(p.upper));
+    const std::string its = p.offset_from.empty() ? "its" : "its offset " + coordinate_name(p) + " at the offset's";
+    if (values[i] <= p.lower + at) reasons.push_back("ended at " + its + " lower bound " + number(p.lower));
+    if (values[i] >= p.upper - at) reasons.push_back("ended at " + its + " upper bound " + number(p.upper));
     if (!failed_steps.empty() && !failed_steps[i].empty())
       reasons.push_back("at the edge of the region where the simulator runs (a finite-difference step failed: " +
                         failed_steps[i] + ")");
     if (!covariance_doubts.empty() && !covariance_doubts[i].empty()) reasons.push_back(covariance_doubts[i]);
     if (!sigma.empty() && !(2.0 * id.relative_sigma <= tolerance))
-      reasons.push_back("2 sigma = " + percent(2.0 * id.relative_sigma) + " of the value (Jacobian; tolerance " +
-                        percent(tolerance) + ")");
+      reasons.push_back("2 sigma = " + percent(2.0 * id.relative_sigma) + " of the value " +
+                        (secant_wider ? "(secant over +-" + percent(0.5 * tolerance) + "; the Jacobian's " +
+                                            percent(2.0 * sigma[i] / magnitude) + "; "
+                                      : "(Jacobian; ") +
+                        "tolerance " + percent(tolerance) + ")");
     // The other end inside the 95 % likelihood region farthest from this value.
     double farthest = 0.0;
     const StartEnd* witness = nullptr;
-    for (const StartEnd& s : starts) {
+    for (const StartEnd& s : resolved_ends) {
       if (s.values.size() != n || !(s.cost - cost <= kLikelihoodRatioCost * residual_variance)) continue;
-      const double away = magnitude > 0.0 ? std::abs(s.values[i] - values[i]) / magnitude : inf;
+      const double away = magnitude > 0.0 ? std::abs(s.values[i] - resolved[i]) / magnitude : inf;
       if (away > tolerance && away > farthest) farthest = away, witness = &s;
     }
     if (witness)

@@ -30,15 +30,31 @@ std::size_t apply_initial_values(std::vector<ParameterDefinition>& parameters, c
       throw InputError(file.string(), "field 'parameters': every entry needs a string 'name' and a number 'value'");
     values[entry.at("name").get<std::string>()] = entry.at("value").get<double>();
   }
-  std::size_t set = 0;
-  for (ParameterDefinition& p : parameters) {
-    const auto found = values.find(p.name);
+  // The file holds the parameters' own values; an offset parameter starts at its value minus its
+  // base's (the base's value from the file if it names it, else the base's initial value).
+  const std::vector<int> base = offset_bases(parameters);
+  std::vector<double> initial;
+  for (const ParameterDefinition& p : parameters) initial.push_back(p.initial);
+  std::vector<double> resolved = resolve_offsets(parameters, initial);
+  std::vector<bool> named(parameters.size(), false);
+  for (std::size_t i = 0; i < parameters.size(); ++i) {
+    const auto found = values.find(parameters[i].name);
     if (found == values.end()) continue;
-    const double v = found->second;
-    if (!std::isfinite(v) || v < p.lower || v > p.upper) {
+    if (!std::isfinite(found->second))
+      throw InputError(file.string(), "parameter '" + parameters[i].name + "': initial value is not finite");
+    resolved[i] = found->second;
+    named[i] = true;
+  }
+  std::size_t set = 0;
+  for (std::size_t i = 0; i < parameters.size(); ++i) {
+    if (!named[i]) continue;
+    ParameterDefinition& p = parameters[i];
+    const double v = base[i] < 0 ? resolved[i] : resolved[i] - resolved[static_cast<std::size_t>(base[i])];
+    if (v < p.lower || v > p.upper) {
       std::ostringstream message;
-      message << "parameter '" << p.name << "': initial value " << v << " is outside the fit's bounds [" << p.lower
-              << ", " << p.upper << "]";
+      message << "parameter '" << p.name << "': initial value " << resolved[i];
+      if (base[i] >= 0) message << " gives its offset " << coordinate_name(p) << " = " << v << ",";
+      message << " outside the fit's bounds [" << p.lower << ", " << p.upper << "]";
       throw InputError(file.string(), message.str());
     }
     p.initial = v;

@@ -58,8 +58,7 @@ Curve synthesize_target(const Experiment& experiment, const ParameterValues& val
 
 std::vector<std::filesystem::path> write_synthetic_targets(const FitDefinition& def, const std::filesystem::path& dir,
                                                            double noise, std::uint64_t seed, std::size_t points) {
-  ParameterValues values;
-  for (const auto& p : def.parameters) values[p.name] = p.reference.value_or(p.initial);
+  const ParameterValues values = to_values(def.parameters, reference_point(def.parameters));
   for (std::size_t e = 0; e < def.experiments.size(); ++e)
     for (std::size_t other = 0; other < e; ++other)
       if (def.experiment_target_names[e] == def.experiment_target_names[other])

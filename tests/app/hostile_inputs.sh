@@ -47,7 +47,11 @@ python3 -c "import json; s = json.load(open('$thesis'))['single_wire']; s['slide
 print('{\n  \"single_wire\":'); print(json.dumps(s, indent=2)); print('}')" > slideb.json
 sed 's/^name = "m_f"$/name = "m_ff"/' "$fit" > m_ff.toml
 sed 's|^fixed_parameters_section = "single_wire"$|fixed_parameters_section = "single_wire"\nfixed = {slideb = 0}|' "$fit" > fixed_typo.toml
-sed -i 's|"\.\./data/|"'"$src"'/experiments/data/|' m_ff.toml fixed_typo.toml
+# Nult fitted as the reserve Nult - N0 (offset_from): a misspelled base, a cycle, a reserve reference < 0.
+sed 's/^offset_from = "N0_N"$/offset_from = "NO_N"/' "$fit" > offset_typo.toml
+sed 's/^name = "N0_N"$/name = "N0_N"\noffset_from = "Nult_N"/' "$fit" > offset_cycle.toml
+sed 's/^reference = 450$/reference = -50/' "$fit" > reserve_negative.toml
+sed -i 's|"\.\./data/|"'"$src"'/experiments/data/|' m_ff.toml fixed_typo.toml offset_typo.toml offset_cycle.toml reserve_negative.toml
 mkdir -p foreign && echo "my notes" > foreign/notes.txt
 : > empty_mesh.prm
 sed 's/^set twist-length/set twist-lenght/' "$src/experiments/default/dt_mesh.prm" > typo_mesh.prm
@@ -115,6 +119,9 @@ case_ "parameter 'arm-length' is not used by mesh segment" mesh segment --prm ar
 [ -e segment.msh ] && { echo "FAIL: a refused segment mesh left its output"; total=$((total + 1)); }
 case_ "parameter[6].name': the thesis simulator reads no parameter 'm_ff' (did you mean 'm_f'?)" fit m_ff.toml --synthesize synthesized
 case_ "simulator.fixed.slideb': the thesis law reads no parameter 'slideb' (did you mean 'slide_b'?)" fit fixed_typo.toml --synthesize synthesized
+case_ "offset_typo.toml:62:15: field 'parameter[4].offset_from': 'NO_N' names no other [[parameter]] of this file (did you mean 'N0_N'?)" fit offset_typo.toml --synthesize synthesized
+case_ "offset_cycle.toml:49:15: field 'parameter[3].offset_from': parameter 'N0_N': offset_from closes a cycle (N0_N -> Nult_N -> N0_N)" fit offset_cycle.toml --synthesize synthesized
+case_ "reserve_negative.toml:67:13: field 'parameter[4].reference': expected the reference of the offset Nult_N - N0_N, within [lower, upper]" fit reserve_negative.toml --synthesize synthesized
 case_ "foreign: holds 'notes.txt', which this command does not write" export --params "$thesis" --out foreign
 case_ ".: is the working directory or holds it" export --params "$thesis" --out .
 [ -e "$work/synthesized" ] && { echo "FAIL: a refused fit left $work/synthesized"; total=$((total + 1)); }

@@ -6,6 +6,7 @@
 
 #include "dtwire/calibrate/evaluation.hpp"
 #include "dtwire/calibrate/identifiability.hpp"
+#include "dtwire/core/error.hpp"
 
 namespace dtwire::calibrate {
 namespace {
@@ -40,6 +41,65 @@ TEST(Identifiability, BoundsFailedStepsAndNoCovariance) {
   ids = identify(two_parameters(), {100, 100}, {}, {}, 1.0, 0.01, {}, 0.05);
   EXPECT_FALSE(ids[0].identified);
   EXPECT_TRUE(std::isinf(ids[0].relative_sigma));
+}
+
+// Rule 3 with the secant sigma: the wider of the two decides, and the reason says which.
+TEST(Identifiability, TheWiderOfTangentAndSecantSigmaDecides) {
+  // b: 2 sigma = 1 % by the tangent, 6 % by the secant; a: the secant narrower, the tangent decides.
+  const auto ids = identify(two_parameters(), {100, 200}, {1, 1}, {}, 1.0, 0.01, {}, 0.05, {0.5, 6});
+  EXPECT_TRUE(ids[0].identified) << ids[0].reason;
+  EXPECT_DOUBLE_EQ(ids[0].relative_sigma, 0.01);
+  EXPECT_FALSE(ids[1].identified);
+  EXPECT_DOUBLE_EQ(ids[1].relative_sigma, 0.03);
+  EXPECT_NE(ids[1].reason.find("2 sigma = 6 % of the value (secant over +-2.5 %; the Jacobian's 1 %; tolerance 5 %)"),
+            std::string::npos)
+      << ids[1].reason;
+  EXPECT_THROW(identify(two_parameters(), {100, 200}, {}, {}, 1.0, 0.01, {}, 0.05, {1, 1}), std::invalid_argument);
+}
+
+// force = max(a - 1, 0) x displacement: a kink at a = 1; refuses a < 0.9.
+class KinkSimulator : public Simulator {
+ public:
+  Curve simulate(const ParameterValues& p) const override {
+    const double a = p.at("a_1");
+    if (a < 0.9) throw ComputationError("kink: a < 0.9");
+    std::vector<double> d{0, 1, 2, 3, 4}, f;
+    for (double x : d) f.push_back(std::max(a - 1.0, 0.0) * x);
+    Curve c;
+    c.add_channel("displacement", *find_unit("m"), d);
+    c.add_channel("force", *find_unit("N"), f);
+    return c;
+  }
+  std::string identity() const override { return "kink"; }
+};
+
+// The secant Jacobian: central over the kink (the mean slope), one-sided at a bound and where a
+// side's run fails; the tangent sees one side's slope only.
+TEST(SecantJacobian, CentralOverAKinkOneSidedAtABoundOrAFailedSide) {
+  Experiment e;
+  e.name = "kink";
+  e.simulator = std::make_shared<KinkSimulator>();
+  e.target = e.simulator->simulate({{"a_1", 1.5}});
+  e.channels = {{"force", 1.0, 0.0}};
+  ParameterDefinition a;
+  a.name = "a_1";
+  a.initial = 1.5, a.lower = 0.5, a.upper = 3.0, a.scale = 1.0;  // z = a
+  ProblemEvaluator evaluator({e}, {a}, EvaluationOptions{});
+  const auto slopes = [&](double z, double step) {
+    std::vector<double> r, tangent, secant;
+    evaluator.residuals_and_jacobian({z}, r, tangent);
+    evaluator.residuals_and_secant_jacobian({z}, {step}, r, secant);
+    std::vector<double> ratio;
+    for (std::size_t i = 0; i < r.size(); ++i)
+      if (tangent[i] != 0.0) ratio.push_back(secant[i] / tangent[i]);
+    EXPECT_EQ(ratio.size(), 4u);  // every point but the origin
+    return ratio;
+  };
+  for (double q : slopes(1.01, 0.1)) EXPECT_NEAR(q, 0.11 / 0.2, 1e-9);  // (0.11 - 0) / 0.2 against 1
+  for (double q : slopes(2.95, 0.1)) EXPECT_NEAR(q, 1.0, 1e-9);         // + side beyond the upper bound
+  for (double q : slopes(1.0001, 0.15)) EXPECT_NEAR(q, 1.0, 1e-9);      // - side refused (a < 0.9)
+  std::vector<double> r, J;
+  EXPECT_THROW(evaluator.residuals_and_secant_jacobian({1.0}, {0.5, 0.5}, r, J), std::invalid_argument);
 }
 
 // Another start's end inside the 95 % likelihood region (cost within 1.92 s^2) with a parameter
@@ -100,7 +160,7 @@ TEST(Identifiability, ASemiDefiniteCovarianceVouchesForNothingAlongItsNullDirect
   EXPECT_TRUE(doubts[1].empty()) << doubts[1];
   doubts = covariance_doubts(params, {}, false, {1e-7, 1e-7}, {1, -0.998, -0.998, 1});
   EXPECT_NE(doubts[0].find("correlated with 'b'"), std::string::npos) << doubts[0];
-  const auto ids = identify(params, {100, 100}, {1e-7, 1e-7}, {}, 1.0, 0.01, {}, 0.05, doubts);
+  const auto ids = identify(params, {100, 100}, {1e-7, 1e-7}, {}, 1.0, 0.01, {}, 0.05, {}, doubts);
   EXPECT_FALSE(ids[0].identified);
   EXPECT_FALSE(ids[1].identified);
   EXPECT_THROW(covariance_doubts(params, {}, false, {1.0}, {}), std::invalid_argument);

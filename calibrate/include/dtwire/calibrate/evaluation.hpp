@@ -83,13 +83,21 @@ class ProblemEvaluator {
   void residuals_and_jacobian(const std::vector<double>& z, std::vector<double>& residuals,
                               std::vector<double>& jacobian);
 
+  // Residuals at z and the secant Jacobian with the given step per coordinate (z units):
+  // central differences (r(z + s e_j) - r(z - s e_j)) / 2s, one-sided where a side crosses a
+  // bound or its run fails; throws ComputationError if the point or both sides of a column fail.
+  // The sensitivity at the scale of the steps, for the identification (fitter.cpp).
+  void residuals_and_secant_jacobian(const std::vector<double>& z, const std::vector<double>& steps,
+                                     std::vector<double>& residuals, std::vector<double>& jacobian);
+
   // Of the last residuals_and_jacobian: its point, and per parameter the failure of the first
   // perturbed run (empty: it ran), i.e. a parameter whose step of h left the region where the
   // simulator runs.
   const std::vector<double>& last_jacobian_point() const { return last_jacobian_point_; }
   const std::vector<std::string>& last_step_failures() const { return last_step_failures_; }
 
-  // Simulated curves (one per experiment) at parameter values (SI).
+  // Simulated curves (one per experiment) at fitted values (SI; offsets not yet resolved, as
+  // from_scaled gives them).
   std::vector<Curve> simulate(const std::vector<double>& values);
 
   EvaluationStatistics statistics() const;

@@ -44,7 +44,7 @@ struct FitOptions {
 };
 
 struct StartSummary {
-  std::vector<double> start;  // parameter values (SI)
+  std::vector<double> start;  // fitted values (SI; an offset parameter's offset, as the optimiser sees it)
   std::vector<double> end;
   double cost = 0.0;  // Ceres cost 1/2 sum rho(r^2) at the end
   int iterations = 0;
@@ -55,10 +55,18 @@ struct StartSummary {
 struct FitResult {
   bool completed = false;  // false: interrupted, resume from the checkpoint
   std::vector<ParameterDefinition> parameters;
-  std::vector<double> values;                 // SI
+  // The parameters' own values (SI), what the simulator reads: offsets resolved
+  // (parameter.hpp). values, covariance, correlation, sigma and identification are of these.
+  std::vector<double> values;
   std::optional<Eigen::MatrixXd> covariance;  // SI, scaled by the residual variances
   std::optional<Eigen::MatrixXd> correlation;
   std::vector<double> sigma;                  // sqrt(diag covariance); empty without covariance
+  // The optimiser's values: an offset parameter's offset (else its value), with their sigma.
+  std::vector<double> fitted_values;
+  std::vector<double> fitted_sigma;
+  // Of the parameters' own values, from the secant Jacobian at the identification tolerance's
+  // scale (identifiability.hpp, rule 3); empty if not computed (no covariance, a failed run).
+  std::vector<double> secant_sigma;
   // "positive definite", or why not (then sigma are not standard errors: a direction of the
   // parameters has no finite variance); in parameters.json, the report and on the console.
   std::string covariance_status;

@@ -10,6 +10,11 @@
 //  3. linearised: 2 sigma > tol |value|, sigma from the Jacobian's covariance (J^T J)^-1 s^2,
 //     i.e. its 95 % confidence interval is wider than the tolerance (a flat direction of the
 //     cost shows as a small singular value of J and a large sigma of the parameters along it);
+//     judged with the larger of the sigma from the finite-difference Jacobian and from a
+//     secant Jacobian whose steps change each parameter by tol / 2 of its value: the question is
+//     asked at that scale, and where the residuals have kinks between it and the tangent's step
+//     (an elastic-plastic onset moving across a sample point), the tangent can be many times
+//     too steep (the DT specimen fit: sigma 0.5 % against a valley 8 % wide, docs/calibrate.md);
 //  4. likelihood ratio: another start ended inside the 95 % likelihood region of the best
 //     answer, cost - best cost <= chi2(1, 0.95) / 2 s^2 = 1.92 s^2 (s^2 the residual variance
 //     2 cost / (m - n)), with this parameter more than tol away from its best value. That end
@@ -43,15 +48,20 @@ struct StartEnd {
   double cost = 0.0;
 };
 
-// `sigma` empty: no covariance; `failed_steps`: per parameter the failure of its first
-// finite-difference step at the answer (empty string: none; empty vector: not known).
-// `tolerance` relative, > 0. `covariance_doubts`: per parameter why its sigma cannot be trusted
-// (empty string: no doubt; empty vector: none known), see covariance_doubts() below.
+// `values` and the starts' values: the fitted values (an offset parameter's offset, to which its
+// bounds apply; rule 2); rules 1, 3 and 4 judge the parameters' own values (offsets resolved,
+// parameter.hpp), with `sigma` their standard deviations (empty: no covariance). `failed_steps`:
+// per parameter the failure of its first finite-difference step at the answer (empty string:
+// none; empty vector: not known). `tolerance` relative, > 0. `secant_sigma`: of the parameters'
+// own values from the secant Jacobian (empty: not computed).
+// `covariance_doubts`: per parameter why its sigma cannot be trusted (empty string: no doubt;
+// empty vector: none known), see covariance_doubts() below.
 std::vector<Identification> identify(const std::vector<ParameterDefinition>& parameters,
                                      const std::vector<double>& values, const std::vector<double>& sigma,
                                      const std::vector<std::string>& failed_steps,
                                      double cost, double residual_variance, const std::vector<StartEnd>& starts,
-                                     double tolerance, const std::vector<std::string>& covariance_doubts = {});
+                                     double tolerance, const std::vector<double>& secant_sigma = {},
+                                     const std::vector<std::string>& covariance_doubts = {});
 
 // Rule 5's reasons from the fit's covariance facts: `insensitive` the parameters whose Jacobian
 // column is zero; when `positive_definite` is false, a variance of zero (or not finite) and a

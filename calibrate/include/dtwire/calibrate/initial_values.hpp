@@ -2,7 +2,8 @@
 // Starting a fit from an earlier one (`dtwire fit --initial FILE`): the fitted parameters take
 // their initial values from a parameters.json that `dtwire fit` wrote (its "parameters" list of
 // {name, value}), e.g. a level-1 fit started at the level-0 optimum. Parameters the file does not
-// name keep the fit file's initial value.
+// name keep the fit file's initial value. The values are the parameters' own: an offset parameter
+// (parameter.hpp) starts at its value minus its base's (the file's, else the base's initial).
 #include <filesystem>
 #include <vector>
 

@@ -24,8 +24,9 @@ Curve synthesize_target(const Experiment& experiment, const ParameterValues& val
                         const std::vector<std::string>& also_written = {});
 
 // `dtwire fit --synthesize DIR`: every experiment's target at the parameters' reference values
-// (else initial values), under the target's column names (target_columns inverted) at its
-// target name below `dir`, so that `--targets DIR` reads them back. Returns the files written.
+// (else initial values; offsets resolved, parameter.hpp), under the target's column names
+// (target_columns inverted) at its target name below `dir`, so that `--targets DIR` reads them
+// back. Returns the files written.
 // Throws InputError for two experiments with one target name or a mapping that cannot be
 // inverted.
 std::vector<std::filesystem::path> write_synthetic_targets(const FitDefinition& def, const std::filesystem::path& dir,
