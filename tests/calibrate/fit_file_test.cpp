@@ -6,27 +6,14 @@
 #include <fstream>
 
 #include "dtwire/calibrate/fit_file.hpp"
+#include "fit_folder_test_support.hpp"
 #include "dtwire/core/error.hpp"
 
 namespace dtwire::calibrate {
 namespace {
 
-class FitFileTest : public ::testing::Test {
+class FitFileTest : public FitFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("dtwire_fit_file_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-    std::ofstream(dir_ / "target.csv") << "strain_1,stress_MPa\n0,0\n0.001,200\n0.01,320\n0.02,350\n";
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-
-  std::filesystem::path write(const std::string& text) {
-    const auto path = dir_ / "fit.toml";
-    std::ofstream(path) << text;
-    return path;
-  }
   // The InputError of reading `text`; fails the test if there is none.
   InputError error_of(const std::string& text, const FitReadOptions& options = {}) {
     try {
@@ -38,7 +25,6 @@ class FitFileTest : public ::testing::Test {
     return InputError("", "");
   }
 
-  std::filesystem::path dir_;
 };
 
 // Line numbers below count from 1 in this text.

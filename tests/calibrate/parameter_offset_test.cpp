@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dtwire/calibrate/fit_file.hpp"
+#include "fit_folder_test_support.hpp"
 #include "dtwire/calibrate/fit_output.hpp"
 #include "dtwire/calibrate/fitter.hpp"
 #include "dtwire/calibrate/initial_values.hpp"
@@ -221,21 +222,8 @@ TEST(ParameterOffsets, AnEarlierFitsValuesStartTheOffset) {
   std::filesystem::remove(file);
 }
 
-class OffsetFitFileTest : public ::testing::Test {
+class OffsetFitFileTest : public FitFolderTest {
  protected:
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           ("dtwire_offset_fit_file_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-    std::ofstream(dir_ / "target.csv") << "strain_1,stress_MPa\n0,0\n0.001,200\n0.01,320\n0.02,350\n";
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::filesystem::path write(const std::string& text) {
-    const auto path = dir_ / "fit.toml";
-    std::ofstream(path) << text;
-    return path;
-  }
   // The text of the InputError of reading a file whose Q parameter has these lines (line 14 on).
   std::string error_of(const std::string& q_lines) {
     try {
@@ -269,7 +257,6 @@ class OffsetFitFileTest : public ::testing::Test {
            "channels = [\"stress\"]\n"
            "path_strain_1 = [0, 0.02]\n";
   }
-  std::filesystem::path dir_;
   int line_ = 0;
 };
 
