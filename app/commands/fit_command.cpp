@@ -1,5 +1,6 @@
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
@@ -23,6 +24,26 @@ namespace {
 std::atomic<bool> stop_requested{false};
 extern "C" void request_stop(int) { stop_requested = true; }
 
+// --experiments: keeps the named experiments, in the file's order; an unknown or repeated name
+// is an input error naming the file and what it holds.
+void keep_only_experiments(calibrate::FitDefinition& def, const std::vector<std::string>& names) {
+  std::string held;
+  for (const auto& e : def.experiments) held += (held.empty() ? "" : ", ") + e.name;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (std::count(names.begin(), names.begin() + static_cast<std::ptrdiff_t>(i), names[i]) > 0)
+      throw InputError(def.file.string(), "--experiments: '" + names[i] + "' is named twice");
+    const bool known = std::any_of(def.experiments.begin(), def.experiments.end(),
+                                   [&](const auto& e) { return e.name == names[i]; });
+    if (!known)
+      throw InputError(def.file.string(),
+                       "--experiments: no experiment '" + names[i] + "' in the file (it has: " + held + ")");
+  }
+  std::vector<calibrate::Experiment> kept;
+  for (auto& e : def.experiments)
+    if (std::find(names.begin(), names.end(), e.name) != names.end()) kept.push_back(std::move(e));
+  def.experiments = std::move(kept);
+}
+
 }  // namespace
 
 void add_fit_command(CLI::App& root, CommandSet& commands) {
@@ -38,6 +59,7 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     double noise = 0.0;
     std::uint64_t seed = 1;
     std::size_t points = 81;
+    std::vector<std::string> experiments;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = root.add_subcommand(
@@ -52,6 +74,10 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                       "Start from the values in an earlier fit's parameters.json (parameters it names; "
                       "e.g. a level-1 fit from the level-0 optimum)")
       ->check(CLI::ExistingFile);
+  command->add_option("--experiments", options->experiments,
+                      "Fit only these experiments of the file (names, comma-separated), e.g. a study "
+                      "without some curves; the parameters and settings stay the file's")
+      ->delimiter(',');
   command->add_flag("--resume", options->resume,
                     "Continue from <out>/checkpoint.json if present (same fit definition)");
   command->add_flag("--plot", options->plot,
@@ -74,7 +100,8 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     if (!options->synthesize.empty()) {
       calibrate::FitReadOptions read;
       read.read_targets = false;
-      const auto def = calibrate::read_fit_file(options->file, read);
+      auto def = calibrate::read_fit_file(options->file, read);
+      if (!options->experiments.empty()) keep_only_experiments(def, options->experiments);
       for (const auto& file :
            calibrate::write_synthetic_targets(def, options->synthesize, options->noise, options->seed, options->points))
         std::cout << "wrote " << file.string() << "\n";
@@ -83,6 +110,7 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     calibrate::FitReadOptions read;
     read.targets_directory = options->targets;
     auto def = calibrate::read_fit_file(options->file, read);
+    if (!options->experiments.empty()) keep_only_experiments(def, options->experiments);
     if (!options->initial.empty()) {
       const std::size_t set = calibrate::apply_initial_values(def.parameters, options->initial);
       std::cout << "initial values of " << set << " of " << def.parameters.size() << " parameters from "
@@ -123,9 +151,12 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                 << " --resume\n";
       return kExitFailure;
     }
+    std::string chosen;
+    for (const auto& name : options->experiments) chosen += (chosen.empty() ? "" : ",") + name;
     const auto provenance = make_provenance(
         "dtwire fit " + options->file + (options->targets.empty() ? "" : " --targets " + options->targets) +
-            (options->initial.empty() ? "" : " --initial " + options->initial),
+            (options->initial.empty() ? "" : " --initial " + options->initial) +
+            (chosen.empty() ? "" : " --experiments " + chosen),
         def.inputs);
     calibrate::write_fit_outputs(def, result, provenance, out);
     std::cout << "fit " << def.file.filename().string() << ": cost " << result.cost << ", "

@@ -122,6 +122,9 @@ case_ "simulator.fixed.slideb': the thesis law reads no parameter 'slideb' (did 
 case_ "offset_typo.toml:62:15: field 'parameter[4].offset_from': 'NO_N' names no other [[parameter]] of this file (did you mean 'N0_N'?)" fit offset_typo.toml --synthesize synthesized
 case_ "offset_cycle.toml:49:15: field 'parameter[3].offset_from': parameter 'N0_N': offset_from closes a cycle (N0_N -> Nult_N -> N0_N)" fit offset_cycle.toml --synthesize synthesized
 case_ "reserve_negative.toml:67:13: field 'parameter[4].reference': expected the reference of the offset Nult_N - N0_N, within [lower, upper]" fit reserve_negative.toml --synthesize synthesized
+# --experiments names an experiment of the file, once each.
+case_ "no experiment 'bendin' in the file (it has: tension" fit "$fit" --experiments tension,bendin --synthesize synthesized
+case_ "--experiments: 'tension' is named twice" fit "$fit" --experiments tension,tension --synthesize synthesized
 case_ "foreign: holds 'notes.txt', which this command does not write" export --params "$thesis" --out foreign
 case_ ".: is the working directory or holds it" export --params "$thesis" --out .
 [ -e "$work/synthesized" ] && { echo "FAIL: a refused fit left $work/synthesized"; total=$((total + 1)); }
