@@ -93,7 +93,8 @@ int run_dem_run(const RunCommandOptions& o) {
   const bool strip = input.tool == "strip_tension";
   if (strip) print_strip_summary(input, s, out);
   else std::cout << input.title << ": " << s.nodes << " nodes, " << s.links << " links, " << s.steps << " steps of "
-            << s.time_step << " s (critical " << s.critical_time_step << " s), " << s.wall_seconds << " s wall\n"
+            << s.time_step << " s (critical " << s.critical_time_step << " s; settling "
+            << s.settle_time_step << " s), " << s.wall_seconds << " s wall\n"
             << "sag after settling " << 1000.0 * s.sag << " mm; peak force " << s.peak_force / 1000.0 << " kN at "
             << 1000.0 * s.displacement_at_peak << " mm; broken links " << s.broken_links
             << "; largest energy balance error " << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"

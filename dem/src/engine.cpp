@@ -51,9 +51,17 @@ Vector6 probe_stiffness(const ContactLaw& law) {
 
 struct LinkState {
   Vector3 transverse = Vector3::UnitX();  // local y axis t1
+  Vector3 axis = Vector3::UnitX();        // this step's a -> b
+  Vector3 binormal = Vector3::UnitZ();    // t2 = axis x t1
   double length = 0.0;
-  Vector3 force_on_a = Vector3::Zero(), moment_on_a = Vector3::Zero(), moment_on_b = Vector3::Zero();
+  Vector6 increment = Vector6::Zero();    // this step's, of the six generalised displacements
   bool broken = false;
+};
+
+// What a link puts on its nodes, apart from its state: the nodes gather these at random, so they
+// sit in a compact array of their own.
+struct LinkLoad {
+  Vector3 force_on_a = Vector3::Zero(), moment_on_a = Vector3::Zero(), moment_on_b = Vector3::Zero();
 };
 
 struct ToolState {
@@ -65,6 +73,7 @@ struct ToolState {
   Vector3 force_on_tool = Vector3::Zero(), moment_on_tool = Vector3::Zero();
   Vector3 previous_force_on_nodes = Vector3::Zero();
   std::size_t contacts = 0;
+  bool parked = false;  // acts on nothing, not in the stability bound, until placed
 };
 
 // A roller and its contact with each link (roller.hpp).
@@ -106,6 +115,7 @@ struct Engine::State {
   std::vector<double> node_damping_work, node_support_work, node_kinetic;
   std::vector<EngineLink> links;
   std::vector<LinkState> link_state;
+  std::vector<LinkLoad> link_load;
   std::vector<std::vector<std::pair<int, bool>>> node_links;  // (link, node is end a)
   std::vector<ToolState> tools;
   std::vector<RollerState> rollers;
@@ -152,6 +162,7 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
   s.node_kinetic.assign(n, 0.0);
   s.links = std::move(links);
   s.link_state.resize(s.links.size());
+  s.link_load.resize(s.links.size());
   s.node_links.resize(n);
   for (std::size_t l = 0; l < s.links.size(); ++l) {
     const NetLink& link = s.links[l].link;
@@ -172,8 +183,9 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
 Engine::~Engine() = default;
 Engine::Engine(Engine&&) noexcept = default;
 
-int Engine::add_tool(std::unique_ptr<Tool> tool) {
+int Engine::add_tool(std::unique_ptr<Tool> tool, bool parked) {
   ToolState t;
+  t.parked = parked;
   const std::size_t n = s_->nodes.size();
   t.previous_position = tool->position;
   t.tool = std::move(tool);
@@ -197,8 +209,16 @@ int Engine::add_tool(std::unique_ptr<Tool> tool) {
 }
 
 void Engine::update_time_step_for_new_contact() {
-  if (options_.time_step > 0.0) set_time_step(options_.time_step);
-  else dt_ = std::min(dt_, options_.safety * critical_time_step());
+  // A fixed step must stay stable once the parked tools are placed too: refused now, not later.
+  if (options_.time_step > 0.0) {
+    const double critical = stability_bound(true);
+    if (options_.time_step > critical && !options_.allow_above_critical)
+      throw std::invalid_argument("time step " + std::to_string(options_.time_step) + " s is above the critical step " +
+                                  std::to_string(critical) + " s");
+    dt_ = options_.time_step;
+  } else {
+    dt_ = std::min(dt_, options_.safety * critical_time_step());
+  }
 }
 
 int Engine::add_roller(const Roller& roller, std::vector<double> link_radius) {
@@ -236,6 +256,10 @@ void Engine::place_tool(std::size_t i, const Vector3& position, const Vector3& v
   t.tool->position = position;
   t.previous_position = position;
   t.tool->velocity = velocity;
+  if (t.parked) {
+    t.parked = false;
+    update_time_step_for_new_contact();
+  }
 }
 
 void Engine::impose_positions(const std::vector<Vector3>& positions) {
@@ -245,7 +269,9 @@ void Engine::impose_positions(const std::vector<Vector3>& positions) {
   s_->imposed_pending = true;
 }
 
-double Engine::critical_time_step() const {
+double Engine::critical_time_step() const { return stability_bound(false); }
+
+double Engine::stability_bound(bool with_parked_tools) const {
   const State& s = *s_;
   const std::size_t n = s.nodes.size();
   // Upper bound of the largest eigenvalue of M^-1 K: the largest, over nodes, of the sum of the
@@ -262,12 +288,14 @@ double Engine::critical_time_step() const {
     bound[link.a] += element;
     bound[link.b] += element;
   }
-  for (const ToolState& t : s.tools)
+  for (const ToolState& t : s.tools) {
+    if (t.parked && !with_parked_tools) continue;
     for (std::size_t i = 0; i < n; ++i) {
       const double r = s.nodes[i].radius;
       bound[i] += t.tool->contact.normal_stiffness * s.inverse_mass[i] +
                   t.tool->contact.shear_stiffness * (s.inverse_mass[i] + r * r * s.inverse_inertia[i]);
     }
+  }
   // A roller-link contact at s is the spring kn w w^T with w = ((1 - s), s) (x) normal; its row
   // sums at either node are below kn / m (Gershgorin), as a node-tool contact's.
   for (const RollerState& r : s.rollers)
@@ -320,44 +348,67 @@ void Engine::set_support(std::size_t i, const std::array<bool, 3>& held_translat
 
 void Engine::step() {
   State& s = *s_;
+  // Variable-step central differences: the last move x_{n-1} -> x_n took `moved` (the link and
+  // contact increments are over it), the next takes dt, and the velocity update spans their mean
+  // (v_{n+1/2} = v_{n-1/2} + (moved + dt)/2 a_n); with a constant step all three are dt.
   const double dt = dt_;
+  const double moved = steps_ == 0 ? dt : last_move_;
+  const double spanned = 0.5 * (moved + dt);
   const std::size_t n = s.nodes.size();
   const std::size_t links = s.links.size();
   const int threads = options_.threads;
 
-  // 1. Links: each writes only its own state.
-#pragma omp parallel for num_threads(threads) schedule(static) if (links >= options_.parallel_threshold)
-  for (std::size_t l = 0; l < links; ++l) {
-    LinkState& state = s.link_state[l];
-    ContactLaw& law = *s.links[l].law;
-    const NetLink& link = s.links[l].link;
-    const Vector3 d = s.x[link.b] - s.x[link.a];
-    const double length = d.norm();
-    const Vector3 axis = d / length;
-    Vector3 t1 = state.transverse - state.transverse.dot(axis) * axis;
-    t1.normalize();
-    const Vector3 t2 = axis.cross(t1);
-    const double half = 0.5 * length;
-    const Vector3 relative = (s.v[link.b] - half * s.w[link.b].cross(axis)) - (s.v[link.a] + half * s.w[link.a].cross(axis));
-    const Vector3 spin = s.w[link.b] - s.w[link.a];
-    Vector6 increment;
-    increment << length - state.length, dt * relative.dot(t1), dt * relative.dot(t2), dt * spin.dot(axis),
-        dt * spin.dot(t1), dt * spin.dot(t2);
-    if (s.imposed_pending) increment.tail<5>().setZero();
-    if (!state.broken) law.update(increment);
-    state.length = length;
-    state.transverse = t1;
-    state.broken = law.broken();
-    const Vector6 q = state.broken ? Vector6::Zero() : law.forces();
-    const Vector3 shear = q[1] * t1 + q[2] * t2;
-    const Vector3 couple = q[3] * axis + q[4] * t1 + q[5] * t2;
-    state.force_on_a = q[0] * axis + shear;
-    state.moment_on_a = couple + half * axis.cross(shear);
-    state.moment_on_b = -couple + half * axis.cross(shear);
+  // 1. Links: each writes only its own state. The kinematics of every link first, then the laws:
+  // a law update is an opaque call, and between two of them the square roots and divisions of
+  // one link's frame cannot overlap another's (the kinematics loop runs about twice as fast on
+  // its own). The two loops give each thread the same links (static schedule), so no barrier.
+#pragma omp parallel num_threads(threads) if (links >= options_.parallel_threshold)
+  {
+#pragma omp for schedule(static) nowait
+    for (std::size_t l = 0; l < links; ++l) {
+      LinkState& state = s.link_state[l];
+      const NetLink& link = s.links[l].link;
+      const Vector3 d = s.x[link.b] - s.x[link.a];
+      const double length = d.norm();
+      const Vector3 axis = d / length;
+      Vector3 t1 = state.transverse - state.transverse.dot(axis) * axis;
+      t1.normalize();
+      const Vector3 t2 = axis.cross(t1);
+      const double half = 0.5 * length;
+      const Vector3 relative = (s.v[link.b] - half * s.w[link.b].cross(axis)) - (s.v[link.a] + half * s.w[link.a].cross(axis));
+      const Vector3 spin = s.w[link.b] - s.w[link.a];
+      state.increment << length - state.length, moved * relative.dot(t1), moved * relative.dot(t2),
+          moved * spin.dot(axis), moved * spin.dot(t1), moved * spin.dot(t2);
+      if (s.imposed_pending) state.increment.tail<5>().setZero();
+      state.length = length;
+      state.axis = axis;
+      state.transverse = t1;
+      state.binormal = t2;
+    }
+#pragma omp for schedule(static)
+    for (std::size_t l = 0; l < links; ++l) {
+      LinkState& state = s.link_state[l];
+      ContactLaw& law = *s.links[l].law;
+      if (!state.broken) law.update(state.increment);
+      state.broken = law.broken();
+      const Vector6 q = state.broken ? Vector6::Zero() : law.forces();
+      const Vector3& axis = state.axis;
+      const Vector3& t1 = state.transverse;
+      const Vector3& t2 = state.binormal;
+      const double half = 0.5 * state.length;
+      const Vector3 couple = q[3] * axis + q[4] * t1 + q[5] * t2;
+      // The shear's lever: axis x (q1 t1 + q2 t2) = q1 t2 - q2 t1 (a right-handed frame).
+      const Vector3 lever = half * (q[1] * t2 - q[2] * t1);
+      LinkLoad& load = s.link_load[l];
+      load.force_on_a = q[0] * axis + q[1] * t1 + q[2] * t2;
+      load.moment_on_a = couple + lever;
+      load.moment_on_b = -couple + lever;
+    }
   }
 
   // 2. Tools: every node against every tool (each node writes its own slot).
   for (ToolState& t : s.tools) {
+    if (t.parked) continue;  // its contact arrays stay zero
     const Tool& tool = *t.tool;
     const double kn = tool.contact.normal_stiffness, ks = tool.contact.shear_stiffness, mu = tool.contact.friction;
     const double bounding = tool.bounding_radius();
@@ -388,7 +439,7 @@ void Engine::step() {
       Vector3 shear = t.shear[i] - t.shear[i].dot(normal) * normal;
       const double kept = t.shear[i].norm();
       if (shear.norm() > 0.0) shear *= kept / shear.norm();
-      shear -= ks * dt * tangential;
+      shear -= ks * moved * tangential;
       const double normal_force = kn * penetration;
       const double limit = mu * normal_force;
       const double trial = shear.norm();
@@ -419,7 +470,7 @@ void Engine::step() {
         continue;
       }
       const SegmentContact c = roller_segment_contact(r.roller, s.x[link.a], s.x[link.b], r.link_radius[l],
-                                                      s.v[link.a], s.v[link.b], dt, r.shear[l]);
+                                                      s.v[link.a], s.v[link.b], moved, r.shear[l]);
       if (!c.touching) continue;
       r.touching[l] = 1;
       r.on_a[l] = c.on_a;
@@ -470,9 +521,9 @@ void Engine::step() {
   for (std::size_t i = 0; i < n; ++i) {
     Vector3 f = s.nodes[i].mass * gravity, m = Vector3::Zero();
     for (const auto& [l, is_a] : s.node_links[i]) {
-      const LinkState& state = s.link_state[l];
-      f += is_a ? state.force_on_a : Vector3(-state.force_on_a);
-      m += is_a ? state.moment_on_a : state.moment_on_b;
+      const LinkLoad& load = s.link_load[l];
+      f += is_a ? load.force_on_a : Vector3(-load.force_on_a);
+      m += is_a ? load.moment_on_a : load.moment_on_b;
     }
     for (const ToolState& t : s.tools) {
       f += t.force_on_node[i];
@@ -497,16 +548,16 @@ void Engine::step() {
     const Vector3 reaction = free_components(node, f) - f;
     s.node_support_work[i] = 0.5 * (s.reaction_previous[i] + reaction).dot(dx);
     s.reaction_previous[i] = reaction;
-    const Vector3 fd = free_components(node, damping_force(f, s.v[i], s.inverse_mass[i], dt, alpha));
-    const Vector3 md = damping_force(m, s.w[i], s.inverse_inertia[i], dt, alpha);
-    const Vector3 dtheta = imposed ? Vector3::Zero() : Vector3(dt * s.w[i]);
+    const Vector3 fd = free_components(node, damping_force(f, s.v[i], s.inverse_mass[i], spanned, alpha));
+    const Vector3 md = damping_force(m, s.w[i], s.inverse_inertia[i], spanned, alpha);
+    const Vector3 dtheta = imposed ? Vector3::Zero() : Vector3(moved * s.w[i]);
     s.node_damping_work[i] = -(0.5 * (s.damping_previous[i] + fd).dot(dx) +
                                0.5 * (s.damping_moment_previous[i] + md).dot(dtheta));
     s.damping_previous[i] = fd;
     s.damping_moment_previous[i] = md;
     const Vector3 v_old = s.v[i], w_old = s.w[i];
-    s.v[i] += dt * (f + fd) * s.inverse_mass[i];
-    s.w[i] += dt * (m + md) * s.inverse_inertia[i];
+    s.v[i] += spanned * (f + fd) * s.inverse_mass[i];
+    s.w[i] += spanned * (m + md) * s.inverse_inertia[i];
     hold(node, s.v[i], s.w[i]);
     s.node_kinetic[i] = 0.5 * free_components(node, v_old).dot(s.v[i]) / s.inverse_mass[i] +
                         0.5 * w_old.dot(s.w[i]) / s.inverse_inertia[i];
@@ -534,13 +585,14 @@ void Engine::step() {
 
   // Rigid tools: free bodies integrate their own motion, kinematic ones move as prescribed.
   for (ToolState& t : s.tools) {
+    if (t.parked) continue;
     Tool& tool = *t.tool;
     if (tool.mass > 0.0) {
       const Vector3 weight = tool.mass * gravity;
       if (!imposed) energy_.gravity_work += weight.dot(tool.position - t.previous_position);
       const Vector3 v_old = tool.velocity, w_old = tool.angular_velocity;
-      tool.velocity += dt * (t.force_on_tool + weight) / tool.mass;
-      tool.angular_velocity += dt * t.moment_on_tool / tool.rotational_inertia;
+      tool.velocity += spanned * (t.force_on_tool + weight) / tool.mass;
+      tool.angular_velocity += spanned * t.moment_on_tool / tool.rotational_inertia;
       kinetic += 0.5 * tool.mass * v_old.dot(tool.velocity) +
                  0.5 * tool.rotational_inertia * w_old.dot(tool.angular_velocity);
     }
@@ -566,6 +618,7 @@ void Engine::step() {
   }
   s.imposed_pending = false;
   time_ += dt;
+  last_move_ = dt;
   ++steps_;
 }
 
@@ -587,7 +640,7 @@ RelaxResult Engine::relax(double tolerance, long max_steps) {
         hold(s_->nodes[i], f, unused);  // a held component's force is the support's
         largest = std::max(largest, f.norm());
       }
-    for (const LinkState& state : s_->link_state) mean += state.force_on_a.norm();
+    for (const LinkLoad& load : s_->link_load) mean += load.force_on_a.norm();
     mean = s_->link_state.empty() ? 1.0 : mean / static_cast<double>(s_->link_state.size());
     result.force_ratio = mean > 0.0 ? largest / mean : largest;
     if (result.force_ratio < tolerance) {

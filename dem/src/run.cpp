@@ -185,11 +185,12 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   try {
     engine = std::make_unique<Engine>(built.mesh.net.nodes, std::move(built.links), engine_options);
     if (in.tool != "none") {
-      // Parked far from the net while it settles; placed after settling.
+      // Parked far from the net while it settles (out of the settling's stability bound); placed
+      // after settling.
       std::unique_ptr<Tool> tool = make_tool(in, centre, 0.0, 0.0);
       tool->position.z() += in.tool == "platter" ? -10.0 : 10.0;
       tool->velocity.setZero();
-      engine->add_tool(std::move(tool));
+      engine->add_tool(std::move(tool), /*parked=*/true);
     }
     if (in.wall_below > 0.0) {
       // The slack state's wall (tool 1): its surface wall_below under the nodes' lowest surface.
@@ -207,8 +208,7 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   RunSummary summary;
   summary.nodes = node_count;
   summary.links = engine->link_count();
-  summary.time_step = engine->time_step();
-  summary.critical_time_step = engine->critical_time_step();
+  summary.settle_time_step = engine->time_step();
 
   // Phase 1: settle under gravity (and the pre-tension).
   while (engine->time() < in.settle_time) engine->step();
@@ -227,10 +227,12 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   if (in.tool != "none") {
     std::unique_ptr<Tool> placed = make_tool(in, centre, lowest, highest);
     engine->place_tool(0, placed->position, in.tool == "platter" ? Vector3(0.0, 0.0, in.speed) : placed->velocity);
-    check_tool_clear(in, engine->tool(0), *engine);
+    check_tool_clear(in, engine->tool(0), *engine);  // placed: the step now has its contact
     start = engine->tool(0).position;
     direction = in.tool == "platter" ? Vector3(Vector3::UnitZ()) : Vector3(-Vector3::UnitZ());
   }
+  summary.time_step = engine->time_step();
+  summary.critical_time_step = engine->critical_time_step();
   const double t0 = engine->time();
   const double expected = in.tool == "boulder" || in.tool == "none" ? in.duration : in.travel / in.speed;
   std::size_t level = 0;

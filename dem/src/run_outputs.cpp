@@ -166,6 +166,7 @@ void add_engine_parameters(Results& results, const RunInput& input, const RunSum
   };
   parameter("time_step_s", summary.time_step, "s");
   parameter("critical_time_step_s", summary.critical_time_step, "s");
+  parameter("settle_time_step_s", summary.settle_time_step, "s");
   parameter("mass_scale", input.engine.mass_scale, "1");
   parameter("rotational_inertia_scale", input.engine.rotational_inertia_scale, "1");
   parameter("local_damping", input.engine.local_damping, "1");
@@ -283,6 +284,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
       {"links", summary.links},
       {"largest_balance_error_percent", 100.0 * summary.largest_balance_error},
       {"time_step_s", summary.time_step},
+      {"settle_time_step_s", summary.settle_time_step},
       {"steps", summary.steps},
       {"wall_seconds", summary.wall_seconds},
       {"command", options_.command_line},

@@ -257,6 +257,53 @@ TEST(DemEngine, OneAndTwoThreadsGiveIdenticalStates) {
 // increment, then holds them); a free node's cannot. The moment of the links on a clamped node
 // is reported: a cantilever link bent by a transverse tip displacement delta (tip rotation
 // held) carries V = k_s delta and a moment V L / 2 at each end.
+// A tool added parked (the punch platter while the net settles) acts on nothing and stays out of
+// the stability bound until it is placed; then the step drops to the bound with its contact
+// (Gershgorin: k_link (1/m) + k_n / m for a node on a pinned link touching a wall), and a fixed
+// step that the placed tool would make unstable is refused when the tool is added.
+TEST(DemEngine, AParkedToolActsOnNothingUntilPlacedAndThenSetsTheStep) {
+  const Oscillator o;
+  auto make = [&](double fixed_step) {
+    std::vector<NetNode> nodes{make_node(Vector3::Zero(), o.mass, NodeFixity::Pinned), make_node(Vector3(o.length, 0, 0), o.mass)};
+    std::vector<EngineLink> links;
+    links.push_back({{0, 1, LinkTag::SingleWire}, elastic_bond(o.length)});
+    EngineOptions options;
+    options.gravity = Vector3(0.0, 0.0, -9.81);
+    options.time_step = fixed_step;
+    return Engine(nodes, std::move(links), options);
+  };
+  auto wall = [] {
+    auto w = std::make_unique<PlaneWall>(-Vector3::UnitX());
+    w->contact.normal_stiffness = 1e9;
+    w->contact.shear_stiffness = 0.0;
+    return w;
+  };
+  Engine engine = make(0.0);
+  const double bare = engine.critical_time_step(), bare_step = engine.time_step();
+  auto parked = wall();
+  parked->position = Vector3(0.01, 0.0, 0.0);  // the free node is inside its half-space: it would be pushed
+  engine.add_tool(std::move(parked), /*parked=*/true);
+  EXPECT_EQ(engine.critical_time_step(), bare);
+  EXPECT_EQ(engine.time_step(), bare_step);
+  for (int k = 0; k < 50; ++k) engine.step();
+  EXPECT_EQ(engine.tool_contacts(0), 0u);
+  EXPECT_EQ(engine.tool_force(0).norm(), 0.0);
+  EXPECT_LT(engine.position(1).z(), 0.0);  // falling under gravity, untouched by the parked wall
+
+  // Placed as an end stop 1 mm into the free node's side (normal -x): only that node touches it.
+  engine.place_tool(0, Vector3(o.length - 0.001, 0.0, 0.0), Vector3::Zero());
+  EXPECT_LT(engine.critical_time_step(), bare);
+  // Gershgorin at the free node: its link terms (2 / bare)^2 plus the wall's k_n / m.
+  const double expected_bound = 2.0 / std::sqrt(1e9 / o.mass + std::pow(2.0 / bare, 2));
+  EXPECT_NEAR(engine.critical_time_step() / expected_bound, 1.0, 1e-9);
+  EXPECT_DOUBLE_EQ(engine.time_step(), 0.5 * engine.critical_time_step());
+  engine.step();
+  EXPECT_EQ(engine.tool_contacts(0), 1u);
+  EXPECT_GT(engine.tool_force(0).x(), 0.0);  // the wall pushes the node back (-x), the node the wall (+x)
+  Engine fixed = make(0.9 * bare);
+  EXPECT_THROW(fixed.add_tool(wall(), /*parked=*/true), std::invalid_argument);
+}
+
 TEST(DemEngine, GuidedVelocityCanChangeAndMomentsAreReported) {
   const double length = 0.05;
   std::vector<NetNode> nodes{make_node(Vector3::Zero(), 0.01, NodeFixity::Guided),

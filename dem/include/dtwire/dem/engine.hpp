@@ -10,7 +10,9 @@
 //      roller-link contacts (roller.hpp: the same law at a link's point, lever rule to its nodes);
 //   3. nodes: F = links + tools + gravity (gravitational mass); local damping
 //      F_d = -alpha |F_i| sign(F_i (v_i + dt F_i / 2m)) per component (YADE's NewtonIntegrator);
-//      v_{n+1/2} = v_{n-1/2} + dt (F + F_d)/m_inertial, x_{n+1} = x_n + dt v_{n+1/2}.
+//      v_{n+1/2} = v_{n-1/2} + dt (F + F_d)/m_inertial, x_{n+1} = x_n + dt v_{n+1/2}
+//      (when the step changes, the variable-step form: increments over the last move's step,
+//      the velocity update over the mean of the last and the next step).
 // Links are updated in parallel (OpenMP), each writing its own slot; nodes then gather their
 // links in a fixed order, so 1 and N threads give bit-identical results.
 #include <array>
@@ -78,22 +80,27 @@ class Engine {
   ~Engine();
   Engine(Engine&&) noexcept;
 
-  // Adds a tool; returns its index. The critical step is recomputed.
-  int add_tool(std::unique_ptr<Tool> tool);
+  // Adds a tool; returns its index. The critical step is recomputed. A tool added `parked`
+  // touches nothing and is left out of the stability bound until place_tool() puts it in the
+  // run (e.g. the punch platter while the net settles: its contact spring would otherwise set
+  // the settling step, docs/dem_engine.md "Speed").
+  int add_tool(std::unique_ptr<Tool> tool, bool parked = false);
   // Adds a kinematic roller that touches the links (roller.hpp); link_radius[l] is link l's wire
   // radius against it (0: no contact). Returns its index; the critical step is recomputed.
   // Throws std::invalid_argument for a radius list of the wrong size, a negative radius or a
   // roller with a non-positive radius or a zero axis.
   int add_roller(const Roller& roller, std::vector<double> link_radius);
   // Moves tool i (no contacts may act at that moment) and sets its velocity; the kinetic energy
-  // given to a free tool is booked as boundary work.
+  // given to a free tool is booked as boundary work. A parked tool enters the run here: the
+  // step drops to the stable step with its contact.
   void place_tool(std::size_t i, const Vector3& position, const Vector3& velocity);
   // Moves every node (not only free ones) to a new position before the first step, as an
   // imposed initial deformation (e.g. pre-tension); the links see it in the first step and its
   // work is booked as boundary work.
   void impose_positions(const std::vector<Vector3>& positions);
 
-  // Stability bound of the undamped system (element eigenvalue bound, docs/dem_engine.md) [s].
+  // Stability bound of the undamped system (element eigenvalue bound, docs/dem_engine.md) [s],
+  // with the tools in the run (parked ones left out).
   double critical_time_step() const;
   double time_step() const { return dt_; }
   void set_time_step(double dt);  // throws if above critical (unless allowed)
@@ -149,11 +156,13 @@ class Engine {
  private:
   // After a tool or roller is added: the fixed step if one was given, else the stable step.
   void update_time_step_for_new_contact();
+  double stability_bound(bool with_parked_tools) const;
 
   struct State;
   std::unique_ptr<State> s_;
   EngineOptions options_;
   double dt_ = 0.0, time_ = 0.0;
+  double last_move_ = 0.0;  // the step of the last position update
   long steps_ = 0;
   mutable EnergySplit energy_;
   mutable bool energy_stale_ = true;

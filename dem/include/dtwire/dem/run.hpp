@@ -111,7 +111,8 @@ struct RunSummary {
   double sag = 0.0;  // largest downward displacement after settling [m]
   double pretension_strain = 0.0;  // the stretch used (searched for a pre-load's sag)
   double kinetic_after_settling = 0.0;  // [J], the quasi-static check of the settled state
-  double time_step = 0.0, critical_time_step = 0.0;
+  double time_step = 0.0, critical_time_step = 0.0;  // of the tool phase
+  double settle_time_step = 0.0;  // the settling's (the tool parked: a longer step)
   std::size_t nodes = 0, links = 0, broken_links = 0;
   long steps = 0;
   double wall_seconds = 0.0;
