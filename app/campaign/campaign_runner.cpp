@@ -166,7 +166,6 @@ class Runner {
                         " was not produced (an earlier step failed)";
       return {outcome, std::nullopt, "blocked, " + outcome.message};
     }
-    for (const auto& output : outputs) std::filesystem::create_directories(std::filesystem::path(output).parent_path());
     launch.hash = step_fingerprint(launch.command, launch.inputs);
     if (!options_.force && previous.value("status", "") == "done" && previous.value("fingerprint", "") == launch.hash &&
         outputs_exist(outputs)) {
@@ -199,6 +198,10 @@ class Runner {
     const auto start = Clock::now();
     try {
       std::filesystem::create_directories(folder);
+      // Only now, when the step starts: a step still waiting for cores must not put its folders
+      // into another step's output folder while that one runs (`export` replaces its own whole).
+      for (const auto& output : launch.outputs)
+        std::filesystem::create_directories(std::filesystem::path(output).parent_path());
       {
         std::ofstream header(folder / "command.txt");
         header << "dtwire";
