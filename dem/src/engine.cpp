@@ -209,16 +209,8 @@ int Engine::add_tool(std::unique_ptr<Tool> tool, bool parked) {
 }
 
 void Engine::update_time_step_for_new_contact() {
-  // A fixed step must stay stable once the parked tools are placed too: refused now, not later.
-  if (options_.time_step > 0.0) {
-    const double critical = stability_bound(true);
-    if (options_.time_step > critical && !options_.allow_above_critical)
-      throw std::invalid_argument("time step " + std::to_string(options_.time_step) + " s is above the critical step " +
-                                  std::to_string(critical) + " s");
-    dt_ = options_.time_step;
-  } else {
-    dt_ = std::min(dt_, options_.safety * critical_time_step());
-  }
+  if (options_.time_step > 0.0) set_time_step(options_.time_step);
+  else dt_ = std::min(dt_, options_.safety * critical_time_step());
 }
 
 int Engine::add_roller(const Roller& roller, std::vector<double> link_radius) {
@@ -310,7 +302,8 @@ double Engine::stability_bound(bool with_parked_tools) const {
 
 void Engine::set_time_step(double dt) {
   if (!(dt > 0.0)) throw std::invalid_argument("time step must be positive");
-  const double critical = critical_time_step();
+  // A step must stay stable once the parked tools are placed too: refused now, not later.
+  const double critical = stability_bound(true);
   if (dt > critical && !options_.allow_above_critical)
     throw std::invalid_argument("time step " + std::to_string(dt) + " s is above the critical step " +
                                 std::to_string(critical) + " s");

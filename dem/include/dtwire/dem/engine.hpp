@@ -103,7 +103,7 @@ class Engine {
   // with the tools in the run (parked ones left out).
   double critical_time_step() const;
   double time_step() const { return dt_; }
-  void set_time_step(double dt);  // throws if above critical (unless allowed)
+  void set_time_step(double dt);  // throws if above critical with every tool placed (unless allowed)
 
   // Changes the prescribed velocity of guided node i from the next step on (e.g. grips moved
   // by a load increment, then held while the net relaxes); for a free node on a slider support
