@@ -164,6 +164,7 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
   summary.nodes = engine->node_count();
   summary.links = engine->link_count();
   summary.time_step = engine->time_step();
+  summary.settle_time_step = summary.time_step;  // no tool to park: one step throughout
   summary.critical_time_step = engine->critical_time_step();
   StripFigures& strip = summary.strip;
   strip.width = g.width;
