@@ -2,12 +2,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
 #include <map>
 #include <sstream>
 
 #include "../cli.hpp"
+#include "campaign_graph.hpp"
+#include "critical_path.hpp"
 #include "report_html.hpp"
 #include "report_summary.hpp"
 #include "dtwire/core/atomic_file.hpp"
@@ -32,6 +35,36 @@ std::string embed(const std::filesystem::path& item, const std::filesystem::path
   if (ext == ".md") return read_text(item) + "\n";
   if (ext == ".png" || ext == ".svg") return "![" + item.stem().string() + "](" + relative + ")\n\n";
   return "- [`" + relative + "`](" + relative + ")\n";
+}
+
+// Each step's time in this run, in the campaign's order (a skipped step counts with its recorded
+// time; a step not run, 0).
+std::vector<double> step_seconds(const Campaign& campaign, const std::vector<StepOutcome>& outcomes) {
+  std::vector<double> seconds(campaign.steps.size(), 0.0);
+  for (std::size_t i = 0; i < campaign.steps.size(); ++i) {
+    const auto outcome = std::find_if(outcomes.begin(), outcomes.end(),
+                                      [&](const StepOutcome& o) { return o.name == campaign.steps[i].name; });
+    if (outcome != outcomes.end()) seconds[i] = outcome->seconds;
+  }
+  return seconds;
+}
+
+// The chain of steps that bounds the wall time on any number of cores.
+std::string critical_path_markdown(const Campaign& campaign, const std::vector<double>& seconds,
+                                   const CriticalPath& path) {
+  double summed = 0.0;
+  for (const double s : seconds) summed += s;
+  if (path.steps.empty() || !(path.seconds > 0.0)) return "";
+  std::ostringstream md;
+  md << std::fixed << std::setprecision(1) << "**Critical path**: " << path.seconds << " s of the " << summed
+     << " s the steps took together: the longest chain of steps that wait for each other, so no number of "
+        "cores runs this campaign in less (at most "
+     << std::setprecision(1) << summed / path.seconds << " x faster than one step at a time). ";
+  for (std::size_t k = 0; k < path.steps.size(); ++k)
+    md << (k ? " -> " : "") << "`" << campaign.steps[path.steps[k]].name << "` " << std::setprecision(1)
+       << seconds[path.steps[k]] << " s";
+  md << ".\n\n";
+  return md.str();
 }
 
 }  // namespace
@@ -62,7 +95,9 @@ std::filesystem::path write_campaign_report(const Campaign& campaign,
   for (const StepOutcome& o : outcomes)
     md << "| [" << o.name << "](#" << heading_anchor(o.name) << ") | " << status_name(o.status) << " | "
        << std::fixed << std::setprecision(2) << o.seconds << std::defaultfloat << " | " << o.message << " |\n";
-  md << "\n";
+  const std::vector<double> seconds = step_seconds(campaign, outcomes);
+  const CriticalPath critical = critical_path(step_dependencies(campaign), seconds);
+  md << "\n" << critical_path_markdown(campaign, seconds, critical);
   for (const CampaignStep& step : campaign.steps) {
     const auto outcome = std::find_if(outcomes.begin(), outcomes.end(),
                                       [&](const StepOutcome& o) { return o.name == step.name; });
@@ -93,6 +128,9 @@ std::filesystem::path write_campaign_report(const Campaign& campaign,
                                {"campaign_sha256", sha256_file(campaign.file)}};
   for (const StepOutcome& o : outcomes)
     provenance["steps"][o.name] = {{"status", status_name(o.status)}, {"seconds", o.seconds}};
+  provenance["critical_path"]["seconds"] = critical.seconds;
+  provenance["critical_path"]["steps"] = nlohmann::json::array();
+  for (const std::size_t i : critical.steps) provenance["critical_path"]["steps"].push_back(campaign.steps[i].name);
   write_file_atomically(out / "provenance.json",
                         [&](std::ostream& stream) { stream << provenance.dump(2) << "\n"; });
   return report;

@@ -53,7 +53,11 @@ std::vector<StepOutcome> recorded_outcomes(const Campaign& campaign, const std::
       outcome.seconds = previous.value("seconds", 0.0);
     } else {
       const auto folder = step_folder(out, step.name);
-      outcome.seconds = benchmark_seconds(folder / "benchmark.tsv");
+      // A step whose inputs changed since its record (a step Snakemake ran, or an earlier build's
+      // run) keeps its recorded time unless Snakemake timed it: 0 would hide it from the
+      // report's critical path.
+      const double timed = benchmark_seconds(folder / "benchmark.tsv");
+      outcome.seconds = timed > 0.0 ? timed : previous.value("seconds", 0.0);
       if (inputs_exist) {
         state[step.name] = {{"status", "done"},
                             {"fingerprint", hash},

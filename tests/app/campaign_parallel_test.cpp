@@ -10,6 +10,7 @@
 #include "campaign/campaign_file.hpp"
 #include "campaign/campaign_graph.hpp"
 #include "campaign/campaign_runner.hpp"
+#include "campaign/critical_path.hpp"
 #include "campaign/recorded_outcomes.hpp"
 #include "campaign/snakefile.hpp"
 #include "cli.hpp"
@@ -46,6 +47,24 @@ TEST(CampaignGraph, StepsWaitForWhatTheyReadAndForOverlappingOutputs) {
   EXPECT_EQ(waits[4], V{1});  // both write into {out}/b
   EXPECT_EQ(waits[5], V{0});  // a path its command names, undeclared
   EXPECT_EQ(waits[6], V{});
+}
+
+// The floor of the wall time on any number of cores: a diamond a -> (b | c) -> d plus a lone
+// long step e. The chain through the slower branch (a, c, d: 1 + 5 + 2 = 8 s) beats the lone
+// step (7 s) and the faster branch (a, b, d: 5 s).
+TEST(CampaignGraph, CriticalPathIsTheLongestChainOfWaitingSteps) {
+  using V = std::vector<std::size_t>;
+  const std::vector<std::vector<std::size_t>> waits{{}, {0}, {0}, {1, 2}, {}};
+  const CriticalPath path = critical_path(waits, {1.0, 2.0, 5.0, 2.0, 7.0});
+  EXPECT_EQ(path.steps, (V{0, 2, 3}));
+  EXPECT_DOUBLE_EQ(path.seconds, 8.0);
+  const CriticalPath lone = critical_path(waits, {1.0, 2.0, 5.0, 2.0, 9.0});
+  EXPECT_EQ(lone.steps, V{4});
+  EXPECT_DOUBLE_EQ(lone.seconds, 9.0);
+  EXPECT_TRUE(critical_path({}, {}).steps.empty());
+  EXPECT_THROW(critical_path(waits, {1.0, 2.0}), std::invalid_argument);
+  EXPECT_THROW(critical_path({{}, {1}}, {1.0, 1.0}), std::invalid_argument);  // waits for itself
+  EXPECT_THROW(critical_path({{}, {}}, {1.0, -1.0}), std::invalid_argument);
 }
 
 TEST(CampaignGraph, ThreadsFieldIsReadAndChecked) {
@@ -197,6 +216,13 @@ TEST(CampaignReportOnly, OutputsMadeElsewhereAreDoneAndResumed) {
   options.executable = DTWIRE_EXECUTABLE;
   options.only = {"made"};
   EXPECT_EQ(run_campaign(campaign, options)[0].status, StepStatus::Skipped);
+  // Its inputs changed since (here: a state from an older build) and no Snakemake timing: the
+  // recorded time stays, for the report's critical path.
+  std::filesystem::remove(out / "steps/made/benchmark.tsv");
+  nlohmann::json state = nlohmann::json::parse(std::ifstream(out / "campaign_state.json"));
+  state["made"]["fingerprint"] = "an older build's";
+  std::ofstream(out / "campaign_state.json") << state.dump();
+  EXPECT_DOUBLE_EQ(recorded_outcomes(campaign, out)[0].seconds, 12.5);
   std::filesystem::remove_all(out);
 }
 
