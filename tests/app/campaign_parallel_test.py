@@ -13,7 +13,7 @@ saves in campaign_state.json; no timing margin is involved: side by side both st
 runner's. Exits 77 (ctest: skipped) when snakemake is not installed (scripts/setup installs it).
 
 Normalisation: the output folder's own path becomes {out}; ISO times, wall times and the run's
-durations are masked; files that only hold times (campaign.lock, Snakemake's benchmark.tsv) are
+durations are masked, and so is the critical path, which follows them; files that only hold times (campaign.lock, Snakemake's benchmark.tsv) are
 compared by presence, campaign_state.json by its steps and their status.
 """
 import json
@@ -55,6 +55,9 @@ MASKS = [
     (re.compile(r"\d+(\.\d+)?(e-?\d+)? s\b"), "<t> s"),
     (re.compile(r"(\"[a-z_]*seconds\"\s*:\s*)[0-9.e+-]+"), r"\1<t>"),
     (re.compile(r"(\| (done|up to date) \| )[0-9.]+( \|)"), r"\1<t>\3"),
+    # The critical path follows the step times (two steps of equal work may swap places).
+    (re.compile(r"\*\*Critical path\*\*[^\n]*"), "<critical path>"),
+    (re.compile(r'(?s)"critical_path": \{.*?\n  \}'), '"critical_path": <critical path>'),
 ]
 
 
