@@ -15,6 +15,7 @@
 #include "../cli.hpp"
 #include "campaign_graph.hpp"
 #include "campaign_state.hpp"
+#include "interruption.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "step_console.hpp"
@@ -106,6 +107,7 @@ class Runner {
   // Starts (or settles without running) every waiting step whose producers are finished, in
   // the file's order, as long as its cores fit.
   void start_ready_steps() {
+    if (interruption_signal() != 0) return;  // interrupted: the running steps stop, nothing new starts
     for (bool again = true; again;) {
       again = false;
       for (std::size_t i = 0; i < campaign_.steps.size(); ++i) {
@@ -213,7 +215,10 @@ class Runner {
       });
       if (outcome.exit_code != 0) {
         outcome.status = StepStatus::Failed;
-        outcome.message = "exit code " + std::to_string(outcome.exit_code) + ": " + last_line(log);
+        outcome.message = interruption_signal() != 0
+                              ? "interrupted (signal " + std::to_string(interruption_signal()) + "), exit code " +
+                                    std::to_string(outcome.exit_code)
+                              : "exit code " + std::to_string(outcome.exit_code) + ": " + last_line(log);
       } else if (!outputs_exist(launch.outputs)) {
         outcome.status = StepStatus::Failed;
         outcome.message = "finished but did not write all of its outputs";

@@ -5,19 +5,25 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <thread>
 
 #include "dtwire/core/error.hpp"
+#include "interruption.hpp"
 
 extern char** environ;
 
 namespace dtwire::app {
 namespace {
+
+// How long an interrupted step may take to stop (a fit writes its checkpoint) before it is killed.
+constexpr std::chrono::seconds kGraceAfterInterruption{30};
 
 std::string tail(const std::filesystem::path& file, std::size_t bytes = 8192) {
   std::ifstream in(file, std::ios::binary);
@@ -83,19 +89,33 @@ int run_step_process(const std::filesystem::path& executable, const std::vector<
   std::vector<char*> argv;
   for (auto& a : argv_text) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // Its own process group: a signal meant for the runner alone reaches the step's whole tree
+  // only when the runner passes it on (interruption.hpp), and then all of it.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
   pid_t pid = 0;
-  const int error = posix_spawn(&pid, executable.c_str(), &actions, nullptr, argv.data(), environ);
+  const int error = posix_spawn(&pid, executable.c_str(), &actions, &attributes, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
   if (error != 0)
     throw ComputationError("cannot start " + executable.string() + ": " + std::strerror(error));
 
   const auto start = std::chrono::steady_clock::now();
   auto next_tick = start + std::chrono::seconds(1);
   int status = 0;
+  std::optional<std::chrono::steady_clock::time_point> passed_on;  // when the interruption was passed on
   for (;;) {
     const pid_t done = ::waitpid(pid, &status, WNOHANG);
     if (done == pid) break;
     if (done < 0 && errno != EINTR) throw ComputationError(std::string("waitpid: ") + std::strerror(errno));
+    if (const int signal = interruption_signal(); signal != 0 && !passed_on) {
+      ::kill(-pid, signal);
+      passed_on = std::chrono::steady_clock::now();
+    } else if (passed_on && std::chrono::steady_clock::now() - *passed_on > kGraceAfterInterruption) {
+      ::kill(-pid, SIGKILL);  // a step that ignores the signal does not hold the campaign
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     if (const auto now = std::chrono::steady_clock::now(); now >= next_tick) {
       tick(std::chrono::duration<double>(now - start).count());

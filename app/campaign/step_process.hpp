@@ -9,8 +9,10 @@
 
 namespace dtwire::app {
 
-// Runs `executable args...` with stdout and stderr to `log` (truncated), stdin from /dev/null.
-// Calls `tick(elapsed_seconds)` about once a second while it runs. Returns the exit code
+// Runs `executable args...` in its own process group with stdout and stderr to `log`
+// (truncated), stdin from /dev/null. Calls `tick(elapsed_seconds)` about once a second while it
+// runs. When the campaign is interrupted (interruption.hpp), passes the signal on to the step's
+// process group, and kills the group if it still runs 30 s later. Returns the exit code
 // (128 + signal if it was killed).
 int run_step_process(const std::filesystem::path& executable, const std::vector<std::string>& args,
                      const std::filesystem::path& log, const std::function<void(double)>& tick);

@@ -4,6 +4,7 @@
 
 #include "../campaign/campaign_file.hpp"
 #include "../campaign/campaign_lock.hpp"
+#include "../campaign/interruption.hpp"
 #include "../campaign/campaign_report.hpp"
 #include "../campaign/campaign_runner.hpp"
 #include "../campaign/recorded_outcomes.hpp"
@@ -103,6 +104,7 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     if (!lock.stale_note().empty())
       std::cerr << "campaign: a stale lock in " << run_options.out.string() << " (" << lock.stale_note()
                 << ") shows an earlier campaign that did not finish; taking over\n";
+    const InterruptionGuard interruption;
     const auto outcomes = options->report_only ? recorded_outcomes(campaign, run_options.out)
                                                : run_campaign(campaign, run_options);
     const auto report = write_campaign_report(campaign, outcomes, run_options.out);
@@ -115,6 +117,11 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     std::cout << "campaign " << campaign.name << ": " << outcomes.size() << " step(s), " << failed
               << " failed, " << blocked << " blocked, " << unavailable
               << " not in this build; report: " << report.string() << "\n";
+    if (const int signal = interruption_signal(); signal != 0) {
+      std::cerr << "campaign interrupted (signal " << signal << "): the running steps were stopped and nothing new "
+                << "started; the same command resumes, skipping the finished steps\n";
+      return 128 + signal;
+    }
     return failed || blocked ? kExitFailure : 0;
   });
 }
