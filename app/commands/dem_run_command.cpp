@@ -5,6 +5,7 @@
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "../cli.hpp"
 #include "../plotting.hpp"
@@ -89,6 +90,11 @@ int run_dem_run(const RunCommandOptions& o) {
   options.threads = o.threads;
   options.quiet = o.quiet;
   options.write_frames = !o.no_frames;
+  const int threads = o.threads > 0 ? o.threads : input.engine.threads;
+  if (const auto load = load_average())
+    if (const std::string warning = oversubscription_warning(threads, *load, std::thread::hardware_concurrency());
+        !warning.empty())
+      std::cerr << "dtwire: warning: dem run: " << warning << "\n";
   const dem::RunSummary s = dem::run_simulation(input, options);
   const bool strip = input.tool == "strip_tension";
   if (strip) print_strip_summary(input, s, out);

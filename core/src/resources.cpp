@@ -41,6 +41,23 @@ std::optional<std::uint64_t> available_memory() {
   return std::nullopt;
 }
 
+std::optional<double> load_average() {
+  std::ifstream loadavg("/proc/loadavg");
+  double one_minute = 0.0;
+  if (loadavg >> one_minute && one_minute >= 0.0) return one_minute;
+  return std::nullopt;
+}
+
+std::string oversubscription_warning(int threads, double load, unsigned cores) {
+  if (threads <= 1 || cores == 0 || load + threads <= cores + 0.5) return {};
+  std::ostringstream text;
+  text.precision(2);
+  text << threads << " threads on " << cores << " cores that already carry a load of " << load
+       << ": the threads meet every step, so a descheduled one holds up all (a punch took over 5 x its one-thread "
+          "time so); --threads 1 beside other work";
+  return text.str();
+}
+
 std::string format_bytes(double bytes) {
   const char* units[] = {"B", "KB", "MB", "GB", "TB", "PB", "EB"};
   int u = 0;

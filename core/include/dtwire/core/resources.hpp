@@ -22,4 +22,11 @@ void check_memory(double estimate, const std::optional<std::uint64_t>& max_memor
 // that holds `folder` (or its nearest existing parent).
 void check_disk(double estimate, const std::filesystem::path& folder, const std::string& source, const std::string& what);
 
+// The 1-minute load average of /proc/loadavg; none where it cannot be read.
+std::optional<double> load_average();
+// A warning when `threads` (> 1) of a run whose threads meet at a barrier every step would share
+// `cores` with a `load` of other work: a descheduled thread holds up every step, so the run can
+// take many times longer than on one thread. "" when they fit (load + threads <= cores + 0.5).
+std::string oversubscription_warning(int threads, double load, unsigned cores);
+
 }  // namespace dtwire
