@@ -213,15 +213,16 @@ class Runner {
       outcome.exit_code = run_step_process(options_.executable, launch.command, log, [&](double seconds) {
         console_.progress(label(i), seconds, step_progress(progress_logs(log, launch.outputs)));
       });
-      if (outcome.exit_code != 0) {
+      if (outcome.exit_code != 0 || !outputs_exist(launch.outputs)) {
         outcome.status = StepStatus::Failed;
-        outcome.message = interruption_signal() != 0
-                              ? "interrupted (signal " + std::to_string(interruption_signal()) + "), exit code " +
-                                    std::to_string(outcome.exit_code)
-                              : "exit code " + std::to_string(outcome.exit_code) + ": " + last_line(log);
-      } else if (!outputs_exist(launch.outputs)) {
-        outcome.status = StepStatus::Failed;
-        outcome.message = "finished but did not write all of its outputs";
+        // An interrupted fit saves its checkpoint and may exit 0 without its outputs.
+        if (interruption_signal() != 0)
+          outcome.message = "interrupted (signal " + std::to_string(interruption_signal()) + "), exit code " +
+                            std::to_string(outcome.exit_code);
+        else if (outcome.exit_code != 0)
+          outcome.message = "exit code " + std::to_string(outcome.exit_code) + ": " + last_line(log);
+        else
+          outcome.message = "finished but did not write all of its outputs";
       }
     } catch (const std::exception& e) {  // the step could not be started: it fails, the others run
       outcome.status = StepStatus::Failed;
