@@ -59,10 +59,9 @@ std::string critical_path_markdown(const Campaign& campaign, const std::vector<d
   md << std::fixed << std::setprecision(1) << "**Critical path**: " << path.seconds << " s of the " << summed
      << " s the steps took together: the longest chain of steps that wait for each other, so no number of "
         "cores runs this campaign in less (at most "
-     << std::setprecision(1) << summed / path.seconds << " x faster than one step at a time). ";
+     << summed / path.seconds << " x faster than one step at a time). ";
   for (std::size_t k = 0; k < path.steps.size(); ++k)
-    md << (k ? " -> " : "") << "`" << campaign.steps[path.steps[k]].name << "` " << std::setprecision(1)
-       << seconds[path.steps[k]] << " s";
+    md << (k ? " -> " : "") << "`" << campaign.steps[path.steps[k]].name << "` " << seconds[path.steps[k]] << " s";
   md << ".\n\n";
   return md.str();
 }

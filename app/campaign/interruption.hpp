@@ -6,8 +6,8 @@
 // new; the state keeps every finished step, so the same command resumes.
 namespace dtwire::app {
 
-// Installs the SIGINT and SIGTERM handlers for the campaign run (the handler only records the
-// signal). Returns an object that restores the previous handlers when it goes out of scope.
+// While it lives, SIGINT and SIGTERM are only recorded (interruption_signal()); its end restores
+// the previous handlers.
 class InterruptionGuard {
  public:
   InterruptionGuard();
