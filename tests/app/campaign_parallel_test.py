@@ -13,8 +13,11 @@ saves in campaign_state.json; no timing margin is involved: side by side both st
 runner's. Exits 77 (ctest: skipped) when snakemake is not installed (scripts/setup installs it).
 
 Normalisation: the output folder's own path becomes {out}; ISO times, wall times and the run's
-durations are masked, and so is the critical path, which follows them; files that only hold times (campaign.lock, Snakemake's benchmark.tsv) are
-compared by presence, campaign_state.json by its steps and their status.
+durations are masked, and so is the critical path, which follows them (in report.md and in its
+HTML form); report.html's embedded images are masked (the PNG files themselves are compared byte
+for byte); files that only hold times (campaign.lock, Snakemake's benchmark.tsv) are compared by
+presence, HDF5 files (which hold their creation time) by size, campaign_state.json by its steps
+and their status.
 """
 import json
 import os
@@ -55,9 +58,13 @@ MASKS = [
     (re.compile(r"\d+(\.\d+)?(e-?\d+)? s\b"), "<t> s"),
     (re.compile(r"(\"[a-z_]*seconds\"\s*:\s*)[0-9.e+-]+"), r"\1<t>"),
     (re.compile(r"(\| (done|up to date) \| )[0-9.]+( \|)"), r"\1<t>\3"),
+    (re.compile(r"(<td>(done|up to date)</td><td>)[0-9.]+(</td>)"), r"\1<t>\3"),
     # The critical path follows the step times (two steps of equal work may swap places).
     (re.compile(r"\*\*Critical path\*\*[^\n]*"), "<critical path>"),
     (re.compile(r'(?s)"critical_path": \{.*?\n  \}'), '"critical_path": <critical path>'),
+    (re.compile(r"<strong>Critical path</strong>.*?</p>", re.S), "<critical path>"),
+    # report.html embeds the figures, which are compared as files.
+    (re.compile(r"data:image/[a-z+]+;base64,[A-Za-z0-9+/=]+"), "<image>"),
 ]
 
 
@@ -96,9 +103,8 @@ def compare(a, b):
             if sa != sb:
                 problems.append(f"{name}: steps differ:\n  {sa}\n  {sb}")
             continue
-        if name.endswith(".html") or name.endswith(".h5"):
-            # report.html embeds report.md (compared) and images; HDF5 files hold creation
-            # times: their size is compared.
+        if name.endswith(".h5"):
+            # HDF5 files hold their creation time: their size is compared.
             if abs(os.path.getsize(files_a[name]) - os.path.getsize(files_b[name])) > 64:
                 problems.append(f"{name}: sizes {os.path.getsize(files_a[name])} and {os.path.getsize(files_b[name])}")
             continue
