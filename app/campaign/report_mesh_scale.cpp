@@ -31,6 +31,18 @@ std::string cell(const json& summary, const char* key, double scale, double refe
   return against(summary[key].get<double>() * scale, reference, decimals);
 }
 
+// "34.2 / 48.5, 20.8": the punch's membrane at the platter's rim at the peak (mean and largest
+// sector tension, slope), "n/a" for a run without it.
+std::string rim_cell(const json& summary) {
+  for (const char* key : {"rim_tension_at_peak_kN_per_m", "rim_largest_sector_tension_at_peak_kN_per_m", "rim_slope_at_peak_deg"})
+    if (!summary.contains(key) || !summary[key].is_number()) return "n/a";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << summary["rim_tension_at_peak_kN_per_m"].get<double>() << " / "
+    << summary["rim_largest_sector_tension_at_peak_kN_per_m"].get<double>() << ", "
+    << summary["rim_slope_at_peak_deg"].get<double>();
+  return s.str();
+}
+
 std::string step_link(const MeshScaleRun& run) { return "[" + run.step + "](#" + heading_anchor(run.step) + ")"; }
 
 }  // namespace
@@ -53,12 +65,17 @@ std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs) {
 
   std::ostringstream md;
   md << "Every set at mesh scale (deviation from the reference in brackets): the punch as its steps run it, "
-        "the strip tension along the twists.\n\n"
+        "the strip tension along the twists. The rim column is the punch's membrane just outside the "
+        "platter at the peak (membrane_at_peak.csv): the mean radial tension per metre of circumference, "
+        "that of the most loaded eighth, and the net's slope there; the peak is 2 pi r x mean x "
+        "tan(slope), so a set's peak moves with its strength (against the strip's) and with how far "
+        "the net is pushed before it fails (the slope).\n\n"
      << "| set | punch onset (m) | punch peak (kN) | displacement at peak (m) | sag settled (mm) | "
+        "rim at peak: tension mean / largest eighth (kN/m), slope (deg) | "
         "strip strength (kN/m) | strip secant stiffness, 10-50 % of peak (kN/m) | steps |\n"
-     << "|---|---|---|---|---|---|---|---|\n"
-     << "| *thesis DEM punch (Previtali; validated against laboratory punches)* | 0.20 | 25 | 0.53 | | | | |\n"
-     << "| *published mesh, 8x10 / 2.7 mm (EN 15381 Annex D; manufacturer)* | | | | | 50 | about 500 | |\n";
+     << "|---|---|---|---|---|---|---|---|---|\n"
+     << "| *thesis DEM punch (Previtali; validated against laboratory punches)* | 0.20 | 25 | 0.53 | | | | | |\n"
+     << "| *published mesh, 8x10 / 2.7 mm (EN 15381 Annex D; manufacturer)* | | | | | | 50 | about 500 | |\n";
   for (const std::string& label : labels) {
     const MeshScaleRun* punch = nullptr;
     const MeshScaleRun* strip = nullptr;
@@ -72,7 +89,7 @@ std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs) {
     }
     md << "| " << label << " | ";
     if (steps.empty()) {
-      md << "not yet run | | | | | | |\n";
+      md << "not yet run | | | | | | | |\n";
       continue;
     }
     if (punch) {
@@ -82,9 +99,9 @@ std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs) {
          << " | " << (s.contains("sag_after_settling_mm") && s["sag_after_settling_mm"].is_number()
                           ? std::to_string(static_cast<long>(std::lround(s["sag_after_settling_mm"].get<double>())))
                           : std::string("n/a"))
-         << " | ";
+         << " | " << rim_cell(s) << " | ";
     } else {
-      md << "not run | | | | ";
+      md << "not run | | | | | ";
     }
     if (strip) {
       md << cell(strip->summary, "strength_per_width_kN_per_m", 1.0, kMeshStrengthKNPerM, 1) << " | "

@@ -676,6 +676,7 @@ Vector3 Engine::velocity(std::size_t i) const { return s_->v.at(i); }
 Vector3 Engine::unbalanced_force(std::size_t i) const { return s_->force.at(i); }
 Vector3 Engine::unbalanced_moment(std::size_t i) const { return s_->moment.at(i); }
 const EngineLink& Engine::link(std::size_t i) const { return s_->links.at(i); }
+Vector3 Engine::link_force_on_a(std::size_t i) const { return s_->link_load.at(i).force_on_a; }
 Vector3 Engine::link_direction(std::size_t i) const {
   const NetLink& link = s_->links.at(i).link;
   return (s_->x[link.b] - s_->x[link.a]).normalized();

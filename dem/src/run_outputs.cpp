@@ -51,6 +51,33 @@ Curve histogram(const std::string& quantity, const std::string& unit, double wid
   return curve;
 }
 
+// The platter's radial sections at the peak (membrane_sections.hpp), one row per radius.
+Curve membrane_curve(const std::vector<MembraneSection>& sections) {
+  std::vector<double> radius, links, vertical, radial, tension, largest, largest_at, smallest, slope;
+  for (const MembraneSection& s : sections) {
+    radius.push_back(s.radius);
+    links.push_back(static_cast<double>(s.crossing_links));
+    vertical.push_back(s.vertical_force);
+    radial.push_back(s.radial_force);
+    tension.push_back(s.radial_tension);
+    largest.push_back(s.largest_sector_tension);
+    largest_at.push_back(s.largest_sector_angle * 180.0 / kPi);
+    smallest.push_back(s.smallest_sector_tension);
+    slope.push_back(s.slope * 180.0 / kPi);
+  }
+  Curve curve;
+  curve.add_channel("radius", *find_unit("m"), radius);
+  curve.add_channel("crossing_links", *find_unit("1"), links);
+  curve.add_channel("vertical_force", *find_unit("N"), vertical);
+  curve.add_channel("radial_force", *find_unit("N"), radial);
+  curve.add_channel("radial_tension", *find_unit("Npm"), tension);
+  curve.add_channel("largest_sector_tension", *find_unit("Npm"), largest);
+  curve.add_channel("largest_sector_direction", *find_unit("deg"), largest_at);
+  curve.add_channel("smallest_sector_tension", *find_unit("Npm"), smallest);
+  curve.add_channel("slope", *find_unit("deg"), slope);
+  return curve;
+}
+
 }  // namespace
 
 RunRecorder::RunRecorder(const RunInput& input, const HexMesh& mesh, const RunOptions& options)
@@ -68,10 +95,23 @@ RunRecorder::RunRecorder(const RunInput& input, const HexMesh& mesh, const RunOp
     for (int node : {link.a, link.b})
       if (twist_at[node] >= 0) angle_pairs_.push_back({twist_at[node], static_cast<int>(l), node});
   }
+  if (input_.tool == "platter") {
+    double half_extent = 1e300;
+    for (int axis : {0, 1}) {
+      double low = 1e300, high = -1e300;
+      for (const NetNode& node : mesh.net.nodes) {
+        low = std::min(low, node.position[axis]);
+        high = std::max(high, node.position[axis]);
+      }
+      half_extent = std::min(half_extent, 0.5 * (high - low));
+    }
+    for (int k = 0; input_.platter_base_radius + 0.05 + 0.1 * k < half_extent - 0.1 + 1e-9; ++k)
+      section_radii_.push_back(input_.platter_base_radius + 0.05 + 0.1 * k);
+  }
   std::filesystem::create_directories(options_.out);
   // An earlier run's results in this folder would sit beside this run's: remove them.
-  for (const char* stale : {"curve.csv", "link_force_histogram.csv", "pulling_angle_histogram.csv", "net.pvd",
-                            "results.h5", "summary.json"})
+  for (const char* stale : {"curve.csv", "link_force_histogram.csv", "pulling_angle_histogram.csv",
+                            "membrane_at_peak.csv", "net.pvd", "results.h5", "summary.json"})
     std::filesystem::remove(options_.out / stale);
   for (const std::string& stale : LinkRecorder::file_names()) std::filesystem::remove(options_.out / stale);
   std::filesystem::remove_all(options_.out / "frames");
@@ -90,6 +130,15 @@ RunRecorder::Snapshot RunRecorder::snapshot(const Engine& engine) const {
     const Vector3 axis = (twist.b == pair.node ? 1.0 : -1.0) * engine.link_direction(pair.twist);
     const Vector3 along = (wire.a == pair.node ? 1.0 : -1.0) * engine.link_direction(pair.wire);
     s.pulling_angles.push_back(std::acos(std::clamp(axis.dot(along), -1.0, 1.0)) * 180.0 / kPi);
+  }
+  if (!section_radii_.empty() && engine.tool_count()) {
+    std::vector<Vector3> positions(engine.node_count());
+    for (std::size_t i = 0; i < positions.size(); ++i) positions[i] = engine.position(i);
+    std::vector<SectionLink> links(engine.link_count());
+    for (std::size_t l = 0; l < links.size(); ++l)
+      links[l] = {static_cast<std::size_t>(engine.link(l).link.a), static_cast<std::size_t>(engine.link(l).link.b),
+                  engine.link_force_on_a(l)};
+    s.sections = membrane_sections(positions, links, engine.tool(0).position, section_radii_);
   }
   return s;
 }
@@ -110,6 +159,7 @@ void RunRecorder::record(const Engine& engine, double time, double displacement,
   links_.sample(engine, 1000.0 * displacement);
   if (mean_force.norm() > peak_force_) {
     peak_force_ = mean_force.norm();
+    peak_instant_force_ = instant.norm();
     at_peak_ = snapshot(engine);
     links_.mark_peak();
   }
@@ -230,6 +280,12 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   for (std::size_t r = 0; r < force.size(); ++r)
     if (work(r) > 0.05 * final_work && work(r) > 0.0)
       summary.largest_balance_error = std::max(summary.largest_balance_error, std::abs(error[r]) / work(r));
+  // How much of the work done on the net from the settled state (first row) to the peak the local
+  // damping took: where it grows, damping forces (not the links) carry part of the tool's force
+  // (docs/dem_engine.md, "Where the punch's force goes").
+  const auto& damping = columns_[13];
+  const double work_to_peak = force.empty() ? 0.0 : work(peak) - work(0);
+  const double damping_share_to_peak = work_to_peak > 0.0 ? (damping[peak] - damping[0]) / work_to_peak : 0.0;
   summary.history = history;
 
   write_csv(history, options_.out / "curve.csv");
@@ -241,6 +297,15 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   angles.set_metadata("run_id", provenance.run_id);
   write_csv(forces, options_.out / "link_force_histogram.csv");
   write_csv(angles, options_.out / "pulling_angle_histogram.csv");
+  if (!at_peak_.sections.empty()) {
+    Curve sections = membrane_curve(at_peak_.sections);
+    sections.set_metadata("run_id", provenance.run_id);
+    sections.set_metadata("tool_force_at_peak_N", format_number(peak_force_));
+    // The sections are the links' state at that instant: their vertical force balances this one
+    // while the net moves quasi-statically (the interval mean above chatters less).
+    sections.set_metadata("tool_force_instant_at_peak_N", format_number(peak_instant_force_));
+    write_csv(sections, options_.out / "membrane_at_peak.csv");
+  }
   links_.write(options_.out, provenance.run_id);
 
   write_frame_index();
@@ -283,6 +348,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
       {"broken_links", summary.broken_links},
       {"links", summary.links},
       {"largest_balance_error_percent", 100.0 * summary.largest_balance_error},
+      {"damping_share_to_peak_percent", 100.0 * damping_share_to_peak},
       {"time_step_s", summary.time_step},
       {"settle_time_step_s", summary.settle_time_step},
       {"steps", summary.steps},
@@ -293,6 +359,14 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
     headline["onset_displacement_mm"] = summary.onset < 0.0 ? nlohmann::json() : nlohmann::json(1000.0 * summary.onset);
     headline["onset_force_N"] = 1000.0;
     headline["force_at_420mm_N"] = summary.force_at_420mm;
+  }
+  if (!at_peak_.sections.empty()) {
+    // The innermost section, just outside the platter's base: F = 2 pi r T tan(slope).
+    const MembraneSection& rim = at_peak_.sections.front();
+    headline["rim_radius_m"] = rim.radius;
+    headline["rim_tension_at_peak_kN_per_m"] = 1e-3 * rim.radial_tension;
+    headline["rim_largest_sector_tension_at_peak_kN_per_m"] = 1e-3 * rim.largest_sector_tension;
+    headline["rim_slope_at_peak_deg"] = rim.slope * 180.0 / kPi;
   }
   add_status(headline, summary);
   write_file_atomically(options_.out / "summary.json", [&](std::ostream& os) { os << headline.dump(2) << "\n"; });

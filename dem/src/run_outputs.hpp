@@ -1,13 +1,15 @@
 #pragma once
 // What `dtwire dem run` writes (docs/dem_engine.md): curve.csv and results.h5 (history with
 // provenance), link_force_histogram.csv and pulling_angle_histogram.csv (at the peak force and
-// at the end), the per-type link records (link_records.hpp), frames/net_<k>.vtu + net.pvd.
+// at the end), membrane_at_peak.csv (a platter's radial sections, membrane_sections.hpp), the
+// per-type link records (link_records.hpp), frames/net_<k>.vtu + net.pvd.
 #include <string>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
 #include "dtwire/core/results_store.hpp"
+#include "dtwire/dem/membrane_sections.hpp"
 #include "dtwire/dem/run.hpp"
 #include "link_records.hpp"
 
@@ -37,6 +39,7 @@ class RunRecorder {
  private:
   struct Snapshot {
     std::vector<double> link_forces, pulling_angles;
+    std::vector<MembraneSection> sections;  // platter runs
   };
   Snapshot snapshot(const Engine& engine) const;
 
@@ -45,7 +48,7 @@ class RunRecorder {
   RunOptions options_;
   std::vector<std::vector<double>> columns_;
   Snapshot at_peak_;
-  double peak_force_ = -1.0;
+  double peak_force_ = -1.0, peak_instant_force_ = 0.0;
   LinkRecorder links_;
   std::vector<std::pair<double, std::string>> frames_;
   // DT pulling angle pairs: (DT link, SW link, the DT end node they share).
@@ -53,6 +56,8 @@ class RunRecorder {
     int twist, wire, node;
   };
   std::vector<AnglePair> angle_pairs_;
+  // A platter's section radii: from just outside its base to 0.1 m inside the nearest edge.
+  std::vector<double> section_radii_;
 };
 
 }  // namespace dtwire::dem

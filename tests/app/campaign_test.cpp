@@ -236,7 +236,9 @@ TEST(Campaign, MeshScaleTableJudgesEverySetFromItsSummaries) {
     std::ofstream(out / name / "summary.json") << text;
   };
   write_summary("punch_thesis", R"({"label": "thesis published", "tool": "platter", "onset_displacement_mm": 236.2,
-                                    "peak_force_N": 57000.0, "displacement_at_peak_mm": 530.0, "sag_after_settling_mm": 97.9})");
+                                    "peak_force_N": 57000.0, "displacement_at_peak_mm": 530.0, "sag_after_settling_mm": 97.9,
+                                    "rim_tension_at_peak_kN_per_m": 34.22, "rim_largest_sector_tension_at_peak_kN_per_m": 48.49,
+                                    "rim_slope_at_peak_deg": 20.76})");
   write_summary("strip_thesis", R"({"label": "thesis published", "tool": "strip_tension", "strength_per_width_kN_per_m": 58.87,
                                     "secant_EA_10_50_kN_per_m": 1165.0})");
   write_summary("strip_wirepm", R"({"label": "WirePM published", "tool": "strip_tension", "strength_per_width_kN_per_m": 13.3,
@@ -248,14 +250,14 @@ TEST(Campaign, MeshScaleTableJudgesEverySetFromItsSummaries) {
   outcomes.push_back({"punch_fit", StepStatus::Blocked, 0.0, 0, ""});
   const std::string md = summary_markdown(campaign, outcomes, out);
   EXPECT_NE(md.find("| *thesis DEM punch (Previtali; validated against laboratory punches)* | 0.20 | 25 | 0.53 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| *published mesh, 8x10 / 2.7 mm (EN 15381 Annex D; manufacturer)* | | | | | 50 | about 500 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| thesis published | 0.236 (+18 %) | 57.0 (+128 %) | 0.530 (+0 %) | 98 | 58.9 (+18 %) | 1165 (+133 %) | "
+  EXPECT_NE(md.find("| *published mesh, 8x10 / 2.7 mm (EN 15381 Annex D; manufacturer)* | | | | | | 50 | about 500 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| thesis published | 0.236 (+18 %) | 57.0 (+128 %) | 0.530 (+0 %) | 98 | 34.2 / 48.5, 20.8 | 58.9 (+18 %) | 1165 (+133 %) | "
                     "[punch_thesis](#punch_thesis), [strip_thesis](#strip_thesis) |"),
             std::string::npos) << md;
-  EXPECT_NE(md.find("| WirePM published | not run | | | | 13.3 (-73 %) | undefined | [strip_wirepm](#strip_wirepm) |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| straight-wire fit | not run | | | | not run | | [punch_fit](#punch_fit) (blocked) |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| as-made fit | not yet run | | | | | | |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| my set | no onset | 0.5 (-98 %) | 0.700 (+32 %) | 10 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| WirePM published | not run | | | | | 13.3 (-73 %) | undefined | [strip_wirepm](#strip_wirepm) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| straight-wire fit | not run | | | | | not run | | [punch_fit](#punch_fit) (blocked) |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| as-made fit | not yet run | | | | | | | |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| my set | no onset | 0.5 (-98 %) | 0.700 (+32 %) | 10 | n/a |"), std::string::npos) << md;
   // Rows in the expected order, the campaign's other sets after them.
   EXPECT_LT(md.find("| thesis published |"), md.find("| WirePM published |"));
   EXPECT_LT(md.find("| as-made fit |"), md.find("| my set |"));

@@ -190,8 +190,8 @@ TEST(DemRun, SmallPunchWritesItsFilesBalancesEnergyAndIsThreadIndependent) {
   EXPECT_GT(serial.peak_force, 100.0);
   EXPECT_GT(one.peak_force, 100.0);
   EXPECT_LT(one.largest_balance_error, 0.02);  // issue: < 2 % of the work on the mesh
-  for (const char* file : {"curve.csv", "results.h5", "link_force_histogram.csv", "pulling_angle_histogram.csv", "net.pvd",
-                           "frames/net_0.vtu"})
+  for (const char* file : {"curve.csv", "results.h5", "link_force_histogram.csv", "pulling_angle_histogram.csv",
+                           "membrane_at_peak.csv", "net.pvd", "frames/net_0.vtu"})
     EXPECT_TRUE(std::filesystem::exists(path.parent_path() / "out1" / file)) << file;
   const Curve curve = read_csv(path.parent_path() / "out1" / "curve.csv");
   for (const char* column : {"tool_displacement", "tool_velocity", "tool_force", "plastic_work", "damping_work", "balance_error"})
@@ -206,9 +206,28 @@ TEST(DemRun, SmallPunchWritesItsFilesBalancesEnergyAndIsThreadIndependent) {
   EXPECT_FALSE(id.empty());
   EXPECT_EQ(read_results(path.parent_path() / "out1" / "results.h5").provenance.run_id, id);
   EXPECT_EQ(angles.metadata("run_id"), id);
+  // The platter's radial sections at the peak (their sums against closed forms:
+  // membrane_sections_test.cpp): one section on this 0.6 m panel, links crossing it in tension.
+  // (One row: read_csv wants a curve of at least 3.)
+  std::ifstream sections_file(path.parent_path() / "out1" / "membrane_at_peak.csv");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(sections_file, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u);  // run id, two forces, header, one row
+  EXPECT_EQ(lines[0], "# run_id: " + id);
+  EXPECT_EQ(lines[3].rfind("radius_m,crossing_links_1,vertical_force_N,radial_force_N,radial_tension_Npm,", 0), 0u) << lines[3];
+  std::vector<double> row;
+  std::stringstream cells(lines[4]);
+  for (std::string cell; std::getline(cells, cell, ',');) row.push_back(std::stod(cell));
+  ASSERT_GE(row.size(), 5u);
+  EXPECT_NEAR(row[0], 0.17, 1e-12);
+  EXPECT_GT(row[1], 0.0);  // crossing links
+  EXPECT_GT(row[2], 0.0);  // the outer net pulls the inside down
+  EXPECT_GT(row[4], 0.0);  // in tension
   std::ifstream summary(path.parent_path() / "out1" / "summary.json");
   const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"run_id\": \"" + id + "\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"rim_tension_at_peak_kN_per_m\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"damping_share_to_peak_percent\""), std::string::npos) << text;
   EXPECT_FALSE(one.failed);
   EXPECT_NE(text.find("\"status\": \"ok\""), std::string::npos) << text;
 }

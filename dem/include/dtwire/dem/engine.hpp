@@ -138,6 +138,9 @@ class Engine {
   // The length link i's law has been advanced to: the positions before the last step's move,
   // so (this - initial length) is the law's axial displacement u exactly.
   double link_law_length(std::size_t i) const;
+  // The force link i applied on its node a in the last step (axial and shear; zero once broken);
+  // on node b it is the opposite [N].
+  Vector3 link_force_on_a(std::size_t i) const;
   std::size_t broken_links() const;
   Tool& tool(std::size_t i);
   const Tool& tool(std::size_t i) const;
