@@ -21,12 +21,18 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 NOMINAL_STRENGTH_KN_PER_M = 50.0
 THESIS_PEAK_N = 25000.0
+BAD_INPUT = 2
+
+
+def fail(message):
+    print(message, file=sys.stderr)
+    sys.exit(BAD_INPUT)
 
 
 def read_sections(run):
     path = os.path.join(run, "membrane_at_peak.csv")
     if not os.path.exists(path):
-        sys.exit(f"plot_membrane.py: {path}: no such file (a platter run writes it)")
+        fail(f"plot_membrane.py: {path}: no such file (a platter run writes it)")
     with open(path, newline="") as handle:
         lines = list(handle)
     metadata = {}
@@ -36,8 +42,13 @@ def read_sections(run):
             metadata[key] = value.strip()
     rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
     if not rows:
-        sys.exit(f"plot_membrane.py: {path}: no sections")
-    column = lambda name: [float(r[name]) for r in rows]  # noqa: E731
+        fail(f"plot_membrane.py: {path}: no sections")
+    def column(name):
+        try:
+            return [float(r[name]) for r in rows]
+        except (KeyError, TypeError, ValueError):
+            fail(f"plot_membrane.py: {path}: column {name} missing or not a number")
+
     return {"radius": column("radius_m"), "mean": [v / 1000 for v in column("radial_tension_Npm")],
             "largest": [v / 1000 for v in column("largest_sector_tension_Npm")],
             "smallest": [v / 1000 for v in column("smallest_sector_tension_Npm")], "slope": column("slope_deg"),
@@ -46,7 +57,7 @@ def read_sections(run):
 
 def main():
     if len(sys.argv) < 3 or any("=" not in spec for spec in sys.argv[2:]):
-        sys.exit(__doc__)
+        fail(__doc__)
     out = sys.argv[1]
     fig, (tension_axes, slope_axes) = plt.subplots(1, 2, figsize=(11, 5.6), gridspec_kw={"width_ratios": [3, 2]})
     for k, spec in enumerate(sys.argv[2:]):
@@ -56,9 +67,10 @@ def main():
         tension_axes.plot(s["radius"], s["mean"], color=colour, label=f"{label}: mean ({s['peak'] / 1000:.1f} kN peak)")
         tension_axes.fill_between(s["radius"], s["smallest"], s["largest"], color=colour, alpha=0.15,
                                   label=f"{label}: least to most loaded eighth")
-        needed = THESIS_PEAK_N / (2 * math.pi * s["radius"][0] * math.tan(math.radians(s["slope"][0]))) / 1000
-        tension_axes.plot([s["radius"][0]], [needed], marker="v", color=colour, linestyle="none", markersize=9,
-                          label=f"25 kN at this rim slope needs {needed:.1f} kN/m")
+        if s["slope"][0] > 0:  # a flat rim carries no vertical force at any tension
+            needed = THESIS_PEAK_N / (2 * math.pi * s["radius"][0] * math.tan(math.radians(s["slope"][0]))) / 1000
+            tension_axes.plot([s["radius"][0]], [needed], marker="v", color=colour, linestyle="none", markersize=9,
+                              label=f"25 kN at this rim slope needs {needed:.1f} kN/m")
         slope_axes.plot(s["radius"], s["slope"], color=colour, label=label)
     tension_axes.axhline(NOMINAL_STRENGTH_KN_PER_M, color="black", linestyle="--", linewidth=1,
                          label="mesh nominal strength 50 kN/m")
