@@ -19,14 +19,21 @@ std::vector<Branch> branches_of(const std::vector<double>& x, double relative_to
   return split_monotone_branches(x, relative_tolerance * range_of(x));
 }
 
-// Indices of a branch whose abscissa strictly advances (points that stall or step back within
-// the branch tolerance are skipped), so that interpolation is well defined.
-std::vector<std::size_t> strictly_monotone(const std::vector<double>& x, const Branch& b) {
+// Round-off on an abscissa that does not move, as a fraction of its range (a stall, below).
+constexpr double kStallTolerance = 1e-9;
+
+// Indices of a branch whose abscissa strictly advances (points that step back are skipped), so
+// that interpolation is well defined. Of a stall (points at one abscissa within `stall`) the
+// last point is kept: where the abscissa moves on, the curve leaves from the stall's end.
+std::vector<std::size_t> strictly_monotone(const std::vector<double>& x, const Branch& b, double stall) {
   std::vector<std::size_t> kept{b.begin};
   const bool up = b.direction == BranchDirection::Loading;
   for (std::size_t i = b.begin + 1; i < b.end; ++i) {
     const double last = x[kept.back()];
-    if (up ? x[i] > last : x[i] < last) kept.push_back(i);
+    if (std::abs(x[i] - last) <= stall)
+      kept.back() = i;
+    else if (up ? x[i] > last : x[i] < last)
+      kept.push_back(i);
   }
   return kept;
 }
@@ -36,6 +43,66 @@ std::vector<double> pick(const std::vector<double>& v, const std::vector<std::si
   out.reserve(idx.size());
   for (std::size_t i : idx) out.push_back(v[i]);
   return out;
+}
+
+// A run of consecutive points whose abscissa stays within `tolerance` of the run's first value:
+// a leg of the path along which the abscissa does not move (a pull before bending at fixed
+// rotation, a hold). [begin, end) index the curve; at least two points. The tolerance is round-off
+// (kStallTolerance x the abscissa's range), not the branch tolerance: finely sampled curves have
+// neighbours closer than that everywhere, and a measured hold with noise on its abscissa is
+// interpolated as before.
+struct Stall {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+};
+
+std::vector<Stall> stalls_in(const std::vector<double>& x, const Branch& b, double tolerance) {
+  std::vector<Stall> out;
+  std::size_t start = b.begin;
+  for (std::size_t i = b.begin + 1; i <= b.end; ++i)
+    if (i == b.end || std::abs(x[i] - x[start]) > tolerance) {
+      if (i - start >= 2) out.push_back({start, i});
+      start = i;
+    }
+  return out;
+}
+
+// Progress along a stall: the normalised arc length of the channel itself (the abscissa does not
+// move), so that a pull from 0 to 716 N is compared at equal fractions of its own rise; the
+// points' position in the run where the channel does not move at all.
+std::vector<double> stall_progress(const std::vector<double>& y, const Stall& s) {
+  std::vector<double> p{0.0};
+  for (std::size_t i = s.begin + 1; i < s.end; ++i) p.push_back(p.back() + std::abs(y[i] - y[i - 1]));
+  const double length = p.back();
+  for (std::size_t k = 0; k < p.size(); ++k)
+    p[k] = length > 0 ? p[k] / length : static_cast<double>(k) / static_cast<double>(p.size() - 1);
+  return p;
+}
+
+// Target points on a stall are compared with the simulated stall at the same abscissa (if the
+// simulation has one there) at equal progress; interpolation at one abscissa value would compare
+// them all with a single simulated point (issue 36: half the rows of a bend at held tension are
+// its pull at zero rotation).
+void compare_stalls_by_progress(const std::vector<double>& tx, const std::vector<double>& ty, const Branch& tb,
+                                const std::vector<double>& sx, const std::vector<double>& sy, const Branch& sb,
+                                double tolerance, std::vector<double>& out) {
+  const auto simulated = stalls_in(sx, sb, tolerance);
+  for (const Stall& t : stalls_in(tx, tb, tolerance)) {
+    const auto match = std::find_if(simulated.begin(), simulated.end(), [&](const Stall& s) {
+      return std::abs(sx[s.begin] - tx[t.begin]) <= tolerance;
+    });
+    if (match == simulated.end()) continue;
+    std::vector<double> sp = stall_progress(sy, *match);
+    std::vector<double> syv(sy.begin() + static_cast<std::ptrdiff_t>(match->begin),
+                            sy.begin() + static_cast<std::ptrdiff_t>(match->end));
+    std::vector<std::size_t> keep{0};  // strictly increasing progress for interpolation
+    for (std::size_t k = 1; k < sp.size(); ++k)
+      if (sp[k] > sp[keep.back()]) keep.push_back(k);
+    const std::vector<double> tp = stall_progress(ty, t);
+    const std::vector<double> values =
+        keep.size() < 2 ? std::vector<double>(tp.size(), syv.front()) : interpolate(pick(sp, keep), pick(syv, keep), tp);
+    for (std::size_t i = t.begin; i < t.end; ++i) out[i] = values[i - t.begin];
+  }
 }
 
 // Simulated values of channel `quantity` at every target point, branch by branch.
@@ -68,7 +135,7 @@ std::vector<double> simulated_values(const Experiment& e, const Curve& simulated
   std::vector<double> out(tx.size(), 0.0);
   for (std::size_t b = 0; b < target_branches.size(); ++b) {
     const Branch& tb = target_branches[b];
-    const auto sidx = strictly_monotone(sx, sim_branches[b]);
+    const auto sidx = strictly_monotone(sx, sim_branches[b], kStallTolerance * range_of(sx));
     if (sidx.size() < 2)
       throw ComputationError("experiment '" + e.name + "': simulated branch " +
                              std::to_string(b + 1) + " has < 2 distinct points");
@@ -76,6 +143,9 @@ std::vector<double> simulated_values(const Experiment& e, const Curve& simulated
     if (e.kind == AbscissaKind::Channel) {
       query.assign(tx.begin() + tb.begin, tx.begin() + tb.end);
       values = interpolate(pick(sx, sidx), pick(sy, sidx), query);
+      for (std::size_t i = tb.begin; i < tb.end; ++i) out[i] = values[i - tb.begin];
+      compare_stalls_by_progress(tx, ty, tb, sx, sy, sim_branches[b], kStallTolerance * range_of(tx), out);
+      continue;
     } else {
       // Both branches parametrised by their own normalised arc length in the (x, y) plane.
       const std::vector<double> tbx(tx.begin() + tb.begin, tx.begin() + tb.end);
@@ -116,7 +186,7 @@ void validate(const Experiment& e) {
   const auto x = e.target.si(e.abscissa);
   if (!(range_of(x) > 0)) throw std::invalid_argument(where + "the target abscissa is constant");
   for (const Branch& b : branches_of(x, e.branch_tolerance))
-    if (strictly_monotone(x, b).size() < 2)
+    if (strictly_monotone(x, b, kStallTolerance * range_of(x)).size() < 2)
       throw std::invalid_argument(where + "a target branch has < 2 distinct abscissa values");
 }
 

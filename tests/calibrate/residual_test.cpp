@@ -88,6 +88,31 @@ TEST(Residuals, NormalizedArcLengthOfIdenticalShapeIsZero) {
   for (double v : residuals(e, target)) EXPECT_NEAR(v, 0.0, 1e-12);
 }
 
+// A leg along which the abscissa does not move (a pull at zero rotation before the bending, with
+// rotation as the abscissa): its target points are compared with the simulated leg at equal
+// progress along the channel's own rise, not all with the first simulated point.
+TEST(Residuals, StalledLegIsComparedAlongItsOwnProgress) {
+  const Curve target = curve({0, 0, 0, 0, 0.5, 1, 2}, {0, 1, 2, 3, 2.75, 2.5, 2});
+  const double w = std::sqrt(1.0 / 7.0) / 3.0;  // sqrt(1/n) / range
+  // The same path sampled otherwise: six points on the stalled leg, four on the moving one.
+  const Curve same = curve({0, 0, 0, 0, 0, 0, 0.5, 1, 1.5, 2}, {0, 0.6, 1.2, 1.8, 2.4, 3, 2.75, 2.5, 2.25, 2});
+  for (double v : residuals(experiment(target), same)) EXPECT_NEAR(v, 0.0, 1e-12);
+  // A leg that rises to 80 % of the target's: the stalled points differ by 20 % of their own
+  // value; the moving leg starts where the stall ends (2.4 at abscissa 0, 2.45 at 0.5).
+  const Curve weaker = curve({0, 0, 0, 1, 2}, {0, 1.2, 2.4, 2.5, 2});
+  const auto r = residuals(experiment(target), weaker);
+  const std::vector<double> f{0, 1, 2, 3};
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(r[i], w * (-0.2 * f[i]), 1e-12) << i;
+  EXPECT_NEAR(r[4], w * (2.45 - 2.75), 1e-12);
+  EXPECT_NEAR(r[5], 0.0, 1e-12);
+  EXPECT_NEAR(r[6], 0.0, 1e-12);
+  // A simulation that does not stall there is interpolated at the abscissa, as before.
+  const Curve moving = curve({0, 1, 2}, {0, 2.5, 2});
+  const auto m = residuals(experiment(target), moving);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(m[i], w * (0 - f[i]), 1e-12) << i;
+  EXPECT_NEAR(m[4], w * (1.25 - 2.75), 1e-12);
+}
+
 TEST(Residuals, MissingTargetChannelIsRejected) {
   auto e = experiment(curve({0, 1, 2}, {0, 1, 2}));
   e.channels = {{"moment", 1.0, 0.0}};
