@@ -3,8 +3,8 @@
 // dem_specimen simulator (tension and the 47 deg pull, to 34 and 42 mm). Here its targets are
 // curves synthesized at its own `reference` values (the published sets,
 // experiments/data/macroelement_thesis_params.json) with Gaussian noise of 0.5 % of each
-// channel's range, and the fit runs from the file's own start and multi-start design, as a new
-// user would run it.
+// channel's range, and the fit runs from the file's own start, as a new user would run it, with
+// 8 starts instead of the file's 32 (below).
 // The file fits each Nult as the hardening reserve over its N0 (offset_from): the law's order
 // Nult >= N0 is a bound, so no run is refused by it; the truth is the same (Nult = N0 + reserve).
 // INVERSE CRIME: the targets are made by the same simulator (same engine, law, geometry,
@@ -44,6 +44,10 @@ FitDefinition synthetic_fit(std::uint64_t seed) {
   std::mt19937_64 generator(seed);
   for (auto& e : def.experiments) e.target = synthesize_target(e, truth, kNoise, generator, 81);
   def.evaluation.threads = 2;
+  // The file runs 32 starts on the FE curves (to find their lowest minimum); this recovery is
+  // measured with 8 (start 1 at `initial`, a Latin hypercube of the rest, seed 1), which keeps the
+  // test within CI's time (32 would take about 4 times its 3-5 min). The figures below are of 8.
+  def.fit.starts = 8;
   return def;
 }
 
