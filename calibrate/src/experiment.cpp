@@ -45,6 +45,15 @@ std::vector<double> pick(const std::vector<double>& v, const std::vector<std::si
   return out;
 }
 
+// Indices of a non-decreasing sequence (an arc length, a progress) without its repeated values,
+// for interpolation.
+std::vector<std::size_t> increasing(const std::vector<double>& s) {
+  std::vector<std::size_t> keep{0};
+  for (std::size_t i = 1; i < s.size(); ++i)
+    if (s[i] > s[keep.back()]) keep.push_back(i);
+  return keep;
+}
+
 // A run of consecutive points whose abscissa stays within `tolerance` of the run's first value:
 // a leg of the path along which the abscissa does not move (a pull before bending at fixed
 // rotation, a hold). [begin, end) index the curve; at least two points. The tolerance is round-off
@@ -92,12 +101,10 @@ void compare_stalls_by_progress(const std::vector<double>& tx, const std::vector
       return std::abs(sx[s.begin] - tx[t.begin]) <= tolerance;
     });
     if (match == simulated.end()) continue;
-    std::vector<double> sp = stall_progress(sy, *match);
+    const std::vector<double> sp = stall_progress(sy, *match);
     std::vector<double> syv(sy.begin() + static_cast<std::ptrdiff_t>(match->begin),
                             sy.begin() + static_cast<std::ptrdiff_t>(match->end));
-    std::vector<std::size_t> keep{0};  // strictly increasing progress for interpolation
-    for (std::size_t k = 1; k < sp.size(); ++k)
-      if (sp[k] > sp[keep.back()]) keep.push_back(k);
+    const auto keep = increasing(sp);
     const std::vector<double> tp = stall_progress(ty, t);
     const std::vector<double> values =
         keep.size() < 2 ? std::vector<double>(tp.size(), syv.front()) : interpolate(pick(sp, keep), pick(syv, keep), tp);
@@ -143,22 +150,18 @@ std::vector<double> simulated_values(const Experiment& e, const Curve& simulated
     if (e.kind == AbscissaKind::Channel) {
       query.assign(tx.begin() + tb.begin, tx.begin() + tb.end);
       values = interpolate(pick(sx, sidx), pick(sy, sidx), query);
-      for (std::size_t i = tb.begin; i < tb.end; ++i) out[i] = values[i - tb.begin];
-      compare_stalls_by_progress(tx, ty, tb, sx, sy, sim_branches[b], kStallTolerance * range_of(tx), out);
-      continue;
     } else {
       // Both branches parametrised by their own normalised arc length in the (x, y) plane.
       const std::vector<double> tbx(tx.begin() + tb.begin, tx.begin() + tb.end);
       const std::vector<double> tby(ty.begin() + tb.begin, ty.begin() + tb.end);
       query = normalized_arc_length(tbx, tby);
       std::vector<double> s = normalized_arc_length(pick(sx, sidx), pick(sy, sidx));
-      // Arc length is non-decreasing; drop repeated values for interpolation.
-      std::vector<std::size_t> keep{0};
-      for (std::size_t i = 1; i < s.size(); ++i)
-        if (s[i] > s[keep.back()]) keep.push_back(i);
+      const auto keep = increasing(s);
       values = interpolate(pick(s, keep), pick(pick(sy, sidx), keep), query);
     }
     for (std::size_t i = tb.begin; i < tb.end; ++i) out[i] = values[i - tb.begin];
+    if (e.kind == AbscissaKind::Channel)
+      compare_stalls_by_progress(tx, ty, tb, sx, sy, sim_branches[b], kStallTolerance * range_of(tx), out);
   }
   return out;
 }
