@@ -55,7 +55,7 @@ MASKS = [
     (re.compile(r"\d{8}T\d{6}Z-\d+-[0-9a-f]+"), "<run id>"),
     (re.compile(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d(\.\d+)?Z?"), "<time>"),
     # Wall times and durations: "12.3 s", "\"seconds\": 0.41", "\"wall_seconds\": 2.1", step table cells.
-    (re.compile(r"\d+(\.\d+)?(e-?\d+)? s\b"), "<t> s"),
+    (re.compile(r"\d+(\.\d+)?(e[+-]?\d+)? s\b"), "<t> s"),
     (re.compile(r"(\"[a-z_]*seconds\"\s*:\s*)[0-9.e+-]+"), r"\1<t>"),
     (re.compile(r"(\| (done|up to date) \| )[0-9.]+( \|)"), r"\1<t>\3"),
     (re.compile(r"(<td>(done|up to date)</td><td>)[0-9.]+(</td>)"), r"\1<t>\3"),
