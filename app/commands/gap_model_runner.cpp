@@ -14,6 +14,7 @@
 #include "dtwire/core/provenance.hpp"
 #ifdef DTWIRE_HAVE_FEM
 #include "dtwire/fem/run.hpp"
+#include "dtwire/gap/effects.hpp"
 #endif
 
 namespace dtwire::app {
@@ -61,6 +62,10 @@ SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem:
   for (const auto& effect : model_effects())
     if (const std::string reason = effect->unsupported(context); !reason.empty())
       model.unsupported[effect->name()] = reason;
+  // A panel's effects have no .prm form: named here so that no search or `gap features` runs them.
+  for (const gap::EffectSpec& effect : gap::effect_catalogue())
+    if (effect.needs_model && !find_model_effect(effect.name))
+      model.unsupported[effect.name] = "a " + effect.test + "-test effect: it acts on a DEM panel model (--model F.toml), not on an FE .prm";
   if (!model.unsupported.count("coating_slip")) grip.top_area = top_grip_area(context);
 
   if (work.empty())

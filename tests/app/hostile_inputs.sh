@@ -95,6 +95,7 @@ case_ "--restart: Value -5 not in range" run "$prm" --restart -5 $out
 case_ "Value -1 not in range 1 to 1024" fit "$fit" --threads -1 -o "$work/fit"
 case_ "Value 0 not in range 1 to 1024" fit "$fit" --threads 0 -o "$work/fit"
 case_ "--trials: Value -1 not in range" gap selfcheck --trials -1
+case_ "a mesh-test effect: it acts on a DEM panel model" gap features --model "$src/experiments/dt/dt_tension.prm" --effects mesh_distortion --json "$work/features.json"
 case_ "--steps" export --params "$src/experiments/data/macroelement_thesis_params.json" --steps 0 --out "$work/export"
 case_ "no_such.prm" run no_such.prm $out
 case_ "ea_negative.json: wire type 'single_wire' (law thesis): thesis: parameter 'EA_N' must be finite and > 0" export --params ea_negative.json --out export

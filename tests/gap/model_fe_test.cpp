@@ -129,6 +129,9 @@ TEST(GapModelPrm, UnsupportedEffectsAreNamedWithTheirReason) {
   EXPECT_EQ(model.unsupported.count("geometry_imperfection"), 0u);
   EXPECT_EQ(model.unsupported.count("residual_stress"), 0u);
   EXPECT_NE(model.unsupported.at("wire_friction").find("Wire contact"), std::string::npos);
+  // The panel's effects (distortion, edge sliding, ...) have no .prm form and say so.
+  for (const char* mesh_effect : {"mesh_distortion", "edge_sliding", "slack_state", "dt_weakening", "sw_softening", "discretisation"})
+    EXPECT_NE(model.unsupported.at(mesh_effect).find("DEM panel model"), std::string::npos) << mesh_effect;
 }
 
 // A model .prm is read as the solver reads it: an unknown entry or a value that is not a number
@@ -292,6 +295,9 @@ TEST(GapFeatures, BadInputIsNamedBeforeAnyRun) {
   EXPECT_EQ(axis.first, 2);
   EXPECT_NE(axis.second.find("dt.axis.csv"), std::string::npos) << axis.second;
   EXPECT_EQ(run({"--lab-failure", "neck"}).first, 2);
+  const auto panel_effect = run({"--effects", "mesh_distortion"});
+  EXPECT_EQ(panel_effect.first, 2);
+  EXPECT_NE(panel_effect.second.find("DEM panel model"), std::string::npos) << panel_effect.second;
   EXPECT_FALSE(fs::exists(json));
 }
 
