@@ -12,9 +12,9 @@
 #include "dtwire/calibrate/command_simulator.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "dtwire/gap/effects.hpp"
 #ifdef DTWIRE_HAVE_FEM
 #include "dtwire/fem/run.hpp"
-#include "dtwire/gap/effects.hpp"
 #endif
 
 namespace dtwire::app {

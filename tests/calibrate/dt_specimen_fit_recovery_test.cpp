@@ -25,6 +25,8 @@
 #include <cstdlib>
 #include <iostream>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "dtwire/calibrate/fit_file.hpp"
 #include "dtwire/calibrate/fitter.hpp"
@@ -51,7 +53,14 @@ FitDefinition synthetic_fit(std::uint64_t seed) {
   // test within CI's time (32 would take about 4 times its 3-5 min). The figures below are of 8.
   def.fit.starts = 8;
   // A study of the file's own count: DTWIRE_RECOVERY_STARTS=32 (docs/calibrate.md gives both).
-  if (const char* starts = std::getenv("DTWIRE_RECOVERY_STARTS")) def.fit.starts = std::stoi(starts);
+  if (const char* starts = std::getenv("DTWIRE_RECOVERY_STARTS")) {
+    char* end = nullptr;
+    const long count = std::strtol(starts, &end, 10);
+    if (end == starts || *end != '\0' || count < 1 || count > 1024)
+      throw std::invalid_argument("DTWIRE_RECOVERY_STARTS: expected a whole number of starts in [1, 1024], found '" +
+                                  std::string(starts) + "'");
+    def.fit.starts = static_cast<int>(count);
+  }
   return def;
 }
 
