@@ -13,7 +13,7 @@ PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
   PatternSearch out;
   out.value = INFINITY;
   auto clamped = [&](std::vector<double> x) {
-    for (std::size_t d = 0; d < specs.size(); ++d) x[d] = std::clamp(x[d], specs[d].lower, specs[d].upper);
+    for (std::size_t d = 0; d < specs.size(); ++d) x[d] = specs[d].snapped(std::clamp(x[d], specs[d].lower, specs[d].upper));
     return x;
   };
   auto seen = [&](const std::vector<double>& x) {
@@ -44,8 +44,15 @@ PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
     if (out.points < points && !seen(x)) evaluate(x);
   }
   if (out.samples.empty()) return out;
+  // A grid parameter steps from one grid value to the next and never refines below that.
+  const auto grid_spacing = [](const ParameterSpec& s) {
+    double spacing = INFINITY;
+    for (std::size_t i = 1; i < s.grid.size(); ++i) spacing = std::min(spacing, std::abs(s.grid[i] - s.grid[i - 1]));
+    return spacing;
+  };
   std::vector<double> step;
-  for (const ParameterSpec& s : specs) step.push_back(0.25 * (s.plausible_upper - s.plausible_lower));
+  for (const ParameterSpec& s : specs)
+    step.push_back(s.grid.size() > 1 ? grid_spacing(s) : 0.25 * (s.plausible_upper - s.plausible_lower));
   // The last successful direction is tried first again (a pattern move, Hooke and Jeeves 1961).
   std::size_t last_d = 0;
   double last_sign = 1.0;
@@ -71,6 +78,7 @@ PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
     if (moved) continue;
     bool fine = true;
     for (std::size_t d = 0; d < specs.size(); ++d) {
+      if (!specs[d].grid.empty()) continue;
       step[d] *= 0.5;
       fine = fine && step[d] < 0.02 * (specs[d].plausible_upper - specs[d].plausible_lower);
     }

@@ -7,7 +7,6 @@
 #include <map>
 #include <optional>
 #include <random>
-#include <set>
 #include <sstream>
 #include <thread>
 
@@ -20,25 +19,6 @@
 
 namespace dtwire::gap {
 namespace {
-
-const std::vector<std::string>& known_features() {
-  static const std::vector<std::string> names = {"peak_force_N", "residual_force_N",
-                                                 "peak_displacement_mm", "onset_displacement_mm"};
-  return names;
-}
-
-double number(const std::string& text, const std::string& field, const std::string& what) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v))
-    throw InputError(field, what + ": expected a number, found '" + text + "'");
-  return v;
-}
 
 std::vector<double> features_of(const ForceCurve& c, const std::vector<SummaryFeature>& lab) {
   std::vector<double> out;
@@ -110,7 +90,8 @@ std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& sc
 
 // Model-only effect (one parameter): FE runs at the ends of the plausible range (the neutral
 // model is the given simulation), then at the minimum of the piecewise-linear interpolant of
-// the features, until `runs` are spent. The answer is the best value actually run.
+// the features, until `runs` are spent. A grid parameter (three nodes per wire or two) is run
+// at its grid values only. The answer is the best value actually run.
 struct ModelSearch {
   double value;
   ForceCurve curve;
@@ -135,9 +116,10 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
     curves[v] = c;
     ++spent;
   };
-  run(spec.plausible_lower);
-  run(spec.plausible_upper);
-  while (static_cast<std::size_t>(spent) < runs) {
+  for (double v : spec.grid) run(v);
+  run(spec.snapped(spec.plausible_lower));
+  run(spec.snapped(spec.plausible_upper));
+  while (spec.grid.empty() && static_cast<std::size_t>(spent) < runs) {
     // Minimum of the interpolated gap on a fine scan of the sampled interval.
     const double lo = sampled.begin()->first, hi = sampled.rbegin()->first;
     double best_v = lo, best_gap = INFINITY;
@@ -239,6 +221,38 @@ int parameter_count(const std::vector<AppliedEffect>& effects) {
   return k;
 }
 
+// The figures of a candidate's curve against the laboratory's: gap, shrink, plausibility (the
+// product over its effects), score, Akaike's criterion. Whether it qualifies is the caller's rule.
+void assess(SummaryCandidate& c, const SummaryDiagnosis& d, const CurveScale& scale) {
+  c.features = features_of(c.curve, d.lab);
+  c.gap_after = summary_gap(d.lab, c.features);
+  c.shrink = d.gap_before > 0 ? 1.0 - c.gap_after / d.gap_before : 0.0;
+  c.plausibility = 1.0;
+  for (const AppliedEffect& e : c.fitted) c.plausibility *= plausibility(*e.effect, e.params, scale);
+  c.score = c.plausibility * std::max(0.0, c.shrink);
+  c.parameters = parameter_count(c.fitted);
+  c.aic = aic_of(d.lab, c.gap_after, c.parameters);
+  c.implausible = !magnitudes_plausible(c.fitted, scale);
+}
+
+bool single_qualifies(const SummaryCandidate& c, const SummaryDiagnosis& d) {
+  return d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && !c.implausible;
+}
+
+// The one member of a fitted pair that is not at its neutral value, if the other one is: such a
+// pair is that effect alone, at a point its own search did not reach.
+const AppliedEffect* sole_active_member(const SummaryCandidate& pair) {
+  const AppliedEffect* active = nullptr;
+  int neutral = 0;
+  for (const AppliedEffect& a : pair.fitted) {
+    if (a.params[a.effect->magnitude] == a.effect->neutral)
+      ++neutral;
+    else
+      active = &a;
+  }
+  return neutral == 1 && pair.fitted.size() == 2 ? active : nullptr;
+}
+
 // A pair with a model-only effect from its single fits: the model-only parameters by the bounded
 // pattern search (at most `points` FE runs), a curve-mode partner refitted on every FE curve.
 std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryCandidate& a,
@@ -288,61 +302,6 @@ std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryC
 
 }  // namespace
 
-std::string summary_feature_names() {
-  std::string out;
-  for (const auto& n : known_features()) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
-std::vector<SummaryFeature> parse_lab_summary(const std::string& text, const std::string& field) {
-  std::vector<SummaryFeature> out;
-  std::stringstream s(text);
-  std::string item;
-  std::set<std::string> seen;
-  while (std::getline(s, item, ',')) {
-    if (item.empty()) continue;
-    const auto eq = item.find('=');
-    if (eq == std::string::npos)
-      throw InputError(field, "'" + item + "': expected name=mean:sd, e.g. peak_force_N=1510:196");
-    SummaryFeature f;
-    f.name = item.substr(0, eq);
-    if (std::find(known_features().begin(), known_features().end(), f.name) == known_features().end())
-      throw InputError(field, "unknown feature '" + f.name + "', expected one of: " + summary_feature_names());
-    if (!seen.insert(f.name).second) throw InputError(field, "feature '" + f.name + "' given twice");
-    const std::string rest = item.substr(eq + 1);
-    const auto colon = rest.find(':');
-    if (colon == std::string::npos)
-      throw InputError(field, f.name + ": expected mean:sd (the laboratory scatter sets the noise "
-                              "floor), found '" + rest + "'");
-    f.mean = number(rest.substr(0, colon), field, f.name + " mean");
-    f.sd = number(rest.substr(colon + 1), field, f.name + " sd");
-    if (!(f.sd > 0)) throw InputError(field, f.name + " sd: expected a positive number, found " + rest.substr(colon + 1));
-    out.push_back(f);
-  }
-  if (out.empty())
-    throw InputError(field, "expected at least one feature name=mean:sd, e.g. peak_force_N=1510:196");
-  return out;
-}
-
-double curve_feature(const ForceCurve& c, const std::string& name) {
-  const auto peak = std::max_element(c.f.begin(), c.f.end());
-  if (name == "peak_force_N") return *peak;
-  if (name == "residual_force_N") return c.f.back();
-  if (name == "peak_displacement_mm") return c.u[static_cast<std::size_t>(peak - c.f.begin())] * 1e3;
-  if (name == "onset_displacement_mm") {
-    // Where the force first reaches 4 % of the peak (the thesis punch: 1 kN of 25 kN), linearly
-    // interpolated between samples.
-    const double level = kOnsetFraction * *peak;
-    for (std::size_t i = 1; i < c.size(); ++i)
-      if (c.f[i] >= level) {
-        const double t = c.f[i] > c.f[i - 1] ? (level - c.f[i - 1]) / (c.f[i] - c.f[i - 1]) : 1.0;
-        return (c.u[i - 1] + std::clamp(t, 0.0, 1.0) * (c.u[i] - c.u[i - 1])) * 1e3;
-      }
-    return c.u.front() * 1e3;
-  }
-  throw std::invalid_argument("unknown summary feature " + name);
-}
-
 double summary_gap(const std::vector<SummaryFeature>& lab, const std::vector<double>& features) {
   double sum = 0.0;
   for (std::size_t i = 0; i < lab.size(); ++i) {
@@ -359,6 +318,11 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
   SummaryDiagnosis d;
   d.lab = lab;
   d.sim = oriented(sim_in, &d.compression);
+  const double reach_mm = *std::max_element(d.sim.u.begin(), d.sim.u.end()) * 1e3;
+  for (const SummaryFeature& f : lab)
+    if (const auto mm = force_at_displacement_mm(f.name); mm && *mm > reach_mm)
+      throw InputError("--lab-summary", f.name + ": the simulated curve reaches only " + std::to_string(reach_mm) +
+                                            " mm; give a displacement within its travel");
   d.sim_features = features_of(d.sim, lab);
   d.gap_before = summary_gap(lab, d.sim_features);
   const CurveScale scale = curve_scale(d.sim);
@@ -425,17 +389,9 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
       c.fitted = {{e, fit_curve_effect(d.sim, scale, *e, lab, rng)}};
       model = apply_effects(d.sim, c.fitted, scale);
     }
-    c.features = features_of(model, lab);
     c.curve = model;
-    c.gap_after = summary_gap(lab, c.features);
-    c.shrink = d.gap_before > 0 ? 1.0 - c.gap_after / d.gap_before : 0.0;
-    c.plausibility = plausibility(*e, c.fitted.front().params, scale);
-    c.score = c.plausibility * std::max(0.0, c.shrink);
-    c.parameters = parameter_count(c.fitted);
-    c.aic = aic_of(lab, c.gap_after, c.parameters);
-    c.implausible = !magnitudes_plausible(c.fitted, scale);
-    c.qualifies = d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 &&
-                  !c.implausible;
+    assess(c, d, scale);
+    c.qualifies = single_qualifies(c, d);
     d.ranking.push_back(c);
   }
   // Pairs with a model-only effect, when no single effect brings the features within the scatter.
@@ -461,19 +417,36 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
         std::optional<SummaryCandidate> pair = fit_pair(scale, a, b, lab, options.model, options.model_runs, rng);
         if (!pair) continue;
         SummaryCandidate c = *pair;
-        c.features = features_of(c.curve, lab);
-        c.gap_after = summary_gap(lab, c.features);
-        c.shrink = d.gap_before > 0 ? 1.0 - c.gap_after / d.gap_before : 0.0;
-        for (const AppliedEffect& e : c.fitted) c.plausibility *= plausibility(*e.effect, e.params, scale);
-        c.score = c.plausibility * std::max(0.0, c.shrink);
-        c.parameters = parameter_count(c.fitted);
-        c.aic = aic_of(lab, c.gap_after, c.parameters);
-        c.implausible = !magnitudes_plausible(c.fitted, scale);
-        c.qualifies = !c.implausible && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && c.aic < best_aic &&
-                      c.gap_after < kPairGapRatio * best_gap;
-        if (!(c.aic < best_aic && c.gap_after < kPairGapRatio * best_gap)) c.score *= 0.1;
+        assess(c, d, scale);
+        if (const AppliedEffect* alone = sole_active_member(c)) {
+          // Not a pair: the single effect's better point replaces its own search's answer.
+          const auto single = std::find_if(d.ranking.begin(), d.ranking.begin() + static_cast<std::ptrdiff_t>(singles),
+                                           [&](const SummaryCandidate& s) { return s.effect == alone->effect->name; });
+          if (single == d.ranking.begin() + static_cast<std::ptrdiff_t>(singles) || !(c.gap_after < single->gap_after))
+            continue;
+          SummaryCandidate better = *single;
+          better.fitted = {*alone};
+          better.curve = c.curve;
+          better.runs += c.runs;
+          if (alone->effect->needs_model) better.samples.push_back({alone->params, c.features});
+          assess(better, d, scale);
+          better.qualifies = single_qualifies(better, d);
+          *single = better;
+          continue;
+        }
         d.ranking.push_back(c);
       }
+    // A pair is judged against the best single, as the singles stand after every pair's search.
+    for (std::size_t i = 0; i < singles; ++i) {
+      best_gap = std::min(best_gap, d.ranking[i].gap_after);
+      best_aic = std::min(best_aic, d.ranking[i].aic);
+    }
+    for (std::size_t i = singles; i < d.ranking.size(); ++i) {
+      SummaryCandidate& c = d.ranking[i];
+      const bool beats_singles = c.aic < best_aic && c.gap_after < kPairGapRatio * best_gap;
+      c.qualifies = !c.implausible && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && beats_singles;
+      if (!beats_singles) c.score *= 0.1;
+    }
   }
   std::stable_sort(d.ranking.begin(), d.ranking.end(),
                    [](const SummaryCandidate& a, const SummaryCandidate& b) { return a.score > b.score; });
@@ -522,10 +495,12 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
   const auto peak = std::max_element(d.sim.f.begin(), d.sim.f.end()) - d.sim.f.begin();
   nlohmann::json lab = nlohmann::json::array();
   for (std::size_t i = 0; i < d.lab.size(); ++i) {
-    const bool at_peak = d.lab[i].name != "residual_force_N";
-    const double at = at_peak ? d.sim.u[static_cast<std::size_t>(peak)] : d.sim.u.back();
+    const auto force_at_mm = force_at_displacement_mm(d.lab[i].name);
+    const bool at_peak = d.lab[i].name != "residual_force_N" && !force_at_mm;
+    const double at = force_at_mm ? *force_at_mm * 1e-3 : at_peak ? d.sim.u[static_cast<std::size_t>(peak)] : d.sim.u.back();
     const double z = (d.sim_features[i] - d.lab[i].mean) / d.lab[i].sd;
-    where.push_back({{"region", at_peak ? "peak" : "post_peak"},
+    const std::string region = at_peak ? "peak" : force_at_mm && at < d.sim.u[static_cast<std::size_t>(peak)] ? "pre_peak" : "post_peak";
+    where.push_back({{"region", region},
                      {"from_mm", at * 1e3},
                      {"to_mm", at * 1e3},
                      {"share", total > 0 ? z2[i] / total : 1.0 / static_cast<double>(d.lab.size())},

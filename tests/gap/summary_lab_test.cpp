@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <mutex>
 #include <set>
 #include <thread>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/gap/model_search.hpp"
 #include "dtwire/gap/summary_lab.hpp"
 
 namespace dtwire::gap {
@@ -72,6 +74,89 @@ TEST(GapSummaryLab, CurveFeatures) {
   EXPECT_DOUBLE_EQ(curve_feature(c, "peak_force_N"), 1500.0);
   EXPECT_NEAR(curve_feature(c, "residual_force_N"), 600.0, 1e-9);
   EXPECT_NEAR(curve_feature(c, "peak_displacement_mm"), 0.2, 1e-12);
+}
+
+// The force at a given displacement: linear between samples (the stand-in rises 1500 N over
+// 0.2 mm, then falls by 900 N over 1.8 mm).
+TEST(GapSummaryLab, ForceAtADisplacement) {
+  const ForceCurve c = stand_in_column(1.0);
+  EXPECT_NEAR(curve_feature(c, "force_at_0.1mm_N"), 750.0, 1e-9);
+  EXPECT_NEAR(curve_feature(c, "force_at_1.1mm_N"), 1500.0 - 900.0 * 0.9 / 1.8, 1e-9);
+  EXPECT_NEAR(curve_feature(c, "force_at_2mm_N"), 600.0, 1e-9);
+  EXPECT_EQ(force_at_displacement_mm("force_at_420mm_N"), 420.0);
+  EXPECT_EQ(force_at_displacement_mm("force_at_0.5mm_N"), 0.5);
+  for (const char* bad : {"force_at_mm_N", "force_at_-5mm_N", "force_at_1e3mm_N", "force_at_0mm_N", "force_at_4.2.1mm_N",
+                          "force_at_ 4mm_N", "force_at_420mm_kN", "force_at_420m_N"})
+    EXPECT_FALSE(force_at_displacement_mm(bad).has_value()) << bad;
+  EXPECT_EQ(force_at_feature_name(420.0), "force_at_420mm_N");
+  EXPECT_EQ(force_at_feature_name(0.25), "force_at_0.25mm_N");
+  const auto f = parse_lab_summary("force_at_420mm_N=20000:1000,peak_force_N=25000:1250");
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(f[0].name, "force_at_420mm_N");
+  EXPECT_NE(error_of("force_at_-420mm_N=1:1").find("unknown feature 'force_at_-420mm_N'"), std::string::npos);
+}
+
+// A force at a displacement the simulation never reaches is refused by name, not read as its end.
+TEST(GapSummaryLab, ForceBeyondTheSimulatedTravelIsRefused) {
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection"};
+  try {
+    diagnose_summary(stand_in_column(1.0), {{"force_at_3mm_N", 500.0, 20.0}}, options);
+    FAIL() << "a force at 3 mm of a 2 mm curve was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("force_at_3mm_N: the simulated curve reaches only 2"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A grid parameter (three nodes per wire or two) is only ever evaluated at its grid values, the
+// continuous one beside it refined as before.
+TEST(GapModelSearch, GridParameterTakesOnlyGridValues) {
+  ParameterSpec slack{"slack", 0.0, 1.0, 0.0, 1.0, {}, {}};
+  ParameterSpec nodes{"nodes_per_wire", 2.0, 3.0, 2.0, 3.0, {2.0, 3.0}, {}};
+  std::vector<std::vector<double>> asked;
+  const PatternSearch s = pattern_search(
+      {slack, nodes}, {}, {{0.1, 2.4}},
+      [&](const std::vector<double>& x) {
+        asked.push_back(x);
+        return std::pow(x[0] - 0.63, 2) + (x[1] == 3.0 ? 0.0 : 1.0);
+      },
+      40);
+  ASSERT_FALSE(asked.empty());
+  for (const auto& x : asked) EXPECT_TRUE(x[1] == 2.0 || x[1] == 3.0) << x[1];
+  EXPECT_EQ(s.best[1], 3.0);
+  EXPECT_NEAR(s.best[0], 0.63, 0.02);
+}
+
+// A pair whose search leaves one member at its neutral value is that member's partner alone:
+// the single's answer is improved, no pair is named. The stand-in column's imperfection s = 3
+// with two runs of its own search (s = 0.5 and 4 only) and a grid effect (three nodes per wire
+// halve every force) beside it.
+TEST(GapSummaryLab, APairWithOneMemberAtItsNeutralValueIsTheSingleEffect) {
+  const ForceCurve truth = stand_in_column(3.0);
+  const double peak = curve_feature(truth, "peak_force_N");
+  const std::vector<SummaryFeature> lab = {{"peak_force_N", peak, 0.02 * peak}, {"residual_force_N", 600.0, 12.0}};
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection", "discretisation"};
+  std::atomic<int> off_grid{0};
+  options.model = [&](const std::vector<AppliedEffect>& effects) {
+    double s = 1.0, nodes = 2.0;
+    for (const AppliedEffect& a : effects) {
+      if (a.effect->name == "geometry_imperfection") s = a.params[0];
+      if (a.effect->name == "discretisation") nodes = a.params[0];
+    }
+    off_grid += nodes != 2.0 && nodes != 3.0;
+    ForceCurve c = stand_in_column(s);
+    if (nodes == 3.0)
+      for (double& f : c.f) f *= 0.5;
+    return c;
+  };
+  options.model_runs = 2;
+  const SummaryDiagnosis d = diagnose_summary(stand_in_column(1.0), lab, options);
+  EXPECT_EQ(off_grid, 0);
+  ASSERT_EQ(d.cause, "geometry_imperfection") << d.reason;
+  EXPECT_NEAR(d.ranking.front().fitted.front().params.front(), 3.0, 0.5);
+  for (const SummaryCandidate& c : d.ranking) EXPECT_EQ(c.effect.find('+'), std::string::npos) << c.effect;
 }
 
 TEST(GapSummaryLab, ImperfectionRecoveredThroughAStandInRunner) {

@@ -5,6 +5,7 @@
 // FE-level parameters, so that the --model mode plugs in through a ModelRunner; in --sim mode
 // they are listed as not tested.
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -42,6 +43,14 @@ struct ParameterSpec {
   }
   double to_scaled(double value) const { return (value - plausible_lower) / width(); }
   double from_scaled(double x) const { return std::clamp(plausible_lower + x * width(), lower, upper); }
+  // The grid value nearest to `value` (the value itself for a continuous parameter).
+  double snapped(double value) const {
+    if (grid.empty()) return value;
+    double best = grid.front();
+    for (double g : grid)
+      if (std::abs(g - value) < std::abs(best - value)) best = g;
+    return best;
+  }
 };
 
 struct EffectSpec {

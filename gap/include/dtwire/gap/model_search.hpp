@@ -3,7 +3,8 @@
 // run per model, so the number of points is capped. A compass (pattern) search (Torczon 1997;
 // Kolda, Lewis and Torczon 2003): from the best start, steps of a quarter of the plausible range
 // along each parameter, halved when no step improves, until the budget is spent or the steps
-// fall below 2 % of the range. Derivative-free, so it tolerates the threshold responses of
+// fall below 2 % of the range. A grid parameter (ParameterSpec::grid) only takes grid values: it
+// steps to the neighbouring one and is never refined. Derivative-free, so it tolerates the threshold responses of
 // buckling models.
 #include <functional>
 #include <vector>

@@ -5,6 +5,7 @@
 // and that scatter is the noise floor. Effects are fitted to the features; model-only effects
 // through the ModelRunner with a small, bounded 1-D search (every FE run costs seconds).
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,8 @@
 namespace dtwire::gap {
 
 struct SummaryFeature {
-  std::string name;  // peak_force_N, residual_force_N, peak_displacement_mm, onset_displacement_mm
+  // peak_force_N, residual_force_N, peak_displacement_mm, onset_displacement_mm or force_at_<D>mm_N
+  std::string name;
   double mean = 0.0, sd = 0.0;  // in the unit of the name
 };
 
@@ -28,8 +30,14 @@ std::string summary_feature_names();
 // The feature of an oriented curve (dominant force positive), in the unit of its name:
 // peak_force_N the largest force, residual_force_N the force at the end of the test,
 // peak_displacement_mm the displacement at the peak, onset_displacement_mm where the force first
-// reaches kOnsetFraction of the peak.
+// reaches kOnsetFraction of the peak, force_at_<D>mm_N the force where the displacement first
+// reaches D mm (linear between samples; the first force before the curve's start, the last
+// after its end: diagnose_summary refuses a simulation that does not reach D).
 double curve_feature(const ForceCurve& curve, const std::string& name);
+// D of a force_at_<D>mm_N name (D a positive plain decimal, e.g. force_at_420mm_N), else none.
+std::optional<double> force_at_displacement_mm(const std::string& name);
+// The force_at_<D>mm_N name of a displacement in mm (up to 10 significant digits).
+std::string force_at_feature_name(double displacement_mm);
 
 struct SummaryOptions {
   std::vector<std::string> effects;  // empty: all

@@ -1,0 +1,147 @@
+// Laboratory summary figures: their names, the `--lab-summary` text and the features of a curve.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <exception>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "dtwire/core/error.hpp"
+#include "dtwire/gap/summary_lab.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+const std::vector<std::string>& fixed_features() {
+  static const std::vector<std::string> names = {"peak_force_N", "residual_force_N",
+                                                 "peak_displacement_mm", "onset_displacement_mm"};
+  return names;
+}
+
+constexpr const char* kForceAtPrefix = "force_at_";
+constexpr const char* kForceAtSuffix = "mm_N";
+
+double number(const std::string& text, const std::string& field, const std::string& what) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v))
+    throw InputError(field, what + ": expected a number, found '" + text + "'");
+  return v;
+}
+
+bool known_feature(const std::string& name) {
+  return std::find(fixed_features().begin(), fixed_features().end(), name) != fixed_features().end() ||
+         force_at_displacement_mm(name).has_value();
+}
+
+}  // namespace
+
+std::optional<double> force_at_displacement_mm(const std::string& name) {
+  const std::string prefix = kForceAtPrefix, suffix = kForceAtSuffix;
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return std::nullopt;
+  const std::string middle = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  // Digits and one decimal point only: no sign, exponent or spaces in a column-style name.
+  if (middle.find_first_not_of("0123456789.") != std::string::npos || std::count(middle.begin(), middle.end(), '.') > 1)
+    return std::nullopt;
+  std::size_t used = 0;
+  double mm = 0.0;
+  try {
+    mm = std::stod(middle, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != middle.size() || !(mm > 0.0) || !std::isfinite(mm)) return std::nullopt;
+  return mm;
+}
+
+std::string force_at_feature_name(double displacement_mm) {
+  if (!(displacement_mm > 0.0) || !std::isfinite(displacement_mm))
+    throw std::invalid_argument("force_at_feature_name: the displacement must be positive");
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", displacement_mm);
+  const std::string name = std::string(kForceAtPrefix) + text + kForceAtSuffix;
+  if (!force_at_displacement_mm(name))
+    throw std::invalid_argument("force_at_feature_name: " + std::string(text) + " mm has no plain decimal form");
+  return name;
+}
+
+std::string summary_feature_names() {
+  std::string out;
+  for (const auto& n : fixed_features()) out += (out.empty() ? "" : ", ") + n;
+  return out + ", force_at_<D>mm_N (the force at D mm, e.g. force_at_420mm_N)";
+}
+
+std::vector<SummaryFeature> parse_lab_summary(const std::string& text, const std::string& field) {
+  std::vector<SummaryFeature> out;
+  std::stringstream s(text);
+  std::string item;
+  std::set<std::string> seen;
+  while (std::getline(s, item, ',')) {
+    if (item.empty()) continue;
+    const auto eq = item.find('=');
+    if (eq == std::string::npos)
+      throw InputError(field, "'" + item + "': expected name=mean:sd, e.g. peak_force_N=1510:196");
+    SummaryFeature f;
+    f.name = item.substr(0, eq);
+    if (!known_feature(f.name))
+      throw InputError(field, "unknown feature '" + f.name + "', expected one of: " + summary_feature_names());
+    if (!seen.insert(f.name).second) throw InputError(field, "feature '" + f.name + "' given twice");
+    const std::string rest = item.substr(eq + 1);
+    const auto colon = rest.find(':');
+    if (colon == std::string::npos)
+      throw InputError(field, f.name + ": expected mean:sd (the laboratory scatter sets the noise "
+                              "floor), found '" + rest + "'");
+    f.mean = number(rest.substr(0, colon), field, f.name + " mean");
+    f.sd = number(rest.substr(colon + 1), field, f.name + " sd");
+    if (!(f.sd > 0)) throw InputError(field, f.name + " sd: expected a positive number, found " + rest.substr(colon + 1));
+    out.push_back(f);
+  }
+  if (out.empty())
+    throw InputError(field, "expected at least one feature name=mean:sd, e.g. peak_force_N=1510:196");
+  return out;
+}
+
+namespace {
+
+// The force where the displacement first reaches displacement_m (the loading branch of a cycle).
+double force_at(const ForceCurve& c, double displacement_m) {
+  if (displacement_m <= c.u.front()) return c.f.front();
+  for (std::size_t i = 1; i < c.size(); ++i)
+    if (c.u[i] >= displacement_m) {
+      const double t = c.u[i] > c.u[i - 1] ? (displacement_m - c.u[i - 1]) / (c.u[i] - c.u[i - 1]) : 1.0;
+      return c.f[i - 1] + std::clamp(t, 0.0, 1.0) * (c.f[i] - c.f[i - 1]);
+    }
+  return c.f.back();
+}
+
+}  // namespace
+
+double curve_feature(const ForceCurve& c, const std::string& name) {
+  const auto peak = std::max_element(c.f.begin(), c.f.end());
+  if (name == "peak_force_N") return *peak;
+  if (name == "residual_force_N") return c.f.back();
+  if (name == "peak_displacement_mm") return c.u[static_cast<std::size_t>(peak - c.f.begin())] * 1e3;
+  if (name == "onset_displacement_mm") {
+    // Where the force first reaches 4 % of the peak (the thesis punch: 1 kN of 25 kN), linearly
+    // interpolated between samples.
+    const double level = kOnsetFraction * *peak;
+    for (std::size_t i = 1; i < c.size(); ++i)
+      if (c.f[i] >= level) {
+        const double t = c.f[i] > c.f[i - 1] ? (level - c.f[i - 1]) / (c.f[i] - c.f[i - 1]) : 1.0;
+        return (c.u[i - 1] + std::clamp(t, 0.0, 1.0) * (c.u[i] - c.u[i - 1])) * 1e3;
+      }
+    return c.u.front() * 1e3;
+  }
+  if (const auto mm = force_at_displacement_mm(name)) return force_at(c, *mm * 1e-3);
+  throw std::invalid_argument("unknown summary feature " + name);
+}
+
+}  // namespace dtwire::gap
