@@ -95,6 +95,7 @@ case_ "--restart: Value -5 not in range" run "$prm" --restart -5 $out
 case_ "Value -1 not in range 1 to 1024" fit "$fit" --threads -1 -o "$work/fit"
 case_ "Value 0 not in range 1 to 1024" fit "$fit" --threads 0 -o "$work/fit"
 case_ "--trials: Value -1 not in range" gap selfcheck --trials -1
+case_ "--force-at-fraction: Value 1.5 not in range" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction 1.5
 case_ "a mesh-test effect: it acts on a DEM panel model" gap features --model "$src/experiments/dt/dt_tension.prm" --effects mesh_distortion --json "$work/features.json"
 case_ "--steps" export --params "$src/experiments/data/macroelement_thesis_params.json" --steps 0 --out "$work/export"
 case_ "no_such.prm" run no_such.prm $out
@@ -226,7 +227,11 @@ fi
 # says how to resume.
 mkdir -p interrupted && touch interrupted/curve.csv interrupted/results.h5
 "$dtwire" run "$prm" -o interrupted -q & pid=$!
-sleep 3; kill -INT $pid; wait $pid
+# The interruption is meant for a running solve: wait for the run's first log line (its SIGINT
+# handler is set right after it; a background job of a script starts with SIGINT ignored, so a
+# signal before that is lost on a loaded machine), at most 120 s.
+for _ in $(seq 600); do grep -q "^dtwire " interrupted/run.log 2> /dev/null && break; sleep 0.2; done
+sleep 0.5; kill -INT $pid; wait $pid
 total=$((total + 1))
 if [ ! -e interrupted/curve.csv ] && [ ! -e interrupted/results.h5 ] && grep -q "interrupted (SIGINT); resume with: dtwire run" interrupted/run.log; then
   pass=$((pass + 1))
@@ -257,5 +262,10 @@ if "$dtwire" gap --lab shuffled.csv --sim sim.csv --mode tension --json gap.json
 else
   echo "FAIL: shuffled laboratory rows not flagged:"; cat gap.err | head -5
 fi
+# Summary figures: a force at a negative displacement, and one beyond the simulated travel (30 mm).
+case_ "unknown feature 'force_at_-420mm_N'" gap --lab-summary force_at_-420mm_N=1:1 --sim sim.csv --mode tension
+case_ "force_at_45mm_N: the simulated curve reaches only 30" gap --lab-summary force_at_45mm_N=2000:100 --sim sim.csv --mode tension --json beyond.json
+total=$((total + 1))
+if [ ! -e beyond.json ]; then pass=$((pass + 1)); else echo "FAIL: beyond.json written by a refused diagnosis"; fi
 echo "hostile inputs: $pass of $total cases refused as the input contract says"
 [ $pass -eq $total ]
