@@ -116,9 +116,11 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
     curves[v] = c;
     ++spent;
   };
+  if (spec.grid.empty()) {
+    run(spec.plausible_lower);
+    run(spec.plausible_upper);
+  }
   for (double v : spec.grid) run(v);
-  run(spec.snapped(spec.plausible_lower));
-  run(spec.snapped(spec.plausible_upper));
   while (spec.grid.empty() && static_cast<std::size_t>(spent) < runs) {
     // Minimum of the interpolated gap on a fine scan of the sampled interval.
     const double lo = sampled.begin()->first, hi = sampled.rbegin()->first;
