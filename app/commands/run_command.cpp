@@ -7,6 +7,7 @@
 #include "../plotting.hpp"
 #include "../commands.hpp"
 #ifdef DTWIRE_HAVE_FEM
+#include "dtwire/core/resources.hpp"
 #include "dtwire/fem/run.hpp"
 #endif
 
@@ -27,6 +28,7 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
     std::string plot;
     std::string plot_x = "displacement";
     std::string plot_y = "force";
+    std::string max_memory;
   };
   auto options = std::make_shared<Options>();
   CLI::App* command = root.add_subcommand("run", "Run a virtual FE experiment from a .prm file (MPI-capable)");
@@ -39,6 +41,8 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--restart", options->restart_step,
                       "Resume from the checkpoint of this step in the output directory (Checkpoint interval)")
       ->check(CLI::Range(0, 1000000000));
+  command->add_option("--max-memory", options->max_memory,
+                      "Refuse a run whose memory estimate exceeds SIZE (4G, 512M; default: the available memory)");
   command->add_option("--plot", options->plot,
                       "Also draw a curve of the run to this PNG (python3-matplotlib)");
   command->add_option("--plot-x", options->plot_x, "Quantity on the plot's x axis (a curve.csv column without its unit)")
@@ -56,6 +60,7 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
     run.command_line += " --out " + run.output_directory.string();
     run.echo = !options->quiet;
     run.restart_step = options->restart_step;
+    if (!options->max_memory.empty()) run.max_memory = parse_byte_size(options->max_memory, "--max-memory");
     const fem::RunSummary s = fem::run_experiment_with_mpi(run);
     if (s.root)
       std::cout << "run: " << s.steps << " steps, " << s.dofs << " dofs on " << s.ranks << " rank(s), peak force "

@@ -72,8 +72,8 @@ std::string format_bytes(double bytes) {
 }
 
 void check_memory(double estimate, const std::optional<std::uint64_t>& max_memory, const std::string& source,
-                  const std::string& what) {
-  const std::optional<std::uint64_t> limit = max_memory ? max_memory : available_memory();
+                  const std::string& what, const std::optional<std::uint64_t>& available) {
+  const std::optional<std::uint64_t> limit = max_memory ? max_memory : available;
   if (!limit || estimate <= static_cast<double>(*limit)) return;
   throw InputError(source, "needs about " + format_bytes(estimate) + " of memory (" + what + "), above " +
                                (max_memory ? "--max-memory " + format_bytes(static_cast<double>(*limit))
@@ -82,16 +82,30 @@ void check_memory(double estimate, const std::optional<std::uint64_t>& max_memor
                                "; nothing was run (a larger limit: --max-memory SIZE)");
 }
 
-void check_disk(double estimate, const std::filesystem::path& folder, const std::string& source, const std::string& what) {
+std::filesystem::path nearest_existing_folder(const std::filesystem::path& folder) {
   std::filesystem::path existing = std::filesystem::absolute(folder);
   while (!std::filesystem::exists(existing) && existing.has_parent_path() && existing != existing.parent_path())
     existing = existing.parent_path();
+  return existing;
+}
+
+std::optional<std::uint64_t> free_disk_space(const std::filesystem::path& folder) {
   std::error_code error;
-  const std::filesystem::space_info space = std::filesystem::space(existing, error);
-  if (error || estimate <= static_cast<double>(space.available)) return;
+  const std::filesystem::space_info space = std::filesystem::space(nearest_existing_folder(folder), error);
+  if (error) return std::nullopt;
+  return space.available;
+}
+
+void check_disk(double estimate, const std::filesystem::path& folder, const std::string& source, const std::string& what,
+                const std::optional<std::uint64_t>& free) {
+  if (!free || estimate <= static_cast<double>(*free)) return;
   throw InputError(source, "would write about " + format_bytes(estimate) + " (" + what + "), above the " +
-                               format_bytes(static_cast<double>(space.available)) + " free on the file system of " +
-                               existing.string() + "; nothing was written");
+                               format_bytes(static_cast<double>(*free)) + " free on the file system of " +
+                               nearest_existing_folder(folder).string() + "; nothing was written");
+}
+
+void check_disk(double estimate, const std::filesystem::path& folder, const std::string& source, const std::string& what) {
+  check_disk(estimate, folder, source, what, free_disk_space(folder));
 }
 
 }  // namespace dtwire

@@ -23,11 +23,13 @@
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "dtwire/core/resources.hpp"
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/version.hpp"
 #include "contact/contact_curve.hpp"  // contact (issue 5)
 #include "link_kinematics.hpp"
 #include "run_checks.hpp"
+#include "run_resources.hpp"
 #include "solver.hpp"
 
 namespace dtwire::fem {
@@ -300,6 +302,22 @@ void write_summary_json(const std::filesystem::path& file, const RunGuard& guard
   write_file_atomically(file, [&](std::ostream& os) { os << summary.dump(2) << "\n"; });
 }
 
+// Memory and disk before the mesh is built or a file written (issue 37): every rank estimates
+// alike, from the figures the first rank read, so that all refuse or none.
+void check_resources_before_the_run(const Parameters& parameters, const RunOptions& options) {
+  const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  std::array<std::uint64_t, 4> figures{};  // has available, available, has free disk, free disk
+  if (root) {
+    const auto available = available_memory();
+    const auto free_disk = free_disk_space(options.output_directory);
+    figures = {available.has_value(), available.value_or(0), free_disk.has_value(), free_disk.value_or(0)};
+  }
+  MPI_Bcast(figures.data(), static_cast<int>(figures.size()), MPI_UINT64_T, 0, MPI_COMM_WORLD);
+  const auto figure = [&](std::size_t i) { return figures[i] ? std::optional<std::uint64_t>(figures[i + 1]) : std::nullopt; };
+  check_run_resources(parameters, dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD), options.max_memory, figure(0),
+                      figure(2), options.parameter_file.string(), options.output_directory);
+}
+
 // A check stopped the run inside the solver's step callback.
 struct CheckStop {};
 
@@ -313,6 +331,7 @@ RunSummary run_experiment(const RunOptions& options) {
   Parameters parameters = read_parameters(options.parameter_file, options.settings);
   const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   const auto& out = options.output_directory;
+  check_resources_before_the_run(parameters, options);
   if (root) {
     std::filesystem::create_directories(out);
     // Results of an earlier run in this folder would sit beside this run's log: remove them.

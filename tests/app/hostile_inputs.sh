@@ -169,6 +169,15 @@ case_ "(--no-frames writes none)" dem run "$punch" --set mesh.width_m=20 --set m
 case_ "mesh: needs about " mesh sw --length 1e7 --level 3 -o big.msh  # 10 km typed for 10 mm
 case_ "--steps: needs about " dem driver --law thesis --steps 100000000 --out driver_big
 [ -e big.msh ] || [ -e driver_big ] && { echo "FAIL: a refused mesh or driver left its output"; total=$((total + 1)); }
+# The FE run estimates its memory from the .prm (cells of the generated mesh, or counted in the
+# mesh file) before building anything: ten million axial cells are a typo, refused in a moment.
+start=$(date +%s)
+case_ "needs about " run "$prm" --set 'Geometry/Axial cells=10000000' -o fe_big -q
+# (20 s: MPI and PETSc start first, slow on a loaded machine; building the mesh would take hours)
+[ $(( $(date +%s) - start )) -le 20 ] || { echo "FAIL: the 10^7-cell FE refusal took more than 20 s"; total=$((total + 1)); }
+case_ "above --max-memory 10 MB; nothing was run" run "$prm" --max-memory 10M -o fe_big -q
+case_ "--max-memory: expected a positive size such as 4G" run "$prm" --max-memory lots -o fe_big -q
+[ -e fe_big ] && { echo "FAIL: a refused FE run left fe_big"; total=$((total + 1)); }
 # A run whose physics check fails: exit 1 naming the check, the time and the bound; the partial
 # curve stays and summary.json says "failed". A small, short punch with a bound no run can meet.
 small=(--set mesh.width_m=0.6 --set mesh.height_m=0.6 --set dynamics.settle_s=0.5 --set tool.travel_m=0.06

@@ -15,11 +15,18 @@ std::optional<std::uint64_t> available_memory();
 std::string format_bytes(double bytes);  // "1.2 GB"
 
 // Throws InputError(source, ...) when `estimate` [bytes] exceeds `max_memory` if given, else the
-// available memory; `what` says what the estimate counts ("3268 nodes, 4784 links, ...").
+// `available` memory; `what` says what the estimate counts ("3268 nodes, 4784 links, ...").
+// (An MPI run passes the figure its first rank read, so that every rank decides alike.)
 void check_memory(double estimate, const std::optional<std::uint64_t>& max_memory, const std::string& source,
-                  const std::string& what);
+                  const std::string& what, const std::optional<std::uint64_t>& available = available_memory());
+// The nearest existing folder of `folder` (itself or a parent) and the bytes free on its file
+// system; none where it cannot be read.
+std::filesystem::path nearest_existing_folder(const std::filesystem::path& folder);
+std::optional<std::uint64_t> free_disk_space(const std::filesystem::path& folder);
 // Throws InputError(source, ...) when `estimate` [bytes] exceeds the free space of the file system
-// that holds `folder` (or its nearest existing parent).
+// that holds `folder` (or its nearest existing parent; `free` as read there).
+void check_disk(double estimate, const std::filesystem::path& folder, const std::string& source, const std::string& what,
+                const std::optional<std::uint64_t>& free);
 void check_disk(double estimate, const std::filesystem::path& folder, const std::string& source, const std::string& what);
 
 // The 1-minute load average of /proc/loadavg; none where it cannot be read.

@@ -2,7 +2,9 @@
 // `dtwire run FILE.prm`: a virtual single-wire FE experiment (finite-strain J2 plasticity,
 // deal.II). This header is deal.II-free so that the command line compiles fast.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,8 @@ struct RunOptions {
   std::string command_line;                // recorded in the provenance
   bool echo = true;                        // progress on stdout (rank 0)
   int restart_step = -1;                   // >= 0: resume from output_directory/checkpoints/step_N
+  // The memory a run may take (bytes; none: the available memory): larger estimates are refused.
+  std::optional<std::uint64_t> max_memory;
 };
 
 // Where an as-made run leaves the state its springback reached, for later runs' As made/State

@@ -1,0 +1,146 @@
+#include "run_resources.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "dtwire/core/error.hpp"
+#include "dtwire/core/region_ids.hpp"
+#include "dtwire/core/resources.hpp"
+
+namespace dtwire::fem {
+namespace {
+
+constexpr double kKiB = 1024.0;
+constexpr double kMiB = 1024.0 * kKiB;
+// deal.II, PETSc and MPI of one rank before the mesh: 190 MiB measured, with a margin.
+constexpr double kBaseBytesPerRank = 200.0 * kMiB;
+// Generated single wire, Q1: 14 KiB + 2.2 KiB sqrt(cells of a section) a cell fits the measured
+// 21.2 KiB (12 cells a section) and 28.7 KiB (48): the LU's fill grows with the section.
+double generated_bytes_per_cell(std::uint64_t section_cells) {
+  return (14.0 + 2.2 * std::sqrt(static_cast<double>(section_cells))) * kKiB;
+}
+// Mesh files, Q1 (their section is not known before the mesh is built): the double twist took
+// 38.6 KiB a cell at level 0 (1488 cells), 58.8 at level 1 (11 712) and 62.1 at level 2 (78 720):
+// the fill levels off, 64 KiB covers all three; single-wire mesh files take it too, erring high.
+constexpr double kMeshFileBytesPerCell = 64.0 * kKiB;
+// Q2 against Q1, same mesh: 330 against 21 KiB a cell (3600 cells).
+constexpr double kQuadraticFactor = 16.0;
+// A compressed VTU frame: 76 (SW) to 97 (DT) bytes a Q1 cell measured.
+constexpr double kFrameBytesPerCell = 128.0;
+
+const std::set<int>& volume_element_types() {
+  // gmsh element types of 3D cells: tetrahedra, hexahedra, prisms, pyramids of order 1 and 2.
+  static const std::set<int> types{4, 5, 6, 7, 11, 12, 13, 14, 17, 18, 19};
+  return types;
+}
+
+std::string msh_error(const std::string& expected, const std::string& found) {
+  return "cannot read the mesh: expected " + expected + (found.empty() ? "" : ", found '" + found.substr(0, 60) + "'");
+}
+
+}  // namespace
+
+MeshSize generated_mesh_size(const GeometryParameters& g) {
+  const std::uint64_t disc = g.quarter ? 3 : 5;  // quarter_hyper_ball / hyper_ball cells
+  MeshSize size;
+  size.section_cells = disc << (2 * g.radial_refinements);
+  size.cells = size.section_cells * g.axial_cells;
+  return size;
+}
+
+MeshSize msh_file_size(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::ifstream in(file);
+  if (!in) throw InputError(name, "cannot read the mesh: the file does not open");
+  std::string line;
+  int line_number = 0;
+  const auto next = [&](const std::string& expected) {
+    if (!std::getline(in, line)) throw InputError(name, line_number, 0, msh_error(expected, "the end of the file"));
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+  };
+  double version = 0.0;
+  MeshSize size;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line == "$MeshFormat") {
+      next("the format line 'version file-type data-size'");
+      std::istringstream format(line);
+      int file_type = -1;
+      if (!(format >> version >> file_type) || (version < 2.0 || version >= 5.0))
+        throw InputError(name, line_number, 0, msh_error("a gmsh format 2.x or 4.x", line));
+      if (file_type != 0)
+        throw InputError(name, line_number, 0, "cannot read the mesh: it is a binary .msh, deal.II reads ASCII gmsh files only (gmsh -bin 0)");
+    } else if (line == "$Elements" || line == "$ELM") {
+      const bool v4 = version >= 4.0;
+      next(v4 ? "'numEntityBlocks numElements minTag maxTag'" : "the number of elements");
+      std::istringstream header(line);
+      std::uint64_t blocks = 0;
+      if (!(header >> blocks)) throw InputError(name, line_number, 0, msh_error("a count", line));
+      if (v4) {
+        size.two_wires = true;  // physical ids live in $Entities: assume the costlier kind
+        for (std::uint64_t b = 0; b < blocks; ++b) {
+          next("an element block 'entityDim entityTag elementType numElementsInBlock'");
+          std::istringstream block(line);
+          int dim = 0, tag = 0, type = 0;
+          std::uint64_t count = 0;
+          if (!(block >> dim >> tag >> type >> count))
+            throw InputError(name, line_number, 0, msh_error("'entityDim entityTag elementType numElementsInBlock'", line));
+          if (dim == 3) size.cells += count;
+          for (std::uint64_t e = 0; e < count; ++e) next("an element line");
+        }
+      } else {
+        for (std::uint64_t e = 0; e < blocks; ++e) {
+          next("an element line 'id type ntags tags... nodes...'");
+          std::istringstream element(line);
+          long id = 0;
+          int type = 0, tags = 0, physical = 0;
+          if (!(element >> id >> type >> tags)) throw InputError(name, line_number, 0, msh_error("'id type ntags ...'", line));
+          if (!volume_element_types().count(type)) continue;
+          ++size.cells;
+          if (tags > 0 && element >> physical && physical >= regions::kFirstWireBMaterial) size.two_wires = true;
+        }
+      }
+      return size;
+    }
+  }
+  throw InputError(name, "cannot read the mesh: no $Elements section (expected a gmsh .msh file with its cells)");
+}
+
+double run_memory_estimate(const MeshSize& mesh, unsigned degree, unsigned ranks) {
+  const double per_cell =
+      mesh.section_cells > 0 ? generated_bytes_per_cell(mesh.section_cells) : kMeshFileBytesPerCell;
+  return kBaseBytesPerRank * std::max(1u, ranks) +
+         static_cast<double>(mesh.cells) * per_cell * (degree >= 2 ? kQuadraticFactor : 1.0);
+}
+
+double field_output_estimate(const MeshSize& mesh, unsigned degree, const Parameters& p) {
+  if (!p.output.fields) return 0.0;
+  double end = 0.0;
+  for (const auto* path : {&p.load.path, &p.load.force_path, &p.load.rotation_path})
+    if (!path->empty()) end = std::max(end, path->back().first);
+  const double fewest_steps = p.stepping.maximum_step > 0.0 ? std::floor(end / p.stepping.maximum_step) : 0.0;
+  const double frames = 1.0 + (p.output.field_interval > 0 ? std::floor(fewest_steps / p.output.field_interval) : 0.0);
+  return frames * static_cast<double>(mesh.cells) * kFrameBytesPerCell * std::pow(static_cast<double>(degree), 3);
+}
+
+void check_run_resources(const Parameters& p, unsigned ranks, const std::optional<std::uint64_t>& max_memory,
+                         const std::optional<std::uint64_t>& available, const std::optional<std::uint64_t>& free_disk,
+                         const std::string& source, const std::filesystem::path& out) {
+  const MeshSize mesh = p.geometry.mesh_file.empty() ? generated_mesh_size(p.geometry) : msh_file_size(p.geometry.mesh_file);
+  const unsigned degree = p.formulation.degree;
+  std::ostringstream what;
+  what << mesh.cells << (p.geometry.mesh_file.empty() ? " cells" : " cells of " + p.geometry.mesh_file.string())
+       << ", Q" << degree << ", " << std::max(1u, ranks) << " rank(s); measured figures: docs/fem.md, Memory and disk";
+  check_memory(run_memory_estimate(mesh, degree, ranks), max_memory, source, what.str(), available);
+  std::ostringstream frames;
+  frames << "VTU frames of " << mesh.cells << " cells every " << p.output.field_interval
+         << " steps at the least; Output/Fields = false writes none";
+  check_disk(field_output_estimate(mesh, degree, p), out, source, frames.str(), free_disk);
+}
+
+}  // namespace dtwire::fem
