@@ -2,10 +2,12 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <regex>
 #include <set>
 #include <sstream>
 
+#include "dtwire/core/closest_name.hpp"
 #include "dtwire/core/error.hpp"
 #include "parameters/parameters_reading.hpp"
 #include "prm_check.hpp"
@@ -45,6 +47,16 @@ void apply_setting(ParameterHandler& prm, const std::string& setting) {
   const bool file_entry =
       path == "Mesh file" || path == "Axis file" || path == "State file" || path == "Twisted pair state";
   if (file_entry && !value.empty()) value = std::filesystem::absolute(value).string();
+  // A misspelled name gets the closest declared one, as in the file (deal.II would only say
+  // that the entry is not declared).
+  std::string full_path;
+  for (const auto& s : sections) full_path += s + "/";
+  full_path += path;
+  const PrmDocument declared_document = declared_parameters(prm);
+  std::vector<std::string> declared;
+  for (const auto& entry : declared_document.entries()) declared.push_back(entry.path);
+  if (std::find(declared.begin(), declared.end(), full_path) == declared.end())
+    throw InputError("--set", "'" + setting + "': unknown entry '" + full_path + "'" + did_you_mean(full_path, declared));
   for (const auto& s : sections) prm.enter_subsection(s);
   try {
     prm.set(path, value);

@@ -89,7 +89,7 @@ case_ "empty.msh is empty or is not one" run mesh_empty.prm $out
 case_ "broken.msh: cannot read the mesh" run mesh_broken.prm $out
 case_ "--set: Material/Poisson ratio: 'Poisson ratio': expected a ratio" run "$prm" --set 'Material/Poisson ratio=0.5' $out
 case_ "--set: Newton/Relative tolerance" run "$prm" --set 'Newton/Relative tolerance=0' $out
-case_ "--set: 'Geometry/Diamter (mm)=3'" run "$prm" --set 'Geometry/Diamter (mm)=3' $out
+case_ "--set: 'Geometry/Diamter (mm)=3': unknown entry 'Geometry/Diamter (mm)' (did you mean 'Geometry/Diameter (mm)'?)" run "$prm" --set 'Geometry/Diamter (mm)=3' $out
 case_ "--restart: Value -5 not in range" run "$prm" --restart -5 $out
 # --threads is an alias of --jobs; CLI11 names the option by its first long name.
 case_ "Value -1 not in range 1 to 1024" fit "$fit" --threads -1 -o "$work/fit"
@@ -161,7 +161,8 @@ case_ "mesh.nodes_per_wire: the YADE export needs 2" dem run "$punch" --set mesh
 # is built; --max-memory lowers the limit; VTU frames beyond the free disk are refused.
 start=$(date +%s)
 case_ "punch_macro.toml: needs about " dem run "$punch" --set mesh.width_m=2000 --set mesh.height_m=2000 -o dem_out -q
-[ $(( $(date +%s) - start )) -le 5 ] || { echo "FAIL: the 2000 x 2000 m refusal took more than 5 s"; total=$((total + 1)); }
+# (20 s on a loaded machine; building that panel would take its memory, not seconds)
+[ $(( $(date +%s) - start )) -le 20 ] || { echo "FAIL: the 2000 x 2000 m refusal took more than 20 s"; total=$((total + 1)); }
 case_ "above --max-memory 1 MB; nothing was run" dem run "$punch" --max-memory 1M -o dem_out -q
 case_ "--max-memory: expected a positive size such as 4G" dem run "$punch" --max-memory lots -o dem_out -q
 case_ "(--no-frames writes none)" dem run "$punch" --set mesh.width_m=20 --set mesh.height_m=20 --set output.frames=100000 -o dem_out -q
