@@ -18,6 +18,9 @@
 #include <iostream>
 #include <iterator>
 #include <sstream>
+#include <string>
+
+#include <unistd.h>
 
 #include "contact/bilinear_face.hpp"
 #include "parameters.hpp"
@@ -81,6 +84,14 @@ TEST(BilinearFace, ProjectsOntoAWarpedFaceAndFlagsPointsOutside) {
   EXPECT_NEAR(N[0] + N[1] + N[2] + N[3], 1.0, 1e-15);
 }
 
+// ctest runs each test in its own process, two at a time: every process writes the block
+// meshes into a folder of its own, or one process's set-up would wipe the meshes another is
+// reading. Only the first MPI rank writes or reads them.
+std::filesystem::path block_mesh_directory() {
+  return std::filesystem::temp_directory_path() /
+         ("dtwire_wire_contact_test_meshes_" + std::to_string(static_cast<long>(::getpid())));
+}
+
 // Two elastic 10 x 10 x 5 mm blocks, A below (4 x 4 x 2 cells; ids: bottom 4, top 3) and B
 // above (b_cells x b_cells x 2; ids: bottom 13, top 5), material ids 1 and 11 as in a DT mesh,
 // `gap` apart, written as a gmsh file; `monolithic`: one body (shared vertices, no contact).
@@ -124,8 +135,7 @@ std::vector<StepRecord> run_blocks(const std::string& name, const std::string& m
   const auto prm = dir / "blocks.prm";
   const bool two_blocks = mesh == "blocks.msh";
   if (root) {
-    std::filesystem::copy_file(std::filesystem::temp_directory_path() / "dtwire_wire_contact_test_meshes" / mesh,
-                               dir / mesh);
+    std::filesystem::copy_file(block_mesh_directory() / mesh, dir / mesh);
     std::ofstream(prm) << "subsection Geometry\n  set Mesh file = " << mesh
                        << "\n  set Cross section = full\n  set Diameter (mm) = 10\nend\n"
                           "subsection Material\n  set Young modulus (MPa) = 200000\n  set Poisson ratio = 0.3\n"
@@ -152,16 +162,27 @@ std::vector<StepRecord> run_blocks(const std::string& name, const std::string& m
 class WireContactBlocks : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const auto dir = case_directory("meshes");
+    const bool root = dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+    const auto dir = block_mesh_directory();
+    if (root) {
+      std::filesystem::remove_all(dir);
+      std::filesystem::create_directories(dir);
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
     write_blocks(dir, 3, 1e-6, false);  // mismatched faces, 1 um apart
-    const auto matched = case_directory("meshes_matched");
+    const auto matched = dir / "matched";
+    if (root) std::filesystem::create_directories(matched);
+    MPI_Barrier(MPI_COMM_WORLD);
     write_blocks(matched, 4, 0.0, false);
     write_blocks(matched, 4, 0.0, true);
-    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0) {
+    if (root) {
       std::filesystem::copy_file(matched / "blocks.msh", dir / "blocks_matched.msh");
       std::filesystem::copy_file(matched / "block.msh", dir / "block.msh");
     }
     MPI_Barrier(MPI_COMM_WORLD);
+  }
+  static void TearDownTestSuite() {
+    if (dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0) std::filesystem::remove_all(block_mesh_directory());
   }
 };
 
