@@ -2,13 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <set>
 #include <sstream>
 
-#include "dtwire/core/error.hpp"
-#include "dtwire/core/region_ids.hpp"
 #include "dtwire/core/resources.hpp"
+#include "dtwire/meshes/msh_reader.hpp"
 
 namespace dtwire::fem {
 namespace {
@@ -31,16 +28,6 @@ constexpr double kQuadraticFactor = 16.0;
 // A compressed VTU frame: 76 (SW) to 97 (DT) bytes a Q1 cell measured.
 constexpr double kFrameBytesPerCell = 128.0;
 
-const std::set<int>& volume_element_types() {
-  // gmsh element types of 3D cells: tetrahedra, hexahedra, prisms, pyramids of order 1 and 2.
-  static const std::set<int> types{4, 5, 6, 7, 11, 12, 13, 14, 17, 18, 19};
-  return types;
-}
-
-std::string msh_error(const std::string& expected, const std::string& found) {
-  return "cannot read the mesh: expected " + expected + (found.empty() ? "" : ", found '" + found.substr(0, 60) + "'");
-}
-
 }  // namespace
 
 MeshSize generated_mesh_size(const GeometryParameters& g) {
@@ -52,63 +39,9 @@ MeshSize generated_mesh_size(const GeometryParameters& g) {
 }
 
 MeshSize msh_file_size(const std::filesystem::path& file) {
-  const std::string name = file.string();
-  std::ifstream in(file);
-  if (!in) throw InputError(name, "cannot read the mesh: the file does not open");
-  std::string line;
-  int line_number = 0;
-  const auto next = [&](const std::string& expected) {
-    if (!std::getline(in, line)) throw InputError(name, line_number, 0, msh_error(expected, "the end of the file"));
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-  };
-  double version = 0.0;
   MeshSize size;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line == "$MeshFormat") {
-      next("the format line 'version file-type data-size'");
-      std::istringstream format(line);
-      int file_type = -1;
-      if (!(format >> version >> file_type) || (version < 2.0 || version >= 5.0))
-        throw InputError(name, line_number, 0, msh_error("a gmsh format 2.x or 4.x", line));
-      if (file_type != 0)
-        throw InputError(name, line_number, 0, "cannot read the mesh: it is a binary .msh, deal.II reads ASCII gmsh files only (gmsh -bin 0)");
-    } else if (line == "$Elements" || line == "$ELM") {
-      const bool v4 = version >= 4.0;
-      next(v4 ? "'numEntityBlocks numElements minTag maxTag'" : "the number of elements");
-      std::istringstream header(line);
-      std::uint64_t blocks = 0;
-      if (!(header >> blocks)) throw InputError(name, line_number, 0, msh_error("a count", line));
-      if (v4) {
-        size.two_wires = true;  // physical ids live in $Entities: assume the costlier kind
-        for (std::uint64_t b = 0; b < blocks; ++b) {
-          next("an element block 'entityDim entityTag elementType numElementsInBlock'");
-          std::istringstream block(line);
-          int dim = 0, tag = 0, type = 0;
-          std::uint64_t count = 0;
-          if (!(block >> dim >> tag >> type >> count))
-            throw InputError(name, line_number, 0, msh_error("'entityDim entityTag elementType numElementsInBlock'", line));
-          if (dim == 3) size.cells += count;
-          for (std::uint64_t e = 0; e < count; ++e) next("an element line");
-        }
-      } else {
-        for (std::uint64_t e = 0; e < blocks; ++e) {
-          next("an element line 'id type ntags tags... nodes...'");
-          std::istringstream element(line);
-          long id = 0;
-          int type = 0, tags = 0, physical = 0;
-          if (!(element >> id >> type >> tags)) throw InputError(name, line_number, 0, msh_error("'id type ntags ...'", line));
-          if (!volume_element_types().count(type)) continue;
-          ++size.cells;
-          if (tags > 0 && element >> physical && physical >= regions::kFirstWireBMaterial) size.two_wires = true;
-        }
-      }
-      return size;
-    }
-  }
-  throw InputError(name, "cannot read the mesh: no $Elements section (expected a gmsh .msh file with its cells)");
+  size.cells = meshes::count_msh_volume_cells(file);
+  return size;
 }
 
 double run_memory_estimate(const MeshSize& mesh, unsigned degree, unsigned ranks) {

@@ -25,15 +25,13 @@ namespace dtwire::fem {
 struct MeshSize {
   std::uint64_t cells = 0;        // hexahedra (3D elements of a mesh file)
   std::uint64_t section_cells = 0;  // cells of one cross-section (generated meshes; 0: unknown)
-  bool two_wires = false;         // a double twist (wire B's material ids), wire contact
 };
 
 // The size of the generated mesh of `g` (no mesh file): the quarter or full disc refined
 // `radial_refinements` times, extruded into `axial_cells` layers.
 MeshSize generated_mesh_size(const GeometryParameters& g);
-// The 3D elements of a gmsh .msh file (ASCII 2.2 or 4.1), counted without building the mesh;
-// a volume of wire B's physical ids marks a double twist. Throws InputError naming the file
-// and line when the element section cannot be read.
+// The 3D elements of a gmsh .msh file (ASCII 2.x or 4.x), counted without building the mesh
+// (meshes::count_msh_volume_cells: InputError naming the file and line it cannot read).
 MeshSize msh_file_size(const std::filesystem::path& file);
 
 // Peak resident memory (bytes) of a run on `ranks` ranks with elements of `degree`.

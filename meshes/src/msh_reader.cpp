@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -45,6 +46,15 @@ int node_count(int type) {
     case 15: return 1;
     default: return -1;
   }
+}
+
+bool is_volume_element(int type) {
+  static const std::set<int> types{4, 5, 6, 7, 11, 12, 13, 14, 17, 18, 19};
+  return types.count(type) > 0;
+}
+
+std::string msh_error(const std::string& expected, const std::string& found) {
+  return "cannot read the mesh: expected " + expected + (found.empty() ? "" : ", found '" + found.substr(0, 60) + "'");
 }
 
 }  // namespace
@@ -97,6 +107,61 @@ MshFile read_msh(const std::filesystem::path& msh) {
   }
   if (!format_seen) fail("no $MeshFormat section: not a gmsh mesh file");
   return mesh;
+}
+
+std::uint64_t count_msh_volume_cells(const std::filesystem::path& msh) {
+  const std::string name = msh.string();
+  std::ifstream in(msh);
+  if (!in) throw InputError(name, "cannot read the mesh: the file does not open");
+  std::string line;
+  int line_number = 0;
+  const auto next = [&](const std::string& expected) {
+    if (!std::getline(in, line)) throw InputError(name, line_number, 0, msh_error(expected, "the end of the file"));
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+  };
+  double version = 0.0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line == "$MeshFormat") {
+      next("the format line 'version file-type data-size'");
+      std::istringstream format(line);
+      int file_type = -1;
+      if (!(format >> version >> file_type) || version < 2.0 || version >= 5.0)
+        throw InputError(name, line_number, 0, msh_error("a gmsh format 2.x or 4.x", line));
+      if (file_type != 0)
+        throw InputError(name, line_number, 0,
+                         "cannot read the mesh: it is a binary .msh, deal.II reads ASCII gmsh files only (gmsh -bin 0)");
+    } else if (line == "$Elements" || line == "$ELM") {
+      const bool v4 = version >= 4.0;
+      next(v4 ? "'numEntityBlocks numElements minTag maxTag'" : "the number of elements");
+      std::istringstream header(line);
+      std::uint64_t count = 0, cells = 0;
+      if (!(header >> count)) throw InputError(name, line_number, 0, msh_error("a count", line));
+      for (std::uint64_t k = 0; k < count; ++k) {
+        if (v4) {  // a block: 'entityDim entityTag elementType numElementsInBlock', then its elements
+          next("an element block 'entityDim entityTag elementType numElementsInBlock'");
+          std::istringstream block(line);
+          int dim = 0, tag = 0, type = 0;
+          std::uint64_t elements = 0;
+          if (!(block >> dim >> tag >> type >> elements))
+            throw InputError(name, line_number, 0, msh_error("'entityDim entityTag elementType numElementsInBlock'", line));
+          if (dim == 3) cells += elements;
+          for (std::uint64_t e = 0; e < elements; ++e) next("an element line");
+        } else {
+          next("an element line 'id type ntags tags... nodes...'");
+          std::istringstream element(line);
+          long id = 0;
+          int type = 0;
+          if (!(element >> id >> type)) throw InputError(name, line_number, 0, msh_error("'id type ntags ...'", line));
+          if (is_volume_element(type)) ++cells;
+        }
+      }
+      return cells;
+    }
+  }
+  throw InputError(name, "cannot read the mesh: no $Elements section (expected a gmsh .msh file with its cells)");
 }
 
 double surface_area(const MshFile& mesh, const std::vector<int>& physical_ids) {

@@ -65,4 +65,49 @@ TEST(MshReader, BadFilesAreErrorsNamingTheFile) {
   std::filesystem::remove(file);
 }
 
+TEST(MshCellCount, CountsTheVolumeCellsOfBothFormatsWithoutKeepingThem) {
+  const auto v2 = temporary("dtwire_count_v2");
+  std::ofstream(v2) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n3\n"
+                       "1 3 2 1 1 1 2 3 4\n2 5 2 1 1 1 2 3 4 5 6 7 8\n3 5 2 1 1 5 6 7 8 9 10 11 12\n$EndElements\n";
+  EXPECT_EQ(count_msh_volume_cells(v2), 2u);  // the quadrilateral face is no cell
+  const auto v4 = temporary("dtwire_count_v4");
+  std::ofstream(v4) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Elements\n2 3 1 3\n"
+                       "2 1 3 1\n1 1 2 3 4\n3 1 5 2\n2 1 2 3 4 5 6 7 8\n3 5 6 7 8 9 10 11 12\n$EndElements\n";
+  EXPECT_EQ(count_msh_volume_cells(v4), 2u);
+  // A mesh `dtwire mesh` writes: every hexahedron it built.
+  MeshParameters p = default_parameters(WireKind::Single);
+  const WireMesh built = build_wire_mesh(p);
+  const auto written = temporary("dtwire_count_written");
+  write_msh(built.mesh, written);
+  EXPECT_EQ(count_msh_volume_cells(written), built.mesh.hexes.size());
+  for (const auto& file : {v2, v4, written}) std::filesystem::remove(file);
+}
+
+TEST(MshCellCount, UnreadableFilesAreNamedWithTheirLine) {
+  const auto truncated = temporary("dtwire_count_truncated");
+  std::ofstream(truncated) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n5\n1 5 2 1 1 1 2 3 4 5 6 7 8\n";
+  try {
+    count_msh_volume_cells(truncated);
+    ADD_FAILURE() << "a truncated element section was accepted";
+  } catch (const dtwire::InputError& e) {
+    EXPECT_EQ(e.source(), truncated.string());
+    EXPECT_EQ(e.line(), 6);
+    EXPECT_NE(std::string(e.what()).find("element line"), std::string::npos) << e.what();
+  }
+  const auto binary = temporary("dtwire_count_binary");
+  std::ofstream(binary) << "$MeshFormat\n2.2 1 8\n";
+  try {
+    count_msh_volume_cells(binary);
+    ADD_FAILURE() << "a binary file was accepted";
+  } catch (const dtwire::InputError& e) {
+    EXPECT_EQ(e.line(), 2);
+    EXPECT_NE(std::string(e.what()).find("binary"), std::string::npos) << e.what();
+  }
+  const auto empty = temporary("dtwire_count_empty");
+  std::ofstream(empty) << "";
+  EXPECT_THROW(count_msh_volume_cells(empty), dtwire::InputError);
+  EXPECT_THROW(count_msh_volume_cells("/nonexistent/dtwire.msh"), dtwire::InputError);
+  for (const auto& file : {truncated, binary, empty}) std::filesystem::remove(file);
+}
+
 }  // namespace
