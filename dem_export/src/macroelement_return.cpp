@@ -3,6 +3,7 @@
 #include "dtwire/dem/detail/macroelement_return.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "dtwire/dem/detail/macroelement_coupled.hpp"
@@ -25,6 +26,25 @@ inline double times_exp(double value, double delta) {
   const double c4 = (1.0 / 24 + delta * (1.0 / 120)) + d2 * (1.0 / 720 + delta * (1.0 / 5040));
   const double c8 = (1.0 / 40320 + delta * (1.0 / 362880)) + d2 * (1.0 / 3628800);
   return value * (c0 + d4 * c4 + d8 * c8);
+}
+
+// The Newton step x = -J^-1 R of the 3 x 3 return system (unknowns N, z, lambda) by Cramer's
+// rule, the first row's cofactors shared with the determinant; false when J is singular or
+// not finite (the caller stops iterating).
+bool solve_newton_step(const std::array<std::array<double, 3>, 3>& J, const std::array<double, 3>& R, double& dN,
+                       double& dz, double& dlambda) {
+  const double J11 = J[0][0], J12 = J[0][1], J13 = J[0][2];
+  const double J21 = J[1][0], J22 = J[1][1], J23 = J[1][2];
+  const double J31 = J[2][0], J32 = J[2][1], J33 = J[2][2];
+  const double C11 = J22 * J33 - J23 * J32, C12 = J23 * J31 - J21 * J33, C13 = J21 * J32 - J22 * J31;
+  const double det = J11 * C11 + J12 * C12 + J13 * C13;
+  if (!(std::abs(det) > 0.0) || !std::isfinite(det)) return false;
+  const double inv_det = 1.0 / det;
+  const double b1 = -R[0], b2 = -R[1], b3 = -R[2];
+  dN = (b1 * C11 + J12 * (J23 * b3 - b2 * J33) + J13 * (b2 * J32 - J22 * b3)) * inv_det;
+  dz = (J11 * (b2 * J33 - J23 * b3) + b1 * C12 + J13 * (J21 * b3 - b2 * J31)) * inv_det;
+  dlambda = (J11 * (J22 * b3 - b2 * J32) + J12 * (b2 * J31 - J21 * b3) + b1 * C13) * inv_det;
+  return true;
 }
 
 // What one Newton iteration needs at (N, m, N_y), in two parts: the residual terms (yield
@@ -182,14 +202,8 @@ bool closest_point_return(const SurfaceParameters& p, const ElasticStiffness& k,
     const double J31 = t.f_N;
     const double J32 = t.f_Ny * dNy_dz;
     const double J33 = t.f_m * dm_dlambda;
-    const double C11 = J22 * J33 - J23 * J32, C12 = J23 * J31 - J21 * J33, C13 = J21 * J32 - J22 * J31;
-    const double det = J11 * C11 + J12 * C12 + J13 * C13;
-    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) break;
-    const double inv_det = 1.0 / det;
-    const double b1 = -R1, b2 = -R2, b3 = -R3;
-    double dN = (b1 * C11 + J12 * (J23 * b3 - b2 * J33) + J13 * (b2 * J32 - J22 * b3)) * inv_det;
-    double dz = (J11 * (b2 * J33 - J23 * b3) + b1 * C12 + J13 * (J21 * b3 - b2 * J31)) * inv_det;
-    double dlambda = (J11 * (J22 * b3 - b2 * J32) + J12 * (b2 * J31 - J21 * b3) + b1 * C13) * inv_det;
+    double dN, dz, dlambda;
+    if (!solve_newton_step({{{J11, J12, J13}, {J21, J22, J23}, {J31, J32, J33}}}, {R1, R2, R3}, dN, dz, dlambda)) break;
     // The flow has a kink at N = 0 (slope ~m_g (2 + 1/(2 beta_g)) in tension, 2 N_y^2 m_f / Nc^2
     // in compression): a step across it is shortened to end at N = 0, the next one starts from
     // the tangent of the other side.
@@ -322,14 +336,8 @@ bool coupled_return(const SurfaceParameters& p, const ElasticStiffness& k, const
     const double J31 = t.f_N + t.f_m * dm_dN;
     const double J32 = t.f_Ny * dNy_dz;
     const double J33 = t.f_m * dm_dlambda;
-    const double C11 = J22 * J33 - J23 * J32, C12 = J23 * J31 - J21 * J33, C13 = J21 * J32 - J22 * J31;
-    const double det = J11 * C11 + J12 * C12 + J13 * C13;
-    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) break;
-    const double inv_det = 1.0 / det;
-    const double b1 = -R1, b2 = -R2, b3 = -R3;
-    double dN = (b1 * C11 + J12 * (J23 * b3 - b2 * J33) + J13 * (b2 * J32 - J22 * b3)) * inv_det;
-    double dz = (J11 * (b2 * J33 - J23 * b3) + b1 * C12 + J13 * (J21 * b3 - b2 * J31)) * inv_det;
-    double dlambda = (J11 * (J22 * b3 - b2 * J32) + J12 * (b2 * J31 - J21 * b3) + b1 * C13) * inv_det;
+    double dN, dz, dlambda;
+    if (!solve_newton_step({{{J11, J12, J13}, {J21, J22, J23}, {J31, J32, J33}}}, {R1, R2, R3}, dN, dz, dlambda)) break;
     if (N != 0.0 && (N + dN < 0.0) != (N < 0.0)) {  // the flow's kink at N = 0
       const double shorten = -N / dN;
       dz *= shorten;

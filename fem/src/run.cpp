@@ -310,7 +310,7 @@ void check_resources_before_the_run(const Parameters& parameters, const RunOptio
   if (root) {
     const auto available = available_memory();
     const auto free_disk = free_disk_space(options.output_directory);
-    figures = {available.has_value(), available.value_or(0), free_disk.has_value(), free_disk.value_or(0)};
+    figures = {{available.has_value(), available.value_or(0), free_disk.has_value(), free_disk.value_or(0)}};
   }
   MPI_Bcast(figures.data(), static_cast<int>(figures.size()), MPI_UINT64_T, 0, MPI_COMM_WORLD);
   const auto figure = [&](std::size_t i) { return figures[i] ? std::optional<std::uint64_t>(figures[i + 1]) : std::nullopt; };

@@ -37,8 +37,8 @@ std::vector<std::vector<AxisStation>> mesh_axes() {
       const double r = R + 0.5 * outside, a = azimuth(w, std::clamp(z, 0.0, H), 1.0);
       AxisStation s;
       s.wire = w;
-      s.point = {r * std::cos(a), r * std::sin(a), z};
-      s.tangent = {0, 0, 1};
+      s.point = {{r * std::cos(a), r * std::sin(a), z}};
+      s.tangent = {{0, 0, 1}};
       axes[w].push_back(s);
     }
   return axes;

@@ -205,7 +205,6 @@ int integrate_increment_coupled(const SurfaceParameters& p, const ElasticStiffne
     if (T >= 1.0) return substeps;
     first_rates_known = false;
   }
-  const double tiny = 1e-13;
   double dT = 1.0 - T;
   while (T < 1.0) {
     if (++substeps > settings.max_substeps)
@@ -218,20 +217,7 @@ int integrate_increment_coupled(const SurfaceParameters& p, const ElasticStiffne
     const auto k3 = coupled_impl::rates(p, k, c, combine(y, -dT, k1, 2.0 * dT, k2), rotation_at(T + dT), rest);
     const auto second = combine(y, dT, k2);
     const auto third = combine(y, dT / 6.0, k1, dT * 2.0 / 3.0, k2, dT / 6.0, k3);
-    const double w = settings.moment_error_weight;
-    const double sigma_norm =
-        std::max(std::sqrt(third[0] * third[0] + w * w * (third[1] * third[1] + third[2] * third[2])), tiny);
-    const Hardening hard_third = hardening(p, third[6], third[7]);
-    const double Ny_third = hard_third.Ny;
-    const double Ny_second = Ny_third + hard_third.dNy_dau * (second[6] - third[6]) +
-                             hard_third.dNy_daw * (second[7] - third[7]);
-    const double e0 = (third[0] - second[0]) / sigma_norm;
-    const double e1 = w * (third[1] - second[1]) / sigma_norm;
-    const double e2 = w * (third[2] - second[2]) / sigma_norm;
-    const double e3 = (Ny_third - Ny_second) / std::max(std::abs(Ny_third), tiny);
-    const double residual = std::max(std::sqrt(e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3), tiny);
-    const double next = residual * 87.8 <= settings.tolerance ? 4.0 * dT
-                                                              : 0.9 * dT * std::cbrt(settings.tolerance / residual);
+    const auto [residual, next, Ny_third] = substep_error(p, second, third, dT, settings);
     if (residual < settings.tolerance) {
       const PlasticState before = state;
       state.y = third;

@@ -116,6 +116,37 @@ double find_crossing(const Phi& phi, double lo, double phi_lo, double hi, double
   return lo;
 }
 
+// The local error of the RK2(3) pair over a substep dT: the forces' difference on the surface's
+// scale (the moments weighted by `moment_error_weight`) and N_y's relative difference, N_y of the
+// second-order solution linearised about the third's (their hardening variables differ by the
+// local error only); and the next substep, 0.9 dT (tol/R)^(1/3) at most 4 dT (Sloan 1987).
+struct SubstepError {
+  double residual;
+  double next_step;
+  double Ny_third;  // N_y of the kept, third-order solution
+};
+
+inline SubstepError substep_error(const SurfaceParameters& p, const std::array<double, 8>& second,
+                                  const std::array<double, 8>& third, double dT, const IntegratorSettings& settings) {
+  const double tiny = 1e-13;
+  const double w = settings.moment_error_weight;
+  const double sigma_norm =
+      std::max(std::sqrt(third[0] * third[0] + w * w * (third[1] * third[1] + third[2] * third[2])), tiny);
+  const Hardening hard_third = hardening(p, third[6], third[7]);
+  const double Ny_third = hard_third.Ny;
+  const double Ny_second = Ny_third + hard_third.dNy_dau * (second[6] - third[6]) +
+                           hard_third.dNy_daw * (second[7] - third[7]);
+  const double e0 = (third[0] - second[0]) / sigma_norm;
+  const double e1 = w * (third[1] - second[1]) / sigma_norm;
+  const double e2 = w * (third[2] - second[2]) / sigma_norm;
+  const double e3 = (Ny_third - Ny_second) / std::max(std::abs(Ny_third), tiny);
+  const double residual = std::max(std::sqrt(e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3), tiny);
+  // 0.9 (tol/R)^(1/3) >= 4 when R <= tol / 87.8: the growth bound applies, no cube root needed.
+  const double next = residual * 87.8 <= settings.tolerance ? 4.0 * dT
+                                                            : 0.9 * dT * std::cbrt(settings.tolerance / residual);
+  return {residual, next, Ny_third};
+}
+
 }  // namespace integrator_impl
 
 // Moves a state that drifted outside back onto f = 0 at fixed total displacement: the correction
@@ -234,7 +265,6 @@ int integrate_increment(const SurfaceParameters& p, const ElasticStiffness& k,
   // Plastic part: RK2(3) with local extrapolation (the third-order solution is kept).
   const std::array<double, 3> rest{dq[0] * (1.0 - t_plastic), dq[1] * (1.0 - t_plastic),
                                    dq[2] * (1.0 - t_plastic)};
-  const double tiny = 1e-13;
   double T = 0.0;
   int substeps = 0;
   if (settings.implicit_return) {
@@ -282,24 +312,7 @@ int integrate_increment(const SurfaceParameters& p, const ElasticStiffness& k,
     const auto k3 = plastic_rates(p, k, combine(y, -dT, k1, 2.0 * dT, k2), rest);
     const auto second = combine(y, dT, k2);
     const auto third = combine(y, dT / 6.0, k1, dT * 2.0 / 3.0, k2, dT / 6.0, k3);
-
-    const double w = settings.moment_error_weight;
-    const double sigma_norm =
-        std::max(std::sqrt(third[0] * third[0] + w * w * (third[1] * third[1] + third[2] * third[2])), tiny);
-    const Hardening hard_third = hardening(p, third[6], third[7]);
-    const double Ny_third = hard_third.Ny;
-    // N_y of the second-order solution, linearised about the third (their hardening variables
-    // differ by the local error only).
-    const double Ny_second = Ny_third + hard_third.dNy_dau * (second[6] - third[6]) +
-                             hard_third.dNy_daw * (second[7] - third[7]);
-    const double e0 = (third[0] - second[0]) / sigma_norm;
-    const double e1 = w * (third[1] - second[1]) / sigma_norm;
-    const double e2 = w * (third[2] - second[2]) / sigma_norm;
-    const double e3 = (Ny_third - Ny_second) / std::max(std::abs(Ny_third), tiny);
-    const double residual = std::max(std::sqrt(e0 * e0 + e1 * e1 + e2 * e2 + e3 * e3), tiny);
-    // 0.9 (tol/R)^(1/3) >= 4 when R <= tol / 87.8: the growth bound applies, no cube root needed.
-    const double next = residual * 87.8 <= settings.tolerance ? 4.0 * dT
-                                                              : 0.9 * dT * std::cbrt(settings.tolerance / residual);
+    const auto [residual, next, Ny_third] = substep_error(p, second, third, dT, settings);
     if (residual < settings.tolerance) {
       const PlasticState before = state;
       state.y = third;
