@@ -18,6 +18,7 @@
 #include "interruption.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "start_order.hpp"
 #include "step_console.hpp"
 #include "step_process.hpp"
 
@@ -64,7 +65,9 @@ class Runner {
         console_(options.jobs > 1),
         phase_(campaign.steps.size(), Phase::Waiting),
         outcomes_(campaign.steps.size()),
-        workers_(campaign.steps.size()) {}
+        workers_(campaign.steps.size()),
+        earlier_seconds_(earlier_seconds()),
+        order_(offer_order()) {}
 
   ~Runner() {  // after an error: the running steps finish first
     for (auto& worker : workers_)
@@ -104,27 +107,58 @@ class Runner {
     return std::all_of(waits_[i].begin(), waits_[i].end(), [&](std::size_t j) { return phase_[j] == Phase::Finished; });
   }
 
-  // Starts (or settles without running) every waiting step whose producers are finished, in
-  // the file's order, as long as its cores fit.
+  // Each step's time in this folder's earlier run, if it ran to the end there.
+  std::vector<std::optional<double>> earlier_seconds() const {
+    std::vector<std::optional<double>> earlier;
+    for (const CampaignStep& step : campaign_.steps) {
+      const json& previous = state_.value(step.name, json::object());
+      earlier.push_back(previous.value("status", "") == "done" && previous.contains("seconds") &&
+                                previous["seconds"].is_number()
+                            ? std::optional<double>(previous["seconds"].get<double>())
+                            : std::nullopt);
+    }
+    return earlier;
+  }
+
+  // One at a time: the file's order. Side by side: highest level first (start_order.hpp).
+  std::vector<std::size_t> offer_order() const {
+    if (options_.jobs > 1) return start_order(waits_, earlier_seconds_);
+    std::vector<std::size_t> order(campaign_.steps.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    return order;
+  }
+
+  // Settles every waiting step whose producers are finished and that does not run (up to date,
+  // blocked, not selected), then starts the ready ones as their cores allow (steps_to_start).
   void start_ready_steps() {
     if (interruption_signal() != 0) return;  // interrupted: the running steps stop, nothing new starts
-    for (bool again = true; again;) {
-      again = false;
-      for (std::size_t i = 0; i < campaign_.steps.size(); ++i) {
+    for (bool settled = true; settled;) {
+      settled = false;
+      for (const std::size_t i : order_) {
         if (phase_[i] != Phase::Waiting || !ready(i)) continue;
         if (!decisions_.count(i)) decisions_[i] = decide(i);
-        Decision& decision = decisions_[i];
-        if (!decision.launch) {
-          if (!decision.note.empty()) console_.finished(label(i), decision.note);
-          outcomes_[i] = decision.outcome;
-          phase_[i] = Phase::Finished;
-          again = true;
-          continue;
-        }
-        if (cores_in_use_ > 0 && cores_in_use_ + decision.launch->cores > options_.jobs) continue;
-        start(i, *decision.launch);
+        const Decision& decision = decisions_[i];
+        if (decision.launch) continue;
+        if (!decision.note.empty()) console_.finished(label(i), decision.note);
+        outcomes_[i] = decision.outcome;
+        phase_[i] = Phase::Finished;
+        settled = true;
       }
     }
+    std::vector<ReadyStep> ready_steps;
+    for (const std::size_t i : order_)
+      if (phase_[i] == Phase::Waiting && ready(i))
+        ready_steps.push_back({i, decisions_.at(i).launch->cores, earlier_seconds_[i]});
+    const double now = std::chrono::duration<double>(Clock::now() - campaign_start_).count();
+    std::vector<RunningStep> running;
+    for (std::size_t i = 0; i < phase_.size(); ++i) {
+      if (phase_[i] != Phase::Running) continue;
+      std::optional<double> remaining;
+      if (earlier_seconds_[i] && started_at_.at(i) + *earlier_seconds_[i] > now)
+        remaining = started_at_.at(i) + *earlier_seconds_[i] - now;
+      running.push_back({decisions_.at(i).launch->cores, remaining});
+    }
+    for (const std::size_t i : steps_to_start(ready_steps, running, options_.jobs)) start(i, *decisions_.at(i).launch);
   }
 
   Decision decide(std::size_t i) {
@@ -273,6 +307,8 @@ class Runner {
   const Clock::time_point campaign_start_ = Clock::now();
   int cores_in_use_ = 0;
   std::vector<std::thread> workers_;
+  const std::vector<std::optional<double>> earlier_seconds_;  // step times of this folder's earlier run
+  const std::vector<std::size_t> order_;  // the order in which ready steps are offered cores
   std::mutex mutex_;
   std::condition_variable wake_;
   std::vector<std::pair<std::size_t, StepOutcome>> finished_;  // reported by workers, not yet collected

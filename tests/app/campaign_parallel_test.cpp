@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "campaign/campaign_file.hpp"
 #include "campaign/campaign_graph.hpp"
@@ -13,6 +14,7 @@
 #include "campaign/critical_path.hpp"
 #include "campaign/recorded_outcomes.hpp"
 #include "campaign/snakefile.hpp"
+#include "campaign/start_order.hpp"
 #include "cli.hpp"
 #include "dtwire/core/error.hpp"
 
@@ -65,6 +67,45 @@ TEST(CampaignGraph, CriticalPathIsTheLongestChainOfWaitingSteps) {
   EXPECT_THROW(critical_path(waits, {1.0, 2.0}), std::invalid_argument);
   EXPECT_THROW(critical_path({{}, {1}}, {1.0, 1.0}), std::invalid_argument);  // waits for itself
   EXPECT_THROW(critical_path({{}, {}}, {1.0, -1.0}), std::invalid_argument);
+}
+
+// The start order side by side: on the diamond above, each step's level is its time plus the
+// longest chain after it (a: 1 + 5 + 2); the steps are offered cores highest level first, ties
+// in the file's order; unknown step times count as the mean of the known ones, or 1 s each.
+TEST(CampaignSchedule, StepsLeadingTheLongestChainToTheEndStartFirst) {
+  using V = std::vector<std::size_t>;
+  const std::vector<std::vector<std::size_t>> waits{{}, {0}, {0}, {1, 2}, {}};
+  EXPECT_EQ(levels(waits, {1.0, 2.0, 5.0, 2.0, 7.0}), (std::vector<double>{8.0, 4.0, 7.0, 2.0, 7.0}));
+  EXPECT_EQ(start_order(waits, {1.0, 2.0, 5.0, 2.0, 7.0}), (V{0, 2, 4, 1, 3}));
+  // A fresh folder: the chains count steps (a 3, b and c 2, d and e 1).
+  EXPECT_EQ(start_order(waits, std::vector<std::optional<double>>(5)), (V{0, 1, 2, 3, 4}));
+  // a and d unknown: each takes the mean of the known 2, 5 and 7 s (a 14.3, c 9.7, e 7, b 6.7, d 4.7).
+  EXPECT_EQ(start_order(waits, {std::nullopt, 2.0, 5.0, std::nullopt, 7.0}), (V{0, 2, 4, 1, 3}));
+  EXPECT_THROW(levels(waits, {1.0}), std::invalid_argument);
+  EXPECT_THROW(levels({{}, {1}}, {1.0, 1.0}), std::invalid_argument);  // waits for itself
+}
+
+// A ready step that needs more cores than are free holds its place: a two-thread step is not
+// overtaken by every one-thread step that fits beside a running one. A step offered after it
+// starts only if its earlier time ends before the running steps free the waiting step's cores
+// (EASY backfilling); an unknown time never overtakes.
+TEST(CampaignSchedule, AStepWaitingForCoresIsNotOvertaken) {
+  using V = std::vector<std::size_t>;
+  const std::optional<double> unknown;
+  // One core busy for an unknown time: 5 waits for both, and 1 and 2 wait behind it.
+  EXPECT_EQ(steps_to_start({{5, 2, unknown}, {1, 1, 1.0}, {2, 1, unknown}}, {{1, unknown}}, 2), V{});
+  EXPECT_EQ(steps_to_start({{5, 2, unknown}, {1, 1, unknown}}, {}, 2), V{5});  // nothing runs: 5 takes both
+  EXPECT_EQ(steps_to_start({{1, 1, unknown}, {2, 1, unknown}, {3, 1, unknown}}, {}, 2), (V{1, 2}));
+  EXPECT_EQ(steps_to_start({{1, 1, unknown}, {5, 2, unknown}, {2, 1, unknown}}, {}, 2), V{1});
+  EXPECT_EQ(steps_to_start({{7, 4, unknown}}, {}, 2), V{7});  // wider than --jobs: alone
+  EXPECT_EQ(steps_to_start({}, {{1, 5.0}}, 2), V{});
+  // The running step ends in 100 s: a 60 s step fits in before 5 may start, a 150 s one does not.
+  EXPECT_EQ(steps_to_start({{5, 2, 900.0}, {2, 1, 60.0}, {3, 1, 150.0}}, {{1, 100.0}}, 2), V{2});
+  EXPECT_EQ(steps_to_start({{5, 2, 900.0}, {3, 1, 150.0}}, {{1, 100.0}}, 2), V{});
+  // On 4 cores: 5 needs all four, and one of the running steps' ends is unknown: no overtaking.
+  EXPECT_EQ(steps_to_start({{5, 4, 900.0}, {2, 1, 60.0}}, {{2, 100.0}, {1, unknown}}, 4), V{});
+  // 5 needs three: the step ending in 100 s frees them, the unknown one is not needed.
+  EXPECT_EQ(steps_to_start({{5, 3, 900.0}, {2, 1, 60.0}, {4, 1, 60.0}}, {{1, 100.0}, {1, unknown}}, 4), (V{2, 4}));
 }
 
 TEST(CampaignGraph, ThreadsFieldIsReadAndChecked) {
