@@ -66,21 +66,43 @@ std::vector<StepGroup> listed_step_groups(const std::string& lock_text) {
   return groups;
 }
 
-unsigned long long process_start_ticks(pid_t pid) {
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
+namespace {
+
+// Fields 3 and on of /proc/PID/stat (field 3, the state, first); empty if the process is gone.
+std::vector<std::string> stat_fields(const std::string& pid) {
+  std::ifstream stat("/proc/" + pid + "/stat");
+  const std::string text((std::istreambuf_iterator<char>(stat)), std::istreambuf_iterator<char>());
   const auto name_end = text.rfind(')');  // the program name in parentheses may hold spaces
-  if (name_end == std::string::npos) return 0;
-  std::istringstream fields(text.substr(name_end + 1));
-  std::string field;
-  for (int number = 3; fields >> field; ++number)
-    if (number == 22) return std::strtoull(field.c_str(), nullptr, 10);
-  return 0;
+  std::vector<std::string> fields;
+  if (name_end == std::string::npos) return fields;
+  std::istringstream words(text.substr(name_end + 1));
+  for (std::string word; words >> word;) fields.push_back(word);
+  return fields;
+}
+
+// Whether a process of the group runs. Not kill(-group, 0): that counts zombies, and an orphan's
+// zombie waits for whoever is PID 1 to reap it (in a container, possibly never).
+bool group_has_running_member(pid_t group) {
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator("/proc", error)) {
+    const std::string pid = entry.path().filename().string();
+    if (pid.empty() || pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    const auto fields = stat_fields(pid);  // [0] state, [2] process group
+    if (fields.size() > 2 && fields[0] != "Z" && fields[0] != "X" && std::atol(fields[2].c_str()) == group) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+unsigned long long process_start_ticks(pid_t pid) {
+  const auto fields = stat_fields(std::to_string(pid));
+  return fields.size() > 19 ? std::strtoull(fields[19].c_str(), nullptr, 10) : 0;  // field 22
 }
 
 bool step_group_alive(const StepGroup& group) {
   if (group.group <= 1 || group.group == ::getpgrp()) return false;
-  if (::kill(-group.group, 0) != 0 && errno == ESRCH) return false;
+  if (!group_has_running_member(group.group)) return false;
   const unsigned long long leader_start = process_start_ticks(group.group);
   return leader_start == 0 || leader_start == group.start_ticks;
 }
