@@ -246,12 +246,20 @@ class Cases:
                 delay = self.random.uniform(0.1, 0.9) * self.campaign_seconds
                 code, _ = kill_after(command, delay)
                 moment = f"{delay:.2f} s"
-            # A step dies with its runner: a fit ends its iteration and saves its checkpoint.
+            # A step dies with its runner: a fit ends its iteration and saves its checkpoint. An
+            # orphan shows as a process naming the folder 5 s on, or as a step that finished
+            # (wrote its last output) after its runner was killed.
+            killed_at = time.time()
             orphans = wait_none_naming(out, 5)
             if orphans:
                 self.fail("campaign-kill", f"steps outlive the killed runner by 5 s: {orphans}")
                 for pid in orphans:
                     os.kill(pid, signal.SIGKILL)
+            for last_output in ("fit/parameters.json", "strip/summary.json"):
+                path = os.path.join(out, last_output)
+                if os.path.exists(path) and os.path.getmtime(path) > killed_at:
+                    orphans = orphans or [last_output]
+                    self.fail("campaign-kill", f"{last_output} was written after the runner was killed (an orphan step)")
             if round_number == 1:
                 planted = plant_temporaries(os.path.join(out, "strip"), ["curve.csv", "frames/net_2.vtu"], 999999999)
             interrupted_fit = os.path.exists(os.path.join(out, "fit", "checkpoint.json")) and not os.path.exists(
