@@ -178,6 +178,37 @@ Curve read_curve(hid_t group, const std::string& source) {
   return curve;
 }
 
+// The groups, datasets and attributes of the layout above, into an open file.
+void write_contents(hid_t file, const Results& results) {
+  Handle provenance = create_group(file, "provenance");
+  write_string_attribute(provenance, "tool_version", results.provenance.tool_version);
+  write_string_attribute(provenance, "git_hash", results.provenance.git_hash);
+  write_string_attribute(provenance, "created_utc", results.provenance.created_utc);
+  write_string_attribute(provenance, "command", results.provenance.command);
+  write_string_attribute(provenance, "run_id", results.provenance.run_id);
+  Handle inputs = create_group(provenance, "inputs");
+  for (const auto& [input, digest] : results.provenance.input_sha256)
+    write_string_attribute(inputs, input, digest);
+
+  Handle curves = create_group(file, "curves");
+  for (const auto& [name, curve] : results.curves) write_curve(curves, name, curve);
+
+  Handle parameters = create_group(file, "parameters");
+  for (const Parameter& p : results.parameters) {
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+    Handle dataset(H5Dcreate2(parameters, p.name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                              H5P_DEFAULT, H5P_DEFAULT),
+                   H5Dclose, "create parameter " + p.name);
+    check(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &p.value),
+          "write parameter");
+    write_string_attribute(dataset, "unit", p.unit);
+    if (p.sigma) write_double_attribute(dataset, "sigma", *p.sigma);
+  }
+
+  Handle fields = create_group(file, "fields");
+  for (const auto& [key, value] : results.fields) write_string_attribute(fields, key, value);
+}
+
 }  // namespace
 
 void write_results(const Results& results, const std::filesystem::path& path) {
@@ -199,35 +230,7 @@ void write_results(const Results& results, const std::filesystem::path& path) {
           "link order");
     const std::string memory_name = path.string() + ".in-memory";  // never on disk
     Handle file(H5Fcreate(memory_name.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "create in memory");
-    {
-    Handle provenance = create_group(file, "provenance");
-    write_string_attribute(provenance, "tool_version", results.provenance.tool_version);
-    write_string_attribute(provenance, "git_hash", results.provenance.git_hash);
-    write_string_attribute(provenance, "created_utc", results.provenance.created_utc);
-    write_string_attribute(provenance, "command", results.provenance.command);
-    write_string_attribute(provenance, "run_id", results.provenance.run_id);
-    Handle inputs = create_group(provenance, "inputs");
-    for (const auto& [input, digest] : results.provenance.input_sha256)
-      write_string_attribute(inputs, input, digest);
-
-    Handle curves = create_group(file, "curves");
-    for (const auto& [name, curve] : results.curves) write_curve(curves, name, curve);
-
-    Handle parameters = create_group(file, "parameters");
-    for (const Parameter& p : results.parameters) {
-      Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
-      Handle dataset(H5Dcreate2(parameters, p.name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
-                                H5P_DEFAULT, H5P_DEFAULT),
-                     H5Dclose, "create parameter " + p.name);
-      check(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &p.value),
-            "write parameter");
-      write_string_attribute(dataset, "unit", p.unit);
-      if (p.sigma) write_double_attribute(dataset, "sigma", *p.sigma);
-    }
-
-    Handle fields = create_group(file, "fields");
-    for (const auto& [key, value] : results.fields) write_string_attribute(fields, key, value);
-    }  // every object is closed before the image is taken
+    write_contents(file, results);  // its objects are closed when it returns
     check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
     const ssize_t size = H5Fget_file_image(file, nullptr, 0);
     if (size < 0) throw hdf5_failure("file image size");
