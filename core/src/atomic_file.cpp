@@ -10,7 +10,8 @@
 #include <cstring>
 #include <mutex>
 #include <set>
-#include <sstream>
+#include <streambuf>
+#include <vector>
 #include <stdexcept>
 #include <system_error>
 
@@ -142,34 +143,83 @@ void PendingFolder::commit() {
   committed_ = true;
 }
 
-void write_file_atomically(const std::filesystem::path& target,
-                           const std::function<void(std::ostream&)>& write) {
-  std::ostringstream text;
-  write(text);
-  if (!text) throw std::runtime_error(target.string() + ": cannot format the contents");
-  write_bytes_atomically(target, text.str());
+namespace {
+
+// Writes all of `size` bytes; 0 or the errno of the failure.
+int write_all(int fd, const char* data, std::size_t size) {
+  for (std::size_t written = 0; written < size;) {
+    const ssize_t n = ::write(fd, data + written, size - written);
+    if (n > 0)
+      written += static_cast<std::size_t>(n);
+    else if (n == 0)
+      return EIO;
+    else if (errno != EINTR)
+      return errno;
+  }
+  return 0;
 }
 
-void write_bytes_atomically(const std::filesystem::path& target, std::string_view bytes) {
+// A stream buffer onto a file descriptor that keeps the errno of the first failed write (an
+// ofstream only says that something failed).
+class FileDescriptorBuffer : public std::streambuf {
+ public:
+  explicit FileDescriptorBuffer(int fd) : fd_(fd), buffer_(1 << 16) { setp(buffer_.data(), buffer_.data() + buffer_.size()); }
+  int error() const { return error_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (sync() != 0) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) sputc(traits_type::to_char_type(c));
+    return traits_type::not_eof(c);
+  }
+  int sync() override {
+    if (error_ == 0) error_ = write_all(fd_, pbase(), static_cast<std::size_t>(pptr() - pbase()));
+    setp(buffer_.data(), buffer_.data() + buffer_.size());
+    return error_ == 0 ? 0 : -1;
+  }
+
+ private:
+  int fd_;
+  int error_ = 0;
+  std::vector<char> buffer_;
+};
+
+// Opens a temporary beside `target`, runs `fill(fd)` (0 or an errno), closes and renames it.
+void write_through_temporary(const std::filesystem::path& target, const std::function<int(int)>& fill) {
   PendingFile pending(target);
   const int fd = ::open(pending.temporary().c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
   if (fd < 0)
     throw std::runtime_error(target.string() + ": cannot create " + pending.temporary().filename().string() +
                              ": " + system_reason(errno));
   int error = 0;
-  for (std::size_t written = 0; written < bytes.size() && error == 0;) {
-    const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n > 0)
-      written += static_cast<std::size_t>(n);
-    else if (n < 0 && errno != EINTR)
-      error = errno;
-    else if (n == 0)
-      error = EIO;
+  try {
+    error = fill(fd);
+  } catch (...) {
+    ::close(fd);
+    throw;
   }
   // close() reports what a network file system could only learn at the end (quota, no space).
   if (::close(fd) != 0 && error == 0 && errno != EINTR) error = errno;
   if (error != 0) throw std::runtime_error(target.string() + ": cannot write: " + system_reason(error));
   pending.commit();
+}
+
+}  // namespace
+
+void write_file_atomically(const std::filesystem::path& target,
+                           const std::function<void(std::ostream&)>& write) {
+  write_through_temporary(target, [&](int fd) {
+    FileDescriptorBuffer buffer(fd);
+    std::ostream out(&buffer);
+    write(out);
+    out.flush();
+    if (buffer.error() == 0 && !out) throw std::runtime_error(target.string() + ": cannot format the contents");
+    return buffer.error();
+  });
+}
+
+void write_bytes_atomically(const std::filesystem::path& target, std::string_view bytes) {
+  write_through_temporary(target, [&](int fd) { return write_all(fd, bytes.data(), bytes.size()); });
 }
 
 }  // namespace dtwire

@@ -51,7 +51,8 @@ class PendingFolder {
   bool committed_ = false;
 };
 
-// Runs `write` on a stream in memory, then writes the bytes (write_bytes_atomically).
+// Runs `write` on a stream to a temporary file beside `target`, then renames it into place;
+// failures as write_bytes_atomically's.
 void write_file_atomically(const std::filesystem::path& target,
                            const std::function<void(std::ostream&)>& write);
 
