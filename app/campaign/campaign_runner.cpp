@@ -14,8 +14,10 @@
 
 #include "../cli.hpp"
 #include "campaign_graph.hpp"
+#include "campaign_lock.hpp"
 #include "campaign_state.hpp"
 #include "interruption.hpp"
+#include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "start_order.hpp"
@@ -37,6 +39,23 @@ std::vector<std::filesystem::path> progress_logs(const std::filesystem::path& co
   for (const auto& folder : folders)
     if (std::filesystem::exists(folder / "run.log")) logs.push_back(folder / "run.log");
   return logs;
+}
+
+// The --out folder a `fit` command names, or "" (another command, or the fit's default folder).
+std::filesystem::path fit_folder(const std::vector<std::string>& command) {
+  if (command.empty() || command.front() != "fit") return {};
+  for (std::size_t i = 1; i < command.size(); ++i) {
+    if ((command[i] == "--out" || command[i] == "-o") && i + 1 < command.size()) return command[i + 1];
+    if (command[i].rfind("--out=", 0) == 0) return command[i].substr(6);
+  }
+  return {};
+}
+
+std::string file_text(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string text;
+  std::getline(in, text);
+  return text;
 }
 
 // A step that has to run: its expanded command, inputs, outputs and fingerprint.
@@ -238,15 +257,29 @@ class Runner {
       // into another step's output folder while that one runs (`export` replaces its own whole).
       for (const auto& output : launch.outputs)
         std::filesystem::create_directories(std::filesystem::path(output).parent_path());
-      {
-        std::ofstream header(folder / "command.txt");
+      // A killed writer's temporaries never outlive the step that writes the same outputs.
+      std::set<std::filesystem::path> output_folders{folder};
+      for (const auto& output : launch.outputs) output_folders.insert(std::filesystem::path(output).parent_path());
+      for (const auto& output_folder : output_folders) remove_stale_temporaries(output_folder);
+      std::vector<std::string> command = launch.command;
+      const auto fit_out = fit_folder(command);
+      if (!options_.force && !fit_out.empty() && std::filesystem::exists(fit_out / "checkpoint.json") &&
+          file_text(folder / "fingerprint") == launch.hash)
+        command.push_back("--resume");  // the same fit was interrupted: it goes on from its checkpoint
+      write_file_atomically(folder / "fingerprint", [&](std::ostream& os) { os << launch.hash << "\n"; });
+      write_file_atomically(folder / "command.txt", [&](std::ostream& header) {
         header << "dtwire";
-        for (const auto& a : launch.command) header << " " << a;
+        for (const auto& a : command) header << " " << a;
         header << "\n";
-      }
-      outcome.exit_code = run_step_process(options_.executable, launch.command, log, [&](double seconds) {
-        console_.progress(label(i), seconds, step_progress(progress_logs(log, launch.outputs)));
       });
+      const auto track = [this](int group, bool running) {
+        if (!options_.lock) return;
+        if (running) options_.lock->add_step_group(group);
+        else options_.lock->remove_step_group(group);
+      };
+      outcome.exit_code = run_step_process(options_.executable, command, log, [&](double seconds) {
+        console_.progress(label(i), seconds, step_progress(progress_logs(log, launch.outputs)));
+      }, track);
       if (outcome.exit_code != 0 || !outputs_exist(launch.outputs)) {
         outcome.status = StepStatus::Failed;
         // An interrupted fit saves its checkpoint and may exit 0 without its outputs.

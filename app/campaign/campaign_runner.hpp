@@ -7,6 +7,11 @@
 // interrupted campaign resumes where it stopped: a step is skipped when it finished before with
 // the same command, inputs and tool version and its outputs still exist. A step whose producer
 // failed is blocked; the steps already running finish.
+//
+// Before a step starts, the stale temporaries of a killed writer (atomic_file.hpp) go from the
+// folders of its outputs. A `fit` step that was interrupted (its folder holds checkpoint.json and
+// steps/<step>/fingerprint shows the same command and inputs) runs with --resume, so it goes on
+// from its last iteration and ends where an uninterrupted fit ends; --force starts it afresh.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -27,12 +32,15 @@ struct StepOutcome {
   std::string message;
 };
 
+class CampaignLock;
+
 struct CampaignOptions {
   std::filesystem::path out;
   bool force = false;  // re-run every step
   std::vector<std::string> only;  // run just these steps (empty: all)
   std::filesystem::path executable;  // the dtwire binary that runs the steps
   int jobs = 1;  // cores for steps side by side; a step wider than this runs alone
+  CampaignLock* lock = nullptr;  // records the running steps' process groups (campaign_lock.hpp)
 };
 
 // {out}/steps/<step>: the step's console log (output.log).

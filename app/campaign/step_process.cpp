@@ -1,7 +1,7 @@
 #include "step_process.hpp"
 
 #include <fcntl.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -78,29 +78,70 @@ std::string step_progress(const std::vector<std::filesystem::path>& logs) {
 }
 
 int run_step_process(const std::filesystem::path& executable, const std::vector<std::string>& args,
-                     const std::filesystem::path& log, const std::function<void(double)>& tick) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+                     const std::filesystem::path& log, const std::function<void(double)>& tick,
+                     const std::function<void(int, bool)>& track) {
+  // Everything the child needs is prepared here: between fork and exec it makes only system
+  // calls (the runner has other threads, whose locks a forked child must not touch).
   std::vector<std::string> argv_text{executable.string()};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (auto& a : argv_text) argv.push_back(a.data());
   argv.push_back(nullptr);
-  // Its own process group: a signal meant for the runner alone reaches the step's whole tree
-  // only when the runner passes it on (interruption.hpp), and then all of it.
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attributes, 0);
-  pid_t pid = 0;
-  const int error = posix_spawn(&pid, executable.c_str(), &actions, &attributes, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attributes);
-  if (error != 0)
-    throw ComputationError("cannot start " + executable.string() + ": " + std::strerror(error));
+  const std::string log_name = log.string();
+  int report[2];  // the child's exec error, if any; closed by a successful exec
+  if (::pipe2(report, O_CLOEXEC) != 0)
+    throw ComputationError("cannot start " + executable.string() + ": pipe: " + std::strerror(errno));
+  const pid_t runner = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int error = errno;
+    ::close(report[0]);
+    ::close(report[1]);
+    throw ComputationError("cannot start " + executable.string() + ": fork: " + std::strerror(error));
+  }
+  if (pid == 0) {
+    // Its own process group: a signal meant for the runner alone reaches the step's whole tree
+    // only when the runner passes it on (interruption.hpp), and then all of it.
+    ::setpgid(0, 0);
+    // The step dies with the runner (killed by a scheduler or a closed terminal): SIGTERM when
+    // the runner's thread that started it ends, which it does only after the step has ended.
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    int error = 0;
+    if (::getppid() != runner) error = ESRCH;  // the runner died before prctl took effect
+    const int in = error ? -1 : ::open("/dev/null", O_RDONLY);
+    const int out = error ? -1 : ::open(log_name.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (!error && (in < 0 || out < 0)) error = errno;
+    if (!error && (::dup2(in, STDIN_FILENO) < 0 || ::dup2(out, STDOUT_FILENO) < 0 || ::dup2(out, STDERR_FILENO) < 0))
+      error = errno;
+    if (in > STDERR_FILENO) ::close(in);
+    if (out > STDERR_FILENO) ::close(out);
+    if (!error) {
+      ::execve(argv[0], argv.data(), environ);
+      error = errno;
+    }
+    if (::write(report[1], &error, sizeof error) < 0) { /* the runner reports a silent failure */ }
+    ::_exit(127);
+  }
+  ::close(report[1]);
+  ::setpgid(pid, pid);  // also from this side, so the group exists before it is signalled
+  int child_error = 0;
+  ssize_t got;
+  do got = ::read(report[0], &child_error, sizeof child_error);
+  while (got < 0 && errno == EINTR);
+  ::close(report[0]);
+  if (got == static_cast<ssize_t>(sizeof child_error)) {
+    ::waitpid(pid, nullptr, 0);
+    throw ComputationError("cannot start " + executable.string() + ": " +
+                           (child_error == ESRCH ? std::string("the campaign runner is ending") : std::strerror(child_error)));
+  }
+  if (track) track(pid, true);
+  struct Untrack {
+    const std::function<void(int, bool)>& track;
+    pid_t pid;
+    ~Untrack() {
+      if (track) track(pid, false);
+    }
+  } untrack{track, pid};
 
   const auto start = std::chrono::steady_clock::now();
   auto next_tick = start + std::chrono::seconds(1);

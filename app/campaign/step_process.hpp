@@ -14,8 +14,15 @@ namespace dtwire::app {
 // runs. When the campaign is interrupted (interruption.hpp), passes the signal on to the step's
 // process group, and kills the group if it still runs 30 s later. Returns the exit code
 // (128 + signal if it was killed).
+// The step dies with the runner: on Linux the kernel sends it SIGTERM when the runner dies
+// (prctl PR_SET_PDEATHSIG, set between fork and exec, then a check that the parent is still
+// the runner), whatever killed the runner, SIGKILL included; a step's own steps started the same
+// way (a gap run's `dem run`s) die with it in turn. `track(group, running)` is called when the
+// step has started and when it has ended: the campaign lock records the running groups
+// (campaign_lock.hpp).
 int run_step_process(const std::filesystem::path& executable, const std::vector<std::string>& args,
-                     const std::filesystem::path& log, const std::function<void(double)>& tick);
+                     const std::filesystem::path& log, const std::function<void(double)>& tick,
+                     const std::function<void(int, bool)>& track = {});
 
 // The newest progress the logs show, e.g. "FE step 12, t = 0.43" or "fit start 2/4, iteration 17";
 // else the last line of the first log (shortened); "" if there is none. Only the tail of each

@@ -100,7 +100,8 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
       return write_snakefile(campaign, run_options.out, options->snakefile, options->variables);
     if (options->report_only && !std::filesystem::is_directory(run_options.out))
       throw InputError("--report-only", "no output directory " + run_options.out.string() + " to report on");
-    const CampaignLock lock(run_options.out);
+    CampaignLock lock(run_options.out);
+    run_options.lock = &lock;
     if (!lock.stale_note().empty())
       std::cerr << "campaign: a stale lock in " << run_options.out.string() << " (" << lock.stale_note()
                 << ") shows an earlier campaign that did not finish; taking over\n";

@@ -95,7 +95,21 @@ int run_dem_run(const RunCommandOptions& o) {
     if (const std::string warning = oversubscription_warning(threads, *load, std::thread::hardware_concurrency());
         !warning.empty())
       std::cerr << "dtwire: warning: dem run: " << warning << "\n";
-  const dem::RunSummary s = dem::run_simulation(input, options);
+  remove_stale_temporaries(out);  // of a run killed while it wrote (atomic_file.hpp)
+  remove_stale_temporaries(out / "frames");
+  dem::RunSummary s;
+  try {
+    s = dem::run_simulation(input, options);
+  } catch (const InputError&) {
+    throw;  // found before anything is written
+  } catch (const std::exception& e) {
+    // A write failed (no space, file-size limit, I/O error): the files that mark a finished run
+    // go, so neither a campaign nor a reader takes what is left for a result.
+    std::error_code ignored;
+    for (const char* marker : {"summary.json", "results.h5", "curve.csv"}) std::filesystem::remove(out / marker, ignored);
+    throw std::runtime_error(std::string(e.what()) + "; the run's curve.csv, results.h5 and summary.json in " +
+                             out.string() + " are removed");
+  }
   const bool strip = input.tool == "strip_tension";
   if (strip) print_strip_summary(input, s, out);
   else std::cout << input.title << ": " << s.nodes << " nodes, " << s.links << " links, " << s.steps << " steps of "

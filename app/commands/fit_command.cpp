@@ -15,6 +15,7 @@
 #include "dtwire/calibrate/initial_values.hpp"
 #include "dtwire/calibrate/fitter.hpp"
 #include "dtwire/calibrate/synthesize.hpp"
+#include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/version.hpp"
 
@@ -120,6 +121,8 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     const std::filesystem::path out =
         options->out.empty() ? std::filesystem::path("fit-out") / def.file.stem() : std::filesystem::path(options->out);
     std::filesystem::create_directories(out);
+    // A fit killed while it wrote leaves temporaries (atomic_file.hpp): they go first.
+    for (const auto& folder : {out, out / "curves", out / "cache"}) remove_stale_temporaries(folder);
     if (options->threads >= 0) def.evaluation.threads = static_cast<unsigned>(options->threads);
     // The starts go side by side too; the evaluator keeps the runs at `threads` at once.
     def.fit.parallel_starts =
@@ -134,21 +137,28 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     def.fit.progress = &std::cerr;
     stop_requested = false;
     def.fit.stop_requested = &stop_requested;
-    const auto previous = std::signal(SIGINT, request_stop);
+    // SIGTERM (a batch system, or the campaign runner's death: step_process.hpp) stops the fit
+    // like Ctrl-C: after the running iteration, with its checkpoint saved.
+    const auto previous_int = std::signal(SIGINT, request_stop);
+    const auto previous_term = std::signal(SIGTERM, request_stop);
+    const auto restore_signals = [&] {
+      std::signal(SIGINT, previous_int);
+      std::signal(SIGTERM, previous_term);
+    };
+    const std::string resume_command =
+        "dtwire fit " + options->file + (options->targets.empty() ? "" : " --targets " + options->targets) +
+        (options->initial.empty() ? "" : " --initial " + options->initial) + " --out " + out.string() + " --resume";
     calibrate::ProblemEvaluator evaluator(def.experiments, def.parameters, def.evaluation);
     calibrate::FitResult result;
     try {
       result = calibrate::run_fit(evaluator, def.fit);
     } catch (...) {
-      std::signal(SIGINT, previous);
+      restore_signals();
       throw;
     }
-    std::signal(SIGINT, previous);
+    restore_signals();
     if (!result.completed) {
-      std::cerr << "fit interrupted; continue with: dtwire fit " << options->file
-                << (options->targets.empty() ? "" : " --targets " + options->targets)
-                << (options->initial.empty() ? "" : " --initial " + options->initial) << " --out " << out.string()
-                << " --resume\n";
+      std::cerr << "fit interrupted; continue with: " << resume_command << "\n";
       return kExitFailure;
     }
     std::string chosen;
@@ -158,7 +168,12 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
             (options->initial.empty() ? "" : " --initial " + options->initial) +
             (chosen.empty() ? "" : " --experiments " + chosen),
         def.inputs);
-    calibrate::write_fit_outputs(def, result, provenance, out);
+    try {
+      calibrate::write_fit_outputs(def, result, provenance, out);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(std::string(e.what()) + "; no result written, the checkpoint is kept: once the "
+                               "cause is fixed, " + resume_command + " writes the results");
+    }
     std::cout << "fit " << def.file.filename().string() << ": cost " << result.cost << ", "
               << result.statistics.simulations << " simulation runs, " << result.wall_seconds
               << " s; parameters: " << (out / "parameters.json").string() << "\n";

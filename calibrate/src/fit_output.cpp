@@ -59,9 +59,7 @@ std::string number(double v, int precision = 4) {
   return out.str();
 }
 
-}  // namespace
-
-void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
+void write_all_outputs(const FitDefinition& definition, const FitResult& result,
                        const Provenance& provenance, const std::filesystem::path& out) {
   std::filesystem::create_directories(out / "curves");
   const std::size_t n = result.parameters.size();
@@ -165,8 +163,6 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
                         {"failure_kinds", result.statistics.failure_kinds},
                         {"wall_seconds", result.wall_seconds}};
   root["provenance"] = provenance_json(provenance);
-  write_file_atomically(out / "parameters.json", [&](std::ostream& s) { s << root.dump(2) << "\n"; });
-
   store.provenance = provenance;
   write_results(store, out / "parameters.h5");
 
@@ -224,6 +220,25 @@ void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
       for (const auto& w : result.warnings) s << "- " << w << "\n";
     }
   });
+  // Last: parameters.json is what later steps read, so it exists only beside complete outputs.
+  write_file_atomically(out / "parameters.json", [&](std::ostream& s) { s << root.dump(2) << "\n"; });
+}
+
+}  // namespace
+
+void write_fit_outputs(const FitDefinition& definition, const FitResult& result,
+                       const Provenance& provenance, const std::filesystem::path& out) {
+  try {
+    write_all_outputs(definition, result, provenance, out);
+  } catch (...) {
+    std::error_code ignored;
+    for (const auto& e : definition.experiments)
+      for (const char* kind : {"_target.csv", "_fitted.csv"})
+        std::filesystem::remove(out / "curves" / (file_stem(e.name) + kind), ignored);
+    for (const char* written : {"parameters.h5", "fit_report.md", "parameters.json"})
+      std::filesystem::remove(out / written, ignored);
+    throw;
+  }
 }
 
 }  // namespace dtwire::calibrate

@@ -9,18 +9,25 @@
 
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
+#include "hdf5_errors.hpp"
 
 namespace dtwire {
 namespace {
 
-// Owns one HDF5 identifier.
+std::runtime_error hdf5_failure(const std::string& what) {
+  const std::string stack = hdf5_error_text();
+  return std::runtime_error("HDF5: " + what + " failed" + (stack.empty() ? "" : ": " + stack));
+}
+
+// Owns one HDF5 identifier. Closing never throws: after a failure the stack is already unwound
+// into an exception, and a failed close only adds to HDF5's error stack, which is cleared.
 class Handle {
  public:
   Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error("HDF5: " + what + " failed");
+    if (id_ < 0) throw hdf5_failure(what);
   }
   ~Handle() {
-    if (id_ >= 0) close_(id_);
+    if (id_ >= 0 && close_(id_) < 0) H5Eclear2(H5E_DEFAULT);
   }
   Handle(Handle&& other) noexcept : id_(other.id_), close_(other.close_) { other.id_ = -1; }
   Handle(const Handle&) = delete;
@@ -33,7 +40,7 @@ class Handle {
 };
 
 void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
+  if (status < 0) throw hdf5_failure(what);
 }
 
 Handle ordered_group_properties() {
@@ -171,6 +178,37 @@ Curve read_curve(hid_t group, const std::string& source) {
   return curve;
 }
 
+// The groups, datasets and attributes of the layout above, into an open file.
+void write_contents(hid_t file, const Results& results) {
+  Handle provenance = create_group(file, "provenance");
+  write_string_attribute(provenance, "tool_version", results.provenance.tool_version);
+  write_string_attribute(provenance, "git_hash", results.provenance.git_hash);
+  write_string_attribute(provenance, "created_utc", results.provenance.created_utc);
+  write_string_attribute(provenance, "command", results.provenance.command);
+  write_string_attribute(provenance, "run_id", results.provenance.run_id);
+  Handle inputs = create_group(provenance, "inputs");
+  for (const auto& [input, digest] : results.provenance.input_sha256)
+    write_string_attribute(inputs, input, digest);
+
+  Handle curves = create_group(file, "curves");
+  for (const auto& [name, curve] : results.curves) write_curve(curves, name, curve);
+
+  Handle parameters = create_group(file, "parameters");
+  for (const Parameter& p : results.parameters) {
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
+    Handle dataset(H5Dcreate2(parameters, p.name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                              H5P_DEFAULT, H5P_DEFAULT),
+                   H5Dclose, "create parameter " + p.name);
+    check(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &p.value),
+          "write parameter");
+    write_string_attribute(dataset, "unit", p.unit);
+    if (p.sigma) write_double_attribute(dataset, "sigma", *p.sigma);
+  }
+
+  Handle fields = create_group(file, "fields");
+  for (const auto& [key, value] : results.fields) write_string_attribute(fields, key, value);
+}
+
 }  // namespace
 
 void write_results(const Results& results, const std::filesystem::path& path) {
@@ -178,43 +216,30 @@ void write_results(const Results& results, const std::filesystem::path& path) {
     require_finite(p.value, "parameter " + p.name);
     if (p.sigma) require_finite(*p.sigma, "sigma of parameter " + p.name);
   }
-  PendingFile pending(path);
-  {
+  // The file is built in memory (HDF5's core driver without a backing store) and written by the
+  // same checked writer as every other result file: a full disk, a file-size limit or an I/O
+  // error then surfaces as that writer's message (file name and the system's reason), and HDF5
+  // never holds an identifier of a file whose writes failed.
+  const Hdf5ErrorsSilenced silenced;
+  std::string image;
+  try {
+    Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
+    check(H5Pset_fapl_core(fapl, 1 << 20, 0), "in-memory file driver");
     Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose, "file properties");
     check(H5Pset_link_creation_order(fcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
           "link order");
-    Handle file(H5Fcreate(pending.temporary().c_str(), H5F_ACC_TRUNC, fcpl, H5P_DEFAULT), H5Fclose,
-                "create " + path.string());
-    Handle provenance = create_group(file, "provenance");
-    write_string_attribute(provenance, "tool_version", results.provenance.tool_version);
-    write_string_attribute(provenance, "git_hash", results.provenance.git_hash);
-    write_string_attribute(provenance, "created_utc", results.provenance.created_utc);
-    write_string_attribute(provenance, "command", results.provenance.command);
-    write_string_attribute(provenance, "run_id", results.provenance.run_id);
-    Handle inputs = create_group(provenance, "inputs");
-    for (const auto& [input, digest] : results.provenance.input_sha256)
-      write_string_attribute(inputs, input, digest);
-
-    Handle curves = create_group(file, "curves");
-    for (const auto& [name, curve] : results.curves) write_curve(curves, name, curve);
-
-    Handle parameters = create_group(file, "parameters");
-    for (const Parameter& p : results.parameters) {
-      Handle space(H5Screate(H5S_SCALAR), H5Sclose, "scalar space");
-      Handle dataset(H5Dcreate2(parameters, p.name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT,
-                                H5P_DEFAULT, H5P_DEFAULT),
-                     H5Dclose, "create parameter " + p.name);
-      check(H5Dwrite(dataset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, &p.value),
-            "write parameter");
-      write_string_attribute(dataset, "unit", p.unit);
-      if (p.sigma) write_double_attribute(dataset, "sigma", *p.sigma);
-    }
-
-    Handle fields = create_group(file, "fields");
-    for (const auto& [key, value] : results.fields) write_string_attribute(fields, key, value);
+    const std::string memory_name = path.string() + ".in-memory";  // never on disk
+    Handle file(H5Fcreate(memory_name.c_str(), H5F_ACC_TRUNC, fcpl, fapl), H5Fclose, "create in memory");
+    write_contents(file, results);  // its objects are closed when it returns
     check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
+    const ssize_t size = H5Fget_file_image(file, nullptr, 0);
+    if (size < 0) throw hdf5_failure("file image size");
+    image.resize(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file, image.data(), image.size()) != size) throw hdf5_failure("file image");
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(path.string() + ": " + e.what());
   }
-  pending.commit();
+  write_bytes_atomically(path, image);
 }
 
 Results read_results(const std::filesystem::path& path) {
@@ -222,15 +247,7 @@ Results read_results(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(path)) throw InputError(source, "is a directory, expected an HDF5 file");
   if (!std::filesystem::exists(path)) throw InputError(source, "no such file");
   if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(source, "not an HDF5 file");
-  H5E_auto2_t old_handler;
-  void* old_data;
-  H5Eget_auto2(H5E_DEFAULT, &old_handler, &old_data);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions, not stderr noise
-  struct RestoreHandler {
-    H5E_auto2_t handler;
-    void* data;
-    ~RestoreHandler() { H5Eset_auto2(H5E_DEFAULT, handler, data); }
-  } restore{old_handler, old_data};
+  const Hdf5ErrorsSilenced silenced;  // errors become exceptions, not stderr noise
 
   Results results;
   try {

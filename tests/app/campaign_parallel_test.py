@@ -31,6 +31,9 @@ SKIP = 77
 # Files that only record when and how long: compared by presence, or not at all.
 TIMING_ONLY = {"campaign.lock"}
 SNAKEMAKE_ONLY = re.compile(r"^steps/[^/]+/benchmark\.tsv$")
+# The runner's fingerprint of a step's command and inputs (for resuming a fit): the command names
+# the output folder, and Snakemake keeps its own.
+RUNNER_ONLY = re.compile(r"^steps/[^/]+/fingerprint$")
 
 
 def run(command, **kwargs):
@@ -90,8 +93,8 @@ def state_summary(path):
 
 def compare(a, b):
     files_a, files_b = tree(a), tree(b)
-    names_a = {n for n in files_a if not SNAKEMAKE_ONLY.match(n)}
-    names_b = {n for n in files_b if not SNAKEMAKE_ONLY.match(n)}
+    names_a = {n for n in files_a if not SNAKEMAKE_ONLY.match(n) and not RUNNER_ONLY.match(n)}
+    names_b = {n for n in files_b if not SNAKEMAKE_ONLY.match(n) and not RUNNER_ONLY.match(n)}
     problems = []
     for name in sorted(names_a ^ names_b):
         problems.append(f"only in {a if name in names_a else b}: {name}")

@@ -4,7 +4,13 @@
 #include <filesystem>
 #include <fstream>
 
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <chrono>
+#include <csignal>
+#include <iterator>
+#include <thread>
 
 #include "campaign/campaign_file.hpp"
 #include "campaign/campaign_lock.hpp"
@@ -16,6 +22,13 @@
 
 namespace dtwire::app {
 namespace {
+
+pid_t ended_group() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  ::waitpid(pid, nullptr, 0);
+  return pid;
+}
 
 std::filesystem::path write_temp(const std::string& name, const std::string& text) {
   const auto path = std::filesystem::temp_directory_path() / name;
@@ -292,6 +305,80 @@ TEST(Campaign, StaleLockIsReportedAndTakenOver) {
   }
   const CampaignLock clean(out);  // released cleanly: nothing stale
   EXPECT_EQ(clean.stale_note(), "");
+  std::filesystem::remove_all(out);
+}
+
+// A step process group as a killed campaign leaves it: `sleep` in its own group, reaped by a
+// thread here (as init reaps an orphan), so its end is seen.
+struct OrphanStep {
+  pid_t group = 0;
+  int status = 0;
+  std::thread reaper;
+  OrphanStep() {
+    group = ::fork();
+    if (group == 0) {
+      ::setpgid(0, 0);
+      ::execl("/bin/sleep", "sleep", "60", static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    ::setpgid(group, group);
+    reaper = std::thread([this] { ::waitpid(group, &status, 0); });
+  }
+  ~OrphanStep() {
+    ::kill(-group, SIGKILL);
+    reaper.join();
+  }
+};
+
+TEST(Campaign, LockListsTheRunningStepGroups) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_lock_groups";
+  std::filesystem::remove_all(out);
+  OrphanStep step;
+  const auto text = [&] {
+    std::ifstream in(out / "campaign.lock");
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  {
+    CampaignLock lock(out);
+    lock.add_step_group(step.group);
+    const auto listed = listed_step_groups(text());
+    ASSERT_EQ(listed.size(), 1u) << text();
+    EXPECT_EQ(listed[0].group, step.group);
+    EXPECT_EQ(listed[0].start_ticks, process_start_ticks(step.group));
+    EXPECT_NE(text().find("pid " + std::to_string(::getpid())), std::string::npos) << text();
+    lock.remove_step_group(step.group);
+    EXPECT_TRUE(listed_step_groups(text()).empty()) << text();
+  }
+  EXPECT_EQ(text(), "");  // released: emptied
+  std::filesystem::remove_all(out);
+}
+
+TEST(Campaign, StepGroupIsTheStaleCampaignsOnlyWithItsStartTime) {
+  OrphanStep step;
+  const unsigned long long start = process_start_ticks(step.group);
+  ASSERT_GT(start, 0u);
+  EXPECT_TRUE(step_group_alive({step.group, start}));
+  EXPECT_FALSE(step_group_alive({step.group, start + 1})) << "a reused group id is another program's";
+  EXPECT_FALSE(step_group_alive({ended_group(), 0}));
+  EXPECT_EQ(listed_step_groups("pid 1, started x\nstep group 12 started 34\nstep group x started 1\nstep group 5\n").size(), 1u);
+}
+
+TEST(Campaign, TakeoverOfAStaleLockStopsTheStepsItStillFinds) {
+  const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_takeover";
+  std::filesystem::remove_all(out);
+  std::filesystem::create_directories(out);
+  OrphanStep step;
+  std::ofstream(out / "campaign.lock") << "pid 2147483000, started 2026-01-01T00:00:00Z\nstep group " << step.group
+                                        << " started " << process_start_ticks(step.group) << "\n";
+  const auto before = std::chrono::steady_clock::now();
+  {
+    const CampaignLock lock(out, std::chrono::seconds(1));  // waits 1 s, then SIGTERM
+    EXPECT_FALSE(step_group_alive({step.group, 0})) << "the takeover returned while the step runs";
+  }
+  EXPECT_GE(std::chrono::steady_clock::now() - before, std::chrono::seconds(1));
+  step.reaper.join();
+  step.reaper = std::thread([] {});
+  EXPECT_TRUE(WIFSIGNALED(step.status) && WTERMSIG(step.status) == SIGTERM) << step.status;
   std::filesystem::remove_all(out);
 }
 

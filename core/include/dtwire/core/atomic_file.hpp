@@ -1,9 +1,13 @@
 #pragma once
-// Result files are written to a temporary name beside the target and renamed into place, so a
-// crash or an error never leaves a half-written result behind.
+// Result files are written to a temporary name beside the target (NAME.tmp.PID.N, PID the
+// writer's process id) and renamed into place, so a crash or an error never leaves a
+// half-written result behind. A writer killed outright (SIGKILL, power cut of the process) leaves
+// its temporary: the next writer into the same folder removes every temporary whose PID no
+// longer runs on this machine before it writes its first file there (remove_stale_temporaries).
 #include <filesystem>
 #include <functional>
 #include <iosfwd>
+#include <string_view>
 
 namespace dtwire {
 
@@ -47,8 +51,22 @@ class PendingFolder {
   bool committed_ = false;
 };
 
-// Runs `write` on a stream to a temporary file, checks the stream, then renames.
+// Runs `write` on a stream to a temporary file beside `target`, then renames it into place;
+// failures as write_bytes_atomically's.
 void write_file_atomically(const std::filesystem::path& target,
                            const std::function<void(std::ostream&)>& write);
+
+// Writes `bytes` to a temporary file beside `target` and renames it into place. On any failure
+// (no space, file-size limit, I/O error, permission) removes the temporary and throws
+// std::runtime_error "<target>: cannot write: <system's reason>"; `target` is left as it was.
+void write_bytes_atomically(const std::filesystem::path& target, std::string_view bytes);
+
+// Removes, in `folder` (not below it), every NAME.tmp.PID.N file or folder whose PID is not this
+// process and names no running process. Returns how many it removed; errors are ignored (a
+// temporary that cannot be removed is no result: nothing reads it).
+std::size_t remove_stale_temporaries(const std::filesystem::path& folder);
+
+// The temporary's writer, if `name` has the form NAME.tmp.PID.N (0 otherwise).
+long temporary_writer(const std::string& name);
 
 }  // namespace dtwire

@@ -32,8 +32,9 @@ struct Results {
   Provenance provenance;
 };
 
-// Atomic: written to a temporary file and renamed. Throws std::runtime_error on failure and
-// std::invalid_argument on non-finite values (never written).
+// Atomic: built in memory, written to a temporary file and renamed (write_bytes_atomically).
+// Throws std::runtime_error naming the file and the reason (HDF5's error stack, or the system's
+// for the write) on failure, and std::invalid_argument on non-finite values (never written).
 void write_results(const Results& results, const std::filesystem::path& path);
 // Throws InputError if the file is missing or not a dtwire results file.
 Results read_results(const std::filesystem::path& path);
