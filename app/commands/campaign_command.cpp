@@ -19,12 +19,19 @@
 namespace dtwire::app {
 namespace {
 
-// --snakefile: the workflow instead of a run. Refuses a path that exists and is not a file.
+// --snakefile: the workflow instead of a run. Refuses a path that exists and is not a file; makes
+// the file's folder if it does not exist yet (as -o makes the output folder).
 int write_snakefile(const Campaign& campaign, const std::filesystem::path& out, const std::string& file,
                     const std::vector<std::string>& variables) {
   if (std::filesystem::exists(file) && !std::filesystem::is_regular_file(file))
     throw InputError("--snakefile", "'" + file + "' exists and is not a file");
   check_external_inputs(campaign, out);
+  const auto folder = std::filesystem::absolute(file).parent_path();
+  std::error_code made;
+  std::filesystem::create_directories(folder, made);
+  if (made || !std::filesystem::is_directory(folder))
+    throw InputError("--snakefile", "cannot make the folder '" + folder.string() + "' for '" + file + "'" +
+                                        (made ? ": " + made.message() : ": a file of that name is in the way"));
   SnakefileOptions options{std::filesystem::absolute(out).lexically_normal(), executable_path(), variables};
   for (const CampaignStep& step : campaign.steps)
     if (!command_available(step.command.front()))
