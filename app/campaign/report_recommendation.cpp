@@ -221,7 +221,7 @@ std::string recommendation_markdown(const Recommendation& r, const std::vector<S
     md << "| " << s.label << " | " << fits_text(sets[i]) << " | "
        << (s.not_judged.empty() ? s.farthest : std::string("n/a")) << " | "
        << (s.candidate ? wire_text(s) : std::string("published")) << " | "
-       << (static_cast<int>(i) == r.chosen ? std::string("**recommended**")
+       << (static_cast<int>(i) == r.chosen ? "**recommended**, x " + fixed(s.distance, 2)
            : !s.candidate                   ? std::string("reference (published set)")
            : s.not_judged.empty()           ? "judged, x " + fixed(s.distance, 2)
                                             : "not judged: " + s.not_judged)
