@@ -194,8 +194,11 @@ TEST(Campaign, OutInputThatNoEarlierStepWritesIsRefused) {
 
 TEST(Campaign, DefaultCampaignGraphIsClosed) {
   // read_campaign refuses an {out} input that no earlier step writes; the commands are known.
-  const Campaign c = read_campaign(std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/default/campaign.toml");
+  // The study includes the default campaign and holds the steps checked here.
+  const Campaign c = read_campaign(std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/study/campaign.toml");
   EXPECT_NO_THROW(check_commands(c, command_names()));
+  EXPECT_NO_THROW(check_commands(read_campaign(std::filesystem::path(DTWIRE_SOURCE_DIR) / "experiments/default/campaign.toml"),
+                                 command_names()));
   const auto inputs_of = [&](const std::string& name) {
     for (const CampaignStep& step : c.steps)
       if (step.name == name) return step.inputs;
