@@ -6,7 +6,12 @@ markers.
 usage: plot_punch.py OUT.png CSV [CSV ...]
 
 Each curve is labelled by its `# label:` line (`dem run --label`, else the run's title) and
-marked at its own peak; the legend sits below the axes so that it hides no curve.
+marked at its own peak; the legend sits below the axes so that it hides no curve. A run that
+does not apply to its set-up is not drawn as a result: one whose force never reaches the onset
+force (1 kN) or still rises when the platter stops (its largest force in the last 1 % of the
+travel: the net has not failed, so its "peak" is no figure of the test; the WirePM sets in the
+slack state). It is named under the figure as not applicable, by the rule of the campaign report
+(app/campaign/report_recommendation.hpp).
 """
 import sys
 
@@ -21,6 +26,18 @@ THESIS_ONSET_M = 0.20
 THESIS_PEAK_KN = 25.0
 THESIS_PEAK_M = 0.53
 ONSET_FORCE_KN = 1.0  # the onset of dem run's summary: force first at 1 kN
+TRAVEL_END_SHARE = 0.01  # a peak in the last 1 % of the travel is no peak
+
+
+def not_applicable(x, f):
+    """Why a punch curve (m, kN) does not apply to its set-up, or None."""
+    peak = max(range(len(f)), key=f.__getitem__)
+    at_peak = f"{f[peak]:.1f} kN at {x[peak]:.2f} m"
+    if f[peak] < ONSET_FORCE_KN:
+        return f"never carries the onset force of 1 kN ({at_peak})"
+    if x[peak] >= (1.0 - TRAVEL_END_SHARE) * max(x):
+        return f"no peak within the travel ({at_peak}, still rising when the platter stops)"
+    return None
 
 
 def read_curve(path):
@@ -36,12 +53,18 @@ def main():
         sys.exit(__doc__)
     out, files = sys.argv[1], sys.argv[2:]
     figure, axes = plt.subplots(figsize=(7, 5.2))
+    left_out = []
     for path in files:
         metadata, rows = read_curve(path)
         x = [r["tool_displacement_mm"] / 1000.0 for r in rows]
         f = [r["tool_force_N"] / 1000.0 for r in rows]
         peak = max(range(len(f)), key=f.__getitem__)
         label = metadata.get("label") or path.rsplit("/", 1)[-1]
+        why = not_applicable(x, f)
+        if why:
+            left_out.append(f"{label}: {why}")
+            print(f"plot_punch: not drawn, not applicable in this set-up: {label}: {why}")
+            continue
         (line,) = axes.plot(x, f, linewidth=1.5, label=f"{label}: {f[peak]:.1f} kN at {x[peak]:.2f} m")
         axes.plot([x[peak]], [f[peak]], "o", color=line.get_color(), markersize=5)
     axes.plot([THESIS_PEAK_M], [THESIS_PEAK_KN], "k*", markersize=13,
@@ -55,6 +78,9 @@ def main():
     axes.set_ylim(bottom=0.0)
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=1, frameon=False)
+    if left_out:
+        axes.text(0.01, 0.99, "not applicable in this set-up, not drawn:\n" + "\n".join(left_out),
+                  transform=axes.transAxes, fontsize=7, va="top", ha="left", color="0.35")
     figure.tight_layout()
     figure.savefig(out, dpi=120, bbox_inches="tight")
 

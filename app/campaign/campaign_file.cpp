@@ -18,7 +18,7 @@ namespace dtwire::app {
 
 namespace {
 
-const std::vector<std::string> kTopFields = {"name", "title", "variables", "step"};
+const std::vector<std::string> kTopFields = {"name", "title", "include", "variables", "step"};
 const std::vector<std::string> kStepFields = {"name",   "description", "command", "inputs",
                                               "outputs", "report",     "summary", "threads"};
 const std::vector<std::string> kBuiltInPlaceholders = {"out", "campaign"};
@@ -128,11 +128,51 @@ void check_graph(const Campaign& campaign) {
 [[noreturn]] void fail_at_step_field(const Campaign& campaign, const CampaignStep& step,
                                      const std::string& field, const std::string& message) {
   const auto line = step.field_lines.find(field);
-  throw InputError(campaign.file.string(), line != step.field_lines.end() ? line->second : step.line, 0,
-                   message);
+  const std::filesystem::path& file = step.file.empty() ? campaign.file : step.file;
+  throw InputError(file.string(), line != step.field_lines.end() ? line->second : step.line, 0, message);
 }
 
-Campaign read_campaign(const std::filesystem::path& file) {
+namespace {
+
+Campaign read_campaign_file(const std::filesystem::path& file, std::vector<std::filesystem::path>& including);
+
+// Resolves {campaign} in an included step's strings to its own file's folder.
+void pin_campaign_folder(CampaignStep& step, const std::filesystem::path& folder) {
+  const auto pin = [&](std::string& text) {
+    const std::string key = "{campaign}";
+    for (auto pos = text.find(key); pos != std::string::npos; pos = text.find(key, pos + folder.string().size()))
+      text.replace(pos, key.size(), folder.string());
+  };
+  pin(step.description);
+  for (auto* list : {&step.command, &step.inputs, &step.outputs, &step.report, &step.summary})
+    for (auto& text : *list) pin(text);
+}
+
+// include = ["file.toml", ...]: the included campaigns' variables and steps, in order.
+void read_includes(const std::string& source, const toml::table& root, Campaign& campaign,
+                   std::vector<std::filesystem::path>& including) {
+  const toml::node* node = root.get("include");
+  if (!node) return;
+  const toml::array* files = node->as_array();
+  if (!files) fail(source, node, "'include' must be an array of campaign file paths (relative to this file)");
+  for (const toml::node& element : *files) {
+    const auto* text = element.as_string();
+    if (!text) fail(source, &element, "'include' must contain only strings (campaign file paths)");
+    const auto path = std::filesystem::absolute(campaign.file.parent_path() / text->get()).lexically_normal();
+    if (std::find(including.begin(), including.end(), path) != including.end())
+      fail(source, &element, "'include' of '" + text->get() + "' makes a cycle: that file includes this one");
+    if (!std::filesystem::is_regular_file(path))
+      fail(source, &element, "'include': no campaign file '" + path.string() + "'");
+    Campaign included = read_campaign_file(path, including);
+    for (CampaignStep& step : included.steps) {
+      pin_campaign_folder(step, path.parent_path());
+      campaign.steps.push_back(std::move(step));
+    }
+    for (const auto& [name, value] : included.variables) campaign.variables.emplace(name, value);
+  }
+}
+
+Campaign read_campaign_file(const std::filesystem::path& file, std::vector<std::filesystem::path>& including) {
   const std::string source = file.string();
   if (std::filesystem::is_directory(file))
     throw InputError(source, "is a directory, expected a campaign .toml file");
@@ -149,13 +189,23 @@ Campaign read_campaign(const std::filesystem::path& file) {
   campaign.file = file;
   campaign.name = root["name"].value_or(file.stem().string());
   campaign.title = root["title"].value_or(campaign.name);
-  campaign.variables = read_variables(source, root);
+  including.push_back(std::filesystem::absolute(file).lexically_normal());
+  read_includes(source, root, campaign, including);
+  including.pop_back();
+  for (const auto& [name, value] : read_variables(source, root)) {
+    const auto known = campaign.variables.find(name);
+    if (known != campaign.variables.end() && known->second != value)
+      fail(source, root["variables"][name].node(), "variable '" + name + "' is declared by an included campaign with the default \"" +
+                                              known->second + "\"; declare it once");
+    campaign.variables[name] = value;
+  }
   std::vector<std::string> placeholders = kBuiltInPlaceholders;
   for (const auto& [name, value] : campaign.variables) placeholders.push_back(name);
   const toml::node* steps = root.get("step");
   if (!steps || !steps->is_array_of_tables())
     fail(source, steps, "expected one or more [[step]] tables");
   std::set<std::string> names;
+  for (const CampaignStep& step : campaign.steps) names.insert(step.name);
   for (const toml::node& node : *steps->as_array()) {
     const toml::table& table = *node.as_table();
     refuse_unknown_fields(source, table, kStepFields, "step ");
@@ -164,8 +214,13 @@ Campaign read_campaign(const std::filesystem::path& file) {
     if (!name || name->empty()) fail(source, &table, "step lacks 'name', expected a string");
     if (!is_name(*name)) fail(source, table.get("name"), "step name '" + *name + "' may use only a-z, 0-9 and _");
     if (!names.insert(*name).second)
-      fail(source, table.get("name"), "duplicate step name '" + *name + "'");
+      fail(source, table.get("name"), "duplicate step name '" + *name + "'" +
+                                          (std::any_of(campaign.steps.begin(), campaign.steps.end(),
+                                                       [&](const CampaignStep& s) { return s.name == *name && s.file != file; })
+                                               ? " (an included campaign has it)"
+                                               : ""));
     step.name = *name;
+    step.file = file;
     step.line = static_cast<int>(table.source().begin.line);
     for (const auto& [key, value] : table)
       step.field_lines[std::string(key.str())] = static_cast<int>(value.source().begin.line);
@@ -186,6 +241,13 @@ Campaign read_campaign(const std::filesystem::path& file) {
   }
   check_graph(campaign);
   return campaign;
+}
+
+}  // namespace
+
+Campaign read_campaign(const std::filesystem::path& file) {
+  std::vector<std::filesystem::path> including;
+  return read_campaign_file(file, including);
 }
 
 void check_commands(const Campaign& campaign, const std::vector<std::string>& known_commands) {

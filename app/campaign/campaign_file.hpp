@@ -13,10 +13,14 @@
 //   threads = 4                           # cores the step uses (its threads or MPI ranks); 1 if absent
 //   [variables]                           # optional: {name} in any step string, value a string
 //   as_made = "false"                     # default; `dtwire campaign --var as_made=true` overrides
+//   include = ["../default/campaign.toml"]  # optional, before the tables: another campaign's
+//                                         # steps and variables come first, as that file has them
 //
-// {out} is the output directory, {campaign} the folder of the campaign file. The file is checked
-// completely before anything runs: unknown fields, unknown placeholders, unknown commands and
-// {out} inputs that no earlier step writes are errors naming file:line.
+// {out} is the output directory, {campaign} the folder of the campaign file (of the included file
+// for its steps, resolved when it is read, so a shared step runs the same command in both). The
+// file is checked completely before anything runs: unknown fields, unknown placeholders, unknown
+// commands, a step name used twice (also across an include), an include cycle and {out} inputs
+// that no earlier step writes are errors naming file:line.
 #include <filesystem>
 #include <map>
 #include <string>
@@ -33,6 +37,7 @@ struct CampaignStep {
   std::vector<std::string> report;
   std::vector<std::string> summary;
   int threads = 1;  // cores it occupies while it runs (campaign --jobs, Snakemake threads:)
+  std::filesystem::path file;         // the campaign file that declares it (an included one for its steps)
   int line = 0;                       // of the step's [[step]] table
   std::map<std::string, int> field_lines;  // field name -> line of its value
 };

@@ -370,7 +370,7 @@ void check_external_inputs(const Campaign& campaign, const std::filesystem::path
     for (const auto& raw : step.inputs) {
       const std::string input = expand(raw, out, campaign_dir);
       if (!is_within(input, out) && !std::filesystem::exists(input))
-        throw InputError(campaign.file.string(), step.field_lines.count("inputs") ? step.field_lines.at("inputs") : step.line,
+        throw InputError((step.file.empty() ? campaign.file : step.file).string(), step.field_lines.count("inputs") ? step.field_lines.at("inputs") : step.line,
                          0, "step '" + step.name + "': input " + input + " does not exist");
     }
 }

@@ -92,7 +92,9 @@ std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs) {
       md << "not yet run | | | | | | | |\n";
       continue;
     }
-    if (punch) {
+    if (punch && !punch->not_applicable.empty()) {
+      md << "not applicable: " << punch->not_applicable << " | | | | | ";
+    } else if (punch) {
       const json& s = punch->summary;
       md << cell(s, "onset_displacement_mm", 1e-3, kThesisOnsetM, 3, "no onset") << " | "
          << cell(s, "peak_force_N", 1e-3, kThesisPeakKN, 1) << " | " << cell(s, "displacement_at_peak_mm", 1e-3, kThesisPeakM, 3)

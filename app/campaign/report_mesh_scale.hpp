@@ -18,6 +18,7 @@ struct MeshScaleRun {
   std::string step;      // the campaign step that runs it
   std::string status;    // "done", "blocked", "failed", ... (a run without summary shows it)
   nlohmann::json summary;  // the run's summary.json; null when the step has not produced it
+  std::string not_applicable = {};  // a punch that does not apply to its set-up: why (report_recommendation.hpp)
 };
 
 // The sets issue 36 judges, in table order; one of them without any run gets a 'not yet run'

@@ -8,11 +8,15 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "campaign_graph.hpp"
 #include "report_mesh_scale.hpp"
+#include "report_recommendation.hpp"
 #include "step_process.hpp"
+#include "dtwire/core/csv.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -226,6 +230,103 @@ std::string gap_row(std::ostream& md, const StepFiles& s, const json& gap, const
                                    : before <= floor ? "within the noise" : "unexplained");
 }
 
+// Whether a punch run applies to its set-up, from its curve.csv (nothing if it has none: a run
+// whose curve is unknown is taken as it reports itself).
+std::optional<std::string> punch_applicability(const StepFiles& s) {
+  for (const auto& file : s.files) {
+    if (file.filename() != "curve.csv") continue;
+    try {
+      const Curve curve = read_csv(file);
+      if (!curve.has("tool_displacement") || !curve.has("tool_force")) return std::nullopt;
+      return punch_not_applicable(curve.si("tool_displacement"), curve.si("tool_force"));
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+  }
+  return std::nullopt;
+}
+
+// The fit steps upstream of step `index` (through the campaign's graph), in the file's order.
+std::vector<std::size_t> fits_behind(const Campaign& campaign, const std::vector<std::vector<std::size_t>>& waits,
+                                     std::size_t index) {
+  std::vector<bool> upstream(campaign.steps.size(), false);
+  std::vector<std::size_t> todo{index};
+  while (!todo.empty()) {
+    const std::size_t i = todo.back();
+    todo.pop_back();
+    for (const std::size_t j : waits[i])
+      if (!upstream[j]) {
+        upstream[j] = true;
+        todo.push_back(j);
+      }
+  }
+  std::vector<std::size_t> fits;
+  for (std::size_t j = 0; j < campaign.steps.size(); ++j)
+    if (upstream[j] && kind_of(campaign.steps[j]) == Kind::Fit) fits.push_back(j);
+  return fits;
+}
+
+// The parameter files a dem run reads through --set-params TAG=FILE, relative to `out`.
+std::vector<std::string> set_params_files(const CampaignStep& step, const std::filesystem::path& out,
+                                          const std::filesystem::path& campaign_dir) {
+  std::vector<std::string> files;
+  for (std::size_t i = 0; i + 1 < step.command.size(); ++i)
+    if (step.command[i] == "--set-params") {
+      const std::string& value = step.command[i + 1];
+      const auto equals = value.find('=');
+      const std::filesystem::path file = expand(equals == std::string::npos ? value : value.substr(equals + 1), out, campaign_dir);
+      files.push_back(std::filesystem::relative(file, out).string());
+    }
+  return files;
+}
+
+// The sets the campaign's labelled DEM runs judge, with the fits behind them (rule 1 of
+// report_recommendation.hpp), in the order their runs first appear.
+std::vector<SetEvidence> set_evidence(const Campaign& campaign, const std::vector<StepFiles>& runs,
+                                      const std::filesystem::path& out, const std::filesystem::path& campaign_dir) {
+  const auto waits = step_dependencies(campaign);
+  std::vector<SetEvidence> sets;
+  for (const StepFiles& s : runs) {
+    const std::string label = label_of_command(s.step->command);
+    if (label.empty()) continue;
+    auto set = std::find_if(sets.begin(), sets.end(), [&](const SetEvidence& e) { return e.label == label; });
+    if (set == sets.end()) set = sets.insert(sets.end(), SetEvidence{label, {}, {}, json(), json(), "", "", "", "", std::nullopt});
+    const std::size_t index = static_cast<std::size_t>(s.step - &campaign.steps.front());
+    for (const std::size_t f : fits_behind(campaign, waits, index)) {
+      const std::string& name = campaign.steps[f].name;
+      if (std::any_of(set->fits.begin(), set->fits.end(), [&](const FitEvidence& e) { return e.step == name; })) continue;
+      FitEvidence fit{name, json()};
+      for (const auto& output : campaign.steps[f].outputs) {
+        const std::filesystem::path file = expand(output, out, campaign_dir);
+        if (file.filename() == "parameters.json" && std::filesystem::is_regular_file(file)) fit.parameters = read_json(file);
+      }
+      set->fits.push_back(fit);
+    }
+    for (const auto& file : set_params_files(*s.step, out, campaign_dir))
+      if (std::find(set->files.begin(), set->files.end(), file) == set->files.end()) set->files.push_back(file);
+    json summary;
+    for (const auto& file : s.files)
+      if (file.filename() == "summary.json") summary = read_json(file);
+    // The tool the run says it used, else the one its run file's name suggests (a step without results).
+    std::string tool = summary.is_object() ? summary.value("tool", "") : "";
+    if (tool.empty()) {
+      const std::string file = s.step->command.size() > 2 ? s.step->command[2] : "";
+      tool = file.find("strip") != std::string::npos ? "strip_tension" : file.find("punch") != std::string::npos ? "platter" : "";
+    }
+    if (tool == "platter") {
+      set->punch = summary;
+      set->punch_step = s.step->name;
+      set->punch_status = status_name(s.outcome->status);
+      set->punch_not_applicable = punch_applicability(s);
+    } else if (tool == "strip_tension") {
+      set->strip = summary;
+      set->strip_step = s.step->name;
+      set->strip_status = status_name(s.outcome->status);
+    }
+  }
+  return sets;
+}
+
 }  // namespace
 
 std::string heading_anchor(const std::string& heading) {
@@ -303,6 +404,11 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
         o << std::fixed << std::setprecision(digits) << run.value(key, 0.0) * scale;
         return o.str();
       };
+      if (const auto why = run.value("tool", "") == "platter" ? punch_applicability(s) : std::nullopt) {
+        md << "| " << link(s.step->name, s.step->name) << " | not applicable: " << *why << " | | | | |\n";
+        peaks += std::string(peaks.empty() ? "" : "; ") + s.step->name + " not applicable";
+        continue;
+      }
       md << "| " << link(s.step->name, s.step->name) << " | " << number("peak_force_N", 1e-3) << " | "
          << number("displacement_at_peak_mm", 1.0) << " | " << number("sag_after_settling_mm", 1.0) << " | "
          << run.value("broken_links", 0) << " of " << run.value("links", 0) << " | "
@@ -319,6 +425,8 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
     MeshScaleRun run{label, s.step->name, status_name(s.outcome->status), json()};
     for (const auto& file : s.files)
       if (file.filename() == "summary.json") run.summary = read_json(file);
+    if (run.summary.is_object() && run.summary.value("tool", "") == "platter")
+      run.not_applicable = punch_applicability(s).value_or("");
     labelled.push_back(run);
   }
   md << mesh_scale_table(labelled);
@@ -380,8 +488,11 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   if (distrust.empty()) md << "Nothing flagged: no failed step, no fit warning, no model-form gap, no step warning.\n";
   for (const auto& d : distrust) md << "- " << d << "\n";
   md << "\n";
+  const std::vector<SetEvidence> sets = set_evidence(campaign, by_kind[Kind::Validation], out, campaign_dir);
+  const Recommendation recommendation = recommend_set(sets);
   std::ostringstream summary;
-  summary << "## Summary\n\n";
+  summary << "## Summary\n\n" << recommendation_markdown(recommendation, sets);
+  if (!sets.empty()) summary << "### At a glance\n\n";
   for (const auto& line : glance) summary << "- " << line << "\n";
   summary << "\n" << md.str();
   return summary.str();

@@ -19,12 +19,19 @@
 namespace dtwire::app {
 namespace {
 
-// --snakefile: the workflow instead of a run. Refuses a path that exists and is not a file.
+// --snakefile: the workflow instead of a run. Refuses a path that exists and is not a file; makes
+// the file's folder if it does not exist yet (as -o makes the output folder).
 int write_snakefile(const Campaign& campaign, const std::filesystem::path& out, const std::string& file,
                     const std::vector<std::string>& variables) {
   if (std::filesystem::exists(file) && !std::filesystem::is_regular_file(file))
     throw InputError("--snakefile", "'" + file + "' exists and is not a file");
   check_external_inputs(campaign, out);
+  const auto folder = std::filesystem::absolute(file).parent_path();
+  std::error_code made;
+  std::filesystem::create_directories(folder, made);
+  if (made || !std::filesystem::is_directory(folder))
+    throw InputError("--snakefile", "cannot make the folder '" + folder.string() + "' for '" + file + "'" +
+                                        (made ? ": " + made.message() : ": a file of that name is in the way"));
   SnakefileOptions options{std::filesystem::absolute(out).lexically_normal(), executable_path(), variables};
   for (const CampaignStep& step : campaign.steps)
     if (!command_available(step.command.front()))
@@ -49,12 +56,17 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     int jobs = 1;
     std::string snakefile;
     bool report_only = false;
+    bool study = false;
   };
   auto options = std::make_shared<Options>();
   options->file = data_path("experiments/default/campaign.toml").string();
   CLI::App* command = root.add_subcommand(
       "campaign", "Run a whole study (mesh, FE, fits, export, gap) and write a report");
-  command->add_option("file", options->file, "Campaign file (.toml)")->capture_default_str();
+  CLI::Option* file = command->add_option("file", options->file, "Campaign file (.toml)")->capture_default_str();
+  command->add_flag("--study", options->study,
+                    "Run the full study (experiments/study/campaign.toml: the default campaign and every other "
+                    "parameter set, the DT link fits, WirePM, the self-checks) instead of the default campaign")
+      ->excludes(file);
   command->add_option("-o,--out", options->out,
                       "Output directory (default: campaign-out/<campaign name>)");
   command->add_flag("--force", options->force, "Re-run every step, even up-to-date ones");
@@ -81,6 +93,7 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
     command->get_option(run_only)->excludes(report_only);
   }
   commands.add(command, [options] {
+    if (options->study) options->file = data_path("experiments/study/campaign.toml").string();
     Campaign campaign = read_campaign(options->file);
     apply_variables(campaign, options->variables);
     CampaignOptions run_options;

@@ -140,6 +140,19 @@ TEST(CampaignJobs, BadJobsAndSnakefilePathsAreRefused) {
             kExitBadInput);
   EXPECT_EQ(run_command_line({"campaign", file.string(), "-o", out.string(), "--report-only"}), kExitBadInput)
       << "no output directory yet";
+  // A snakefile under a folder that does not exist: the folder is made, as -o makes its own.
+  const auto new_folder = out.parent_path() / "dtwire_campaign_jobs_new_folder";
+  std::filesystem::remove_all(new_folder);
+  EXPECT_EQ(run_command_line({"campaign", file.string(), "-o", out.string(), "--snakefile",
+                              (new_folder / "deeper" / "x.smk").string()}),
+            0);
+  EXPECT_TRUE(std::filesystem::is_regular_file(new_folder / "deeper" / "x.smk"));
+  // ... but not through a file standing where a folder must be (exit 2 before any work).
+  std::ofstream(new_folder / "a_file") << "x";
+  EXPECT_EQ(run_command_line({"campaign", file.string(), "-o", out.string(), "--snakefile",
+                              (new_folder / "a_file" / "x.smk").string()}),
+            kExitBadInput);
+  std::filesystem::remove_all(new_folder);
   CampaignOptions options;
   options.out = out;
   options.executable = DTWIRE_EXECUTABLE;

@@ -2,7 +2,7 @@
 # Hostile but realistic inputs through the dtwire executable (issues 20 and 37): each case must
 # exit 2 before any work, naming the file (and line) or option and the closest known name where
 # one exists; a run whose own physics check fails exits 1 with its partial results marked failed.
-# Prints the count of cases that behave as the README's input contract says.
+# Prints the count of cases that behave as the input contract says (docs/reference.md).
 # Usage: hostile_inputs.sh <dtwire> <source dir> <scratch dir>
 set -u
 dtwire=$1 src=$2 work=$3
