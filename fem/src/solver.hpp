@@ -53,6 +53,8 @@ struct SolverStatistics {
   std::size_t steps = 0, newton_iterations = 0, cutbacks = 0, assemblies = 0;
   std::size_t factorisations = 0;  // direct and lagged-lu solvers (this run, not counting a restart's past)
   double assembly_seconds = 0.0, solve_seconds = 0.0;
+  // With softening: the run ended because no static state followed the crack (see WireSolver::run).
+  bool ended_in_snap_back = false;
   FormingSummary forming;
 };
 

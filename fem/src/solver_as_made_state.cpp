@@ -25,7 +25,7 @@ using namespace dealii;
 
 namespace {
 
-constexpr char kStateMagic[16] = "dtwire-asmade-1";
+constexpr char kStateMagic[16] = "dtwire-asmade-2";  // 2: the softening in each point's state
 
 // The material's answer to three uniaxial forming paths (compression, moderate and large
 // tension): a state formed with other hardening, backstress or failure parameters differs.
