@@ -34,6 +34,12 @@ struct GeometryParameters {
   // Cleared when a single-wire mesh file's axis leaves the z axis (`dtwire mesh segment`): the
   // diameter is then read off its end face and no neck section is tracked.
   bool straight_axis = true;
+  // Local refinement at the twist's junctions (junction_refinement.hpp): the active cells whose
+  // centre lies within junction_half_width of a junction plane z = const are refined,
+  // junction_cycles times (0: the mesh as read or generated).
+  unsigned junction_cycles = 0;
+  double junction_half_width = 4e-3;     // m
+  std::vector<double> junction_planes;   // m, z of the planes
 };
 
 struct MaterialParameters {

@@ -145,6 +145,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       s.record_probes(record);
       s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "
             << record.neck_radius * 1e3 << " mm" << std::endl;  // flushed: progress of long runs
+      s.log_junction_state();
       on_step(record);
       s.history.push_back(record);
       if (interval > 0 && step % interval == 0) s.write_fields(step, t);
