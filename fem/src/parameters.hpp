@@ -3,7 +3,6 @@
 // with dealii::ParameterHandler. Values are converted to SI here; the file uses mm and MPa.
 #include <array>
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -152,9 +151,6 @@ struct OutputParameters {
   // The twist as a DEM link (link_kinematics.hpp): its bottom and top sections, four material
   // points each (indices into probe_points), or empty. Adds the link_* columns to the curve.
   std::vector<std::array<std::size_t, 4>> link_sections;
-  // The double twist's two ends (m, z), or empty: where the failure indicator reached 1 is then
-  // named twist, junction or arm (failure_place.hpp).
-  std::optional<std::array<double, 2>> twist_ends;
 };
 
 struct Parameters {

@@ -226,8 +226,9 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
     c.add_channel_si("damage", Dimension::Dimensionless, damage, *find_unit("1"));
     if (const StepRecord* failure = first_failure(records)) {
       std::ostringstream text;
-      if (p.output.twist_ends) {
-        const char* place = to_string(failure_place(failure->damage_z, p.geometry.diameter, *p.output.twist_ends));
+      if (p.geometry.junction_planes.size() == 2) {  // a double twist's two ends
+        const auto [low, high] = std::minmax(p.geometry.junction_planes[0], p.geometry.junction_planes[1]);
+        const char* place = to_string(failure_place(failure->damage_z, p.geometry.diameter, {{low, high}}));
         c.set_metadata("failure_place", place);
         text << "in the " << place << ", ";
       }

@@ -31,9 +31,6 @@ void declare_output(ParameterHandler& prm) {
                     "two wires' axis points, then a point off the axis in each wire, offset the same way), separated "
                     "by ';'; adds link_elongation_mm, "
                     "link_rotation_{x,y,z}_rad, link_axial_force_N, link_shear_force_N, link_moment_{x,y,z}_Nm");
-  prm.declare_entry("Twist ends (mm)", "", Patterns::Anything(),
-                    "double twist: z of the twist's two ends 'z0, z1'; names where the failure indicator "
-                    "reached 1 (twist, junction within one diameter of an end, arm); empty: not named");
   prm.declare_entry("Checkpoint interval", "0", Patterns::Integer(0),
                     "write a restart checkpoint every n steps (0: none)");
   prm.leave_subsection();
@@ -115,20 +112,6 @@ void read_output(const Source& source, Parameters& p) {
                                  std::to_string(p.output.link_sections.size()));
     if (p.output.extensometer_as_displacement && p.output.extensometer.empty())
       throw InputError(name, "'Curve displacement = extensometer' needs 'Extensometer (mm)'");
-  }
-  {
-    const std::string text = prm.get("Twist ends (mm)");
-    if (text.find_first_not_of(" \t") != std::string::npos) {
-      std::istringstream in(text);
-      double z0 = 0.0, z1 = 0.0;
-      char comma = 0;
-      const bool ok = (in >> z0 >> comma >> z1) && comma == ',' && (in >> std::ws).eof() && std::isfinite(z0) &&
-                      std::isfinite(z1) && z1 > z0;
-      if (!ok)
-        throw InputError(name, "'Twist ends (mm)': expected 'z0, z1' with z1 > z0 (the twist's two ends), found '" +
-                                   text + "'");
-      p.output.twist_ends = std::array<double, 2>{{z0 * 1e-3, z1 * 1e-3}};
-    }
   }
   prm.leave_subsection();
 }
