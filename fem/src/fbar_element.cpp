@@ -59,10 +59,12 @@ void evaluate_element(const J2LogPlasticity& material, const ElementGeometry& ge
       for (std::size_t i = 0; i < n; ++i) a[i] += w_bar[q] * s[q * n + i][c[i]];
     }
 
-  // Stress at Fbar = alpha F at every point first: B needs all of them.
+  // Stress at Fbar = alpha F at every point first: B needs all of them. The cell's size (cube
+  // root of its reference volume) is the crack band of the softening.
   double B = 0.0;
+  const double cell_size = std::cbrt(volume);
   for (std::size_t q = 0; q < n_q; ++q) {
-    result.points[q] = material.update(alpha[q] * F[q], history[q], with_tangent);
+    result.points[q] = material.update(alpha[q] * F[q], history[q], with_tangent, cell_size);
     PF[q] = dealii::scalar_product(result.points[q].first_piola, F[q]);
     if (fbar) B += geometry.weight[q] * alpha[q] * PF[q] / 3.0;
   }

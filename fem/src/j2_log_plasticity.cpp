@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace dtwire::fem {
@@ -137,8 +138,8 @@ double J2LogPlasticity::solve_plastic_increment(double q_trial, double alpha_n) 
   throw std::domain_error("return mapping did not converge");
 }
 
-StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& committed,
-                                     bool with_tangent) const {
+StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& committed, bool with_tangent,
+                                     double cell_size) const {
   const double J = dealii::determinant(F);
   if (!(J > 0.0) || !std::isfinite(J)) throw std::domain_error("det F <= 0");
   const double K = elastic_.bulk(), G = elastic_.shear();
@@ -153,7 +154,7 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
   for (unsigned a = 0; a < 3; ++a) dev[a] = eps[a] - volumetric / 3.0;
   const Tensor2 F_inv = dealii::invert(F);
   const Tensor2 F_inv_T = dealii::transpose(F_inv);
-  if (kinematic_.enabled()) return update_kinematic(F, F_inv_T, Cpi, s, eps, committed, with_tangent);
+  if (kinematic_.enabled()) return update_kinematic(F, F_inv_T, Cpi, s, eps, committed, with_tangent, cell_size);
   const double dev_norm = std::sqrt(dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2]);
   const double q_trial = std::sqrt(1.5) * 2.0 * G * dev_norm;
 
@@ -180,16 +181,22 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
   r.plastic_increment = dgamma;
   r.elastic_energy = 0.5 * K * volumetric * volumetric + G * dev_e_sq;
   r.state.equivalent_plastic_strain = alpha_n + dgamma;
-  // Plastic work: the flow stress integrated over Delta alpha by the trapezoidal rule, second
-  // order in the step like the external work it is balanced against.
+  r.state.plastic_metric_inverse = symmetric_part(F_inv * Tensor2(from_principal(s, b_e)) * F_inv_T);
+  const double dw_ddgamma = accrue_damage(committed, dgamma, cell_size, r);
+  const double w_n = committed.softening, w = r.state.softening;
+  // Plastic work: the (degraded) flow stress integrated over Delta alpha by the trapezoidal rule,
+  // second order in the step like the external work it is balanced against; plus the elastic
+  // energy released by the softening.
   r.state.plastic_dissipation =
       committed.plastic_dissipation +
-      0.5 * (hardening_.flow_stress(alpha_n) + hardening_.flow_stress(alpha_n + dgamma)) * dgamma;
-  r.state.plastic_metric_inverse = symmetric_part(F_inv * Tensor2(from_principal(s, b_e)) * F_inv_T);
-  r.state.damage = committed.damage;
-  if (dgamma > 0.0 && failure_.enabled()) {
-    const StressInvariants inv = stress_invariants(r.kirchhoff);
-    r.state.damage += dgamma / failure_.strain_to_failure(inv.triaxiality, inv.lode_parameter);
+      0.5 * ((1.0 - w_n) * hardening_.flow_stress(alpha_n) + (1.0 - w) * hardening_.flow_stress(alpha_n + dgamma)) *
+          dgamma +
+      r.elastic_energy * (w - w_n);
+  const SymTensor2 tau_undamaged = r.kirchhoff;
+  if (w > 0.0) {
+    r.kirchhoff *= 1.0 - w;
+    r.first_piola *= 1.0 - w;
+    r.elastic_energy *= 1.0 - w;
   }
   if (!with_tangent) return r;
 
@@ -206,10 +213,17 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
     c_dev = 2.0 * G * (1.0 - 3.0 * G * dgamma / q_trial);
     c_nn = 6.0 * G * G * (dgamma / q_trial - 1.0 / (3.0 * G + H));
   }
+  // With softening: d tau = (1 - w) d tau_eff - tau_eff dw, dw = (dw/d dalpha) d dalpha and
+  // d dalpha = sqrt(6) G (n_hat : d dev eps) / (3 G + H) from the radial return.
+  const double dgamma_slope =
+      dw_ddgamma > 0.0 ? std::sqrt(6.0) * G / (3.0 * G + hardening_.slope(alpha_n + dgamma)) : 0.0;
   r.tangent = chain_tangent(s, F, F_inv_T, Cpi, r.kirchhoff, [&](const SymTensor2& deps) {
     const double dvol = dealii::trace(deps);
     const SymTensor2 ddev = deps - dvol / 3.0 * dealii::unit_symmetric_tensor<3>();
-    return SymTensor2(K * dvol * dealii::unit_symmetric_tensor<3>() + c_dev * ddev + c_nn * (n_hat * ddev) * n_hat);
+    SymTensor2 dtau = K * dvol * dealii::unit_symmetric_tensor<3>() + c_dev * ddev + c_nn * (n_hat * ddev) * n_hat;
+    if (w > 0.0) dtau *= 1.0 - w;
+    if (dgamma_slope > 0.0) dtau -= dw_ddgamma * dgamma_slope * (n_hat * ddev) * tau_undamaged;
+    return dtau;
   });
   return r;
 }
@@ -221,7 +235,8 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
 // b_e = exp(2 eps_e) with eps_e = eps_tr - Delta eps_p (Eterovic & Bathe 1990).
 StressUpdate J2LogPlasticity::update_kinematic(const Tensor2& F, const Tensor2& F_inv_T, const Tensor2& Cpi,
                                                const Spectral& s, const std::array<double, 3>& eps,
-                                               const PlasticState& committed, bool with_tangent) const {
+                                               const PlasticState& committed, bool with_tangent,
+                                               double cell_size) const {
   const double K = elastic_.bulk(), G = elastic_.shear();
   const double C = kinematic_.modulus, gm = kinematic_.saturation_rate;
   const SymTensor2 I = dealii::unit_symmetric_tensor<3>();
@@ -250,18 +265,24 @@ StressUpdate J2LogPlasticity::update_kinematic(const Tensor2& F, const Tensor2& 
   const SymTensor2 dev_e = dealii::deviator(eps_e);
   r.elastic_energy = 0.5 * K * volumetric * volumetric + G * (dev_e * dev_e);
   r.state.equivalent_plastic_strain = alpha_n + dalpha;
-  // Plastic work tau : Delta eps_p (includes the energy stored in the backstress).
-  r.state.plastic_dissipation = committed.plastic_dissipation + deviator * plastic_strain_increment;
   r.state.backstress = dalpha > 0.0 ? SymTensor2((beta_n + C * std::sqrt(2.0 / 3.0) * dalpha * n_hat) / d) : beta_n;
   const Spectral e = spectral(eps_e);
   std::array<double, 3> b_e{};
   for (unsigned a = 0; a < 3; ++a) b_e[a] = std::exp(2.0 * e.values[a]);
   const Tensor2 F_inv = dealii::transpose(F_inv_T);
   r.state.plastic_metric_inverse = symmetric_part(F_inv * Tensor2(from_principal(e, b_e)) * F_inv_T);
-  r.state.damage = committed.damage;
-  if (dalpha > 0.0 && failure_.enabled()) {
-    const StressInvariants inv = stress_invariants(r.kirchhoff);
-    r.state.damage += dalpha / failure_.strain_to_failure(inv.triaxiality, inv.lode_parameter);
+  const double dw_ddalpha = accrue_damage(committed, dalpha, cell_size, r);
+  const double w_n = committed.softening, w = r.state.softening;
+  // Plastic work tau : Delta eps_p (includes the energy stored in the backstress), degraded by the
+  // mean softening of the step, plus the elastic energy the softening releases.
+  r.state.plastic_dissipation = committed.plastic_dissipation +
+                                (1.0 - 0.5 * (w_n + w)) * (deviator * plastic_strain_increment) +
+                                r.elastic_energy * (w - w_n);
+  const SymTensor2 tau_undamaged = r.kirchhoff;
+  if (w > 0.0) {
+    r.kirchhoff *= 1.0 - w;
+    r.first_piola *= 1.0 - w;
+    r.elastic_energy *= 1.0 - w;
   }
   if (!with_tangent) return r;
 
@@ -278,15 +299,51 @@ StressUpdate J2LogPlasticity::update_kinematic(const Tensor2& F, const Tensor2& 
       const SymTensor2 deta = 2.0 * G * ddev + ddalpha * b;
       const SymTensor2 dn = (deta - (n_hat * deta) * n_hat) / eta_norm;
       dtau -= 2.0 * G * std::sqrt(1.5) * (ddalpha * n_hat + dalpha * dn);
+      if (w > 0.0) dtau *= 1.0 - w;
+      if (dw_ddalpha > 0.0) dtau -= dw_ddalpha * ddalpha * tau_undamaged;
+    } else if (w > 0.0) {
+      dtau *= 1.0 - w;
     }
     return dtau;
   });
   return r;
 }
 
+double J2LogPlasticity::accrue_damage(const PlasticState& committed, double dalpha, double cell_size,
+                                      StressUpdate& r) const {
+  r.state.damage = committed.damage;
+  r.state.softening = committed.softening;
+  if (!(dalpha > 0.0) || !failure_.enabled()) return 0.0;
+  const StressInvariants inv = stress_invariants(r.kirchhoff);  // undamaged: w scales tau, not its invariants
+  const double strain_to_failure = failure_.strain_to_failure(inv.triaxiality, inv.lode_parameter);
+  r.state.damage += dalpha / strain_to_failure;
+  if (!failure_.softens() || !(cell_size > 0.0) || r.state.damage < 1.0) return 0.0;
+  // The part of Delta alpha after D reached 1 (D grows linearly over the step).
+  const double after_initiation = committed.damage >= 1.0 ? dalpha : (r.state.damage - 1.0) * strain_to_failure;
+  const double rate = cell_size / failure_.softening_displacement;  // dw / d alpha
+  const double w = committed.softening + after_initiation * rate;
+  if (w >= failure_.largest_softening) {
+    r.state.softening = std::max(committed.softening, failure_.largest_softening);
+    return 0.0;
+  }
+  r.state.softening = w;
+  return rate;
+}
+
 double FailureParameters::strain_to_failure(double triaxiality, double lode_parameter) const {
-  const double lode_angle = 1.0 - 2.0 / dealii::numbers::PI * std::acos(std::clamp(lode_parameter, -1.0, 1.0));
-  const double lode_factor = shear_ductility_ratio + (1.0 - shear_ductility_ratio) * lode_angle * lode_angle;
+  const double theta = 1.0 - 2.0 / dealii::numbers::PI * std::acos(std::clamp(lode_parameter, -1.0, 1.0));
+  if (locus == FractureLocus::hosford_coulomb) {
+    const double sixth = dealii::numbers::PI / 6.0;
+    const double f1 = 2.0 / 3.0 * std::cos(sixth * (1.0 - theta));
+    const double f2 = 2.0 / 3.0 * std::cos(sixth * (3.0 + theta));
+    const double f3 = -2.0 / 3.0 * std::cos(sixth * (1.0 + theta));
+    const auto power = [&](double x) { return std::pow(std::max(x, 0.0), hc_a); };
+    const double hosford = std::pow(0.5 * (power(f1 - f2) + power(f2 - f3) + power(f1 - f3)), 1.0 / hc_a);
+    const double bracket = hosford + hc_c * (2.0 * triaxiality + f1 + f3);
+    if (!(bracket > 0.0)) return std::numeric_limits<double>::infinity();
+    return std::max(hc_b * std::pow((1.0 + hc_c) / bracket, 1.0 / hc_n), 1e-6);
+  }
+  const double lode_factor = shear_ductility_ratio + (1.0 - shear_ductility_ratio) * theta * theta;
   return std::max((d1 + d2 * std::exp(d3 * triaxiality)) * lode_factor, 1e-6);
 }
 

@@ -29,6 +29,7 @@ struct PlasticState {
   double equivalent_plastic_strain = 0.0;
   double plastic_dissipation = 0.0;  // J per reference volume, accumulated
   double damage = 0.0;               // ductile failure indicator, failure at 1
+  double softening = 0.0;            // w: the stress is (1 - w) times the undamaged one (after D = 1)
   SymTensor2 backstress;             // Pa, deviatoric (Armstrong-Frederick), spatial log-strain frame
 };
 
@@ -42,19 +43,44 @@ struct KinematicParameters {
   bool enabled() const { return modulus > 0.0; }
 };
 
-// Uncoupled ductile failure indicator D = sum d(alpha) / eps_f(eta, theta) with eta the stress
-// triaxiality and theta = 1 - (2/pi) arccos(xi) the Lode angle parameter (xi = 27 J3 / (2 q^3);
-// +1 axisymmetric tension, 0 shear or plane strain, -1 axisymmetric compression):
-//   eps_f = (d1 + d2 exp(d3 eta)) (s + (1 - s) theta^2).
-// The first factor is Johnson & Cook (1985, EFM 21); the second the symmetric form of the Bai &
-// Wierzbicki (2008, IJP 24, eq. 25) locus with its shear branch (theta = 0) at s times the
-// axisymmetric one, D3 exp(-D4 eta) = s (d1 + d2 exp(d3 eta)), D5 = D1, D6 = D2. s = 1 (the default)
-// is plain Johnson-Cook; s < 1 makes shear-dominated states fail earlier. Off when d1 = d2 = 0.
+// Ductile failure indicator D = sum d(alpha) / eps_f(eta, theta) (linear accumulation over the
+// plastic strain increments), with eta the stress triaxiality and theta = 1 - (2/pi) arccos(xi) the
+// Lode angle parameter (xi = 27 J3 / (2 q^3); +1 axisymmetric tension, 0 shear or plane strain,
+// -1 axisymmetric compression). Two loci eps_f:
+//  * Johnson-Cook with a Lode factor (the default):
+//      eps_f = (d1 + d2 exp(d3 eta)) (s + (1 - s) theta^2),
+//    Johnson & Cook (1985, EFM 21) times the symmetric form of the Bai & Wierzbicki (2008, IJP 24,
+//    eq. 25) locus with its shear branch (theta = 0) at s times the axisymmetric one; s = 1 is
+//    plain Johnson-Cook. Off when d1 = d2 = 0.
+//  * Hosford-Coulomb (Mohr & Marcadet 2015, IJSS 67-68, eq. 20; Roth & Mohr 2016, IJP 79):
+//      eps_f = b (1 + c)^(1/n) [ g_HF + c (2 eta + f1 + f3) ]^(-1/n),
+//      g_HF = ( ((f1 - f2)^a + (f2 - f3)^a + (f1 - f3)^a) / 2 )^(1/a),
+//      f1 = 2/3 cos(pi/6 (1 - theta)), f2 = 2/3 cos(pi/6 (3 + theta)), f3 = -2/3 cos(pi/6 (1 + theta)):
+//    the Hosford equivalent stress (exponent a) plus c times the normal stress on the plane of
+//    maximum shear, mapped to strain by the transformation exponent n. b is the strain to fracture
+//    in uniaxial (and equibiaxial) tension; a < 2 and small c lower the ductility in shear and
+//    plane strain at low triaxiality. Where the bracket is <= 0 (high pressure) no damage accrues.
+//    Off when b = 0.
+// Softening (optional): once D reaches 1 the stress degrades, tau = (1 - w) tau_eff, with
+//   dw = d(alpha) h / u_f,  w <= w_max,
+// the crack band of Bazant & Oh (1983, Mater. Struct. 16): over a cell of size h the stress falls
+// to zero within an opening of u_f, so the energy dissipated per unit crack area does not depend
+// on h. The damage dissipation psi dw is booked with the plastic dissipation.
+enum class FractureLocus { johnson_cook, hosford_coulomb };
+
 struct FailureParameters {
   double d1 = 0.0, d2 = 0.0, d3 = 0.0;
   double shear_ductility_ratio = 1.0;  // s in (0, 1]
-  bool enabled() const { return d1 != 0.0 || d2 != 0.0; }
-  // Plastic strain to failure (floored at 1e-6 so that D stays finite).
+  FractureLocus locus = FractureLocus::johnson_cook;
+  double hc_a = 2.0, hc_b = 0.0, hc_c = 0.0, hc_n = 0.1;  // Hosford-Coulomb a, b, c, n
+  double softening_displacement = 0.0;  // u_f, m; 0: indicator only, the stress never degrades
+  double largest_softening = 0.99;      // w_max: the cracked point keeps 1 - w_max of its stress
+  bool enabled() const {
+    return locus == FractureLocus::hosford_coulomb ? hc_b > 0.0 : (d1 != 0.0 || d2 != 0.0);
+  }
+  bool softens() const { return enabled() && softening_displacement > 0.0; }
+  // Plastic strain to failure (floored at 1e-6 so that D stays finite; +inf where the locus
+  // accrues no damage).
   double strain_to_failure(double triaxiality, double lode_parameter) const;
 };
 
@@ -75,8 +101,10 @@ class J2LogPlasticity {
                   KinematicParameters kinematic = {});
 
   // Stress at deformation gradient F from the committed history. Throws std::domain_error if
-  // det F <= 0 (the caller cuts the load step back).
-  StressUpdate update(const Tensor2& F, const PlasticState& committed, bool with_tangent) const;
+  // det F <= 0 (the caller cuts the load step back). `cell_size` (m) is the crack band h of the
+  // softening; 0 (a material point without a cell) leaves the stress undegraded.
+  StressUpdate update(const Tensor2& F, const PlasticState& committed, bool with_tangent,
+                      double cell_size = 0.0) const;
 
   const ElasticParameters& elastic() const { return elastic_; }
   const IsotropicHardening& hardening() const { return hardening_; }
@@ -86,7 +114,10 @@ class J2LogPlasticity {
   double solve_plastic_increment(double trial_equivalent_stress, double alpha_n) const;
   StressUpdate update_kinematic(const Tensor2& F, const Tensor2& F_inv_T, const Tensor2& Cpi, const Spectral& s,
                                 const std::array<double, 3>& eps, const PlasticState& committed,
-                                bool with_tangent) const;
+                                bool with_tangent, double cell_size) const;
+  // The indicator's and the softening's increments over a plastic increment dalpha; returns
+  // dw / d(dalpha) (0 when w does not grow) for the tangent.
+  double accrue_damage(const PlasticState& committed, double dalpha, double cell_size, StressUpdate& r) const;
   double solve_kinematic_increment(const SymTensor2& trial_deviator, const SymTensor2& backstress,
                                    double alpha_n) const;
 

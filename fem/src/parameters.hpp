@@ -33,6 +33,12 @@ struct GeometryParameters {
   // Cleared when a single-wire mesh file's axis leaves the z axis (`dtwire mesh segment`): the
   // diameter is then read off its end face and no neck section is tracked.
   bool straight_axis = true;
+  // Local refinement at the twist's junctions (junction_refinement.hpp): the active cells whose
+  // centre lies within junction_half_width of a junction plane z = const are refined,
+  // junction_cycles times (0: the mesh as read or generated).
+  unsigned junction_cycles = 0;
+  double junction_half_width = 4e-3;     // m
+  std::vector<double> junction_planes;   // m, z of the planes
 };
 
 struct MaterialParameters {
@@ -42,6 +48,7 @@ struct MaterialParameters {
   FailureParameters failure;
   KinematicParameters kinematic;  // Armstrong-Frederick, off by default
   bool stop_at_failure = true;
+  double stop_force_fraction = 0.1;  // with softening: stop once |force| <= this x its peak
 };
 
 // The double twist as made (forming_history.hpp, issue 19): the wires start with the plastic

@@ -27,6 +27,7 @@
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/version.hpp"
 #include "contact/contact_curve.hpp"  // contact (issue 5)
+#include "failure_place.hpp"
 #include "link_kinematics.hpp"
 #include "run_checks.hpp"
 #include "run_resources.hpp"
@@ -57,15 +58,6 @@ class TeeBuffer : public std::streambuf {
   std::streambuf* a_;
   std::streambuf* b_;
 };
-
-// Failure mode at the point where the indicator first reached 1: necking-driven when the
-// stress state there is axisymmetric tension raised by a neck (Lode parameter > 0.5, triaxiality
-// > 0.38), shear-driven when the Lode parameter is near 0 (|xi| < 0.5), otherwise uniform tension.
-std::string failure_mode(const StepRecord& r) {
-  if (std::abs(r.damage_lode) < 0.5) return "shear-driven";
-  if (r.damage_lode > 0.5 && r.damage_triaxiality > 0.38) return "necking-driven";
-  return "uniform tension";
-}
 
 const StepRecord* first_failure(const std::vector<StepRecord>& records) {
   for (const auto& r : records)
@@ -234,7 +226,13 @@ Curve make_curve(const std::vector<StepRecord>& records, const RunOptions& optio
     c.add_channel_si("damage", Dimension::Dimensionless, damage, *find_unit("1"));
     if (const StepRecord* failure = first_failure(records)) {
       std::ostringstream text;
-      text << failure_mode(*failure) << " at displacement " << failure->displacement * 1e3 << " mm, force "
+      if (p.geometry.junction_planes.size() == 2) {  // a double twist's two ends
+        const auto [low, high] = std::minmax(p.geometry.junction_planes[0], p.geometry.junction_planes[1]);
+        const char* place = to_string(failure_place(failure->damage_z, p.geometry.diameter, {{low, high}}));
+        c.set_metadata("failure_place", place);
+        text << "in the " << place << ", ";
+      }
+      text << failure_mode(failure->damage_triaxiality, failure->damage_lode) << " at displacement " << failure->displacement * 1e3 << " mm, force "
            << failure->force << " N, z = " << failure->damage_z * 1e3 << " mm, r = " << failure->damage_r * 1e3
            << " mm, triaxiality " << failure->damage_triaxiality << ", Lode parameter " << failure->damage_lode;
       c.set_metadata("failure", text.str());
@@ -438,6 +436,8 @@ RunSummary run_experiment(const RunOptions& options) {
 
   Curve curve = make_curve(records, options, parameters, run_id);
   curve.set_metadata("status", "ok");
+  if (st.ended_in_snap_back)
+    curve.set_metadata("end", "no static state follows the fracture (snap-back): the curve ends at its last converged step");
   if (records.size() >= kMinimumCurvePoints) write_csv(curve, summary.curve_csv);
   else throw ComputationError("fewer than 3 load steps: no curve written");
   Results results;

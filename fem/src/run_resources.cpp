@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "dtwire/core/resources.hpp"
@@ -30,17 +31,60 @@ constexpr double kFrameBytesPerCell = 128.0;
 
 }  // namespace
 
+std::uint64_t refined_cells(std::uint64_t cells, std::uint64_t near, std::uint64_t ring, unsigned cycles) {
+  if (cycles == 0 || near == 0) return cells;
+  double added = static_cast<double>(near) * (std::pow(8.0, cycles) - 1.0);
+  for (unsigned k = 1; k < cycles; ++k) added += static_cast<double>(ring) * (std::pow(8.0, cycles - k) - 1.0);
+  return cells + static_cast<std::uint64_t>(std::ceil(added));
+}
+
+namespace {
+// Whether a cell with centre z and z extent dz is near a junction plane (1), in the ring next to
+// the near cells (2), or neither (0).
+int junction_zone(const GeometryParameters& g, double z, double dz) {
+  int zone = 0;
+  for (const double plane : g.junction_planes) {
+    const double distance = std::abs(z - plane);
+    if (distance < g.junction_half_width) return 1;
+    if (distance < g.junction_half_width + dz) zone = 2;
+  }
+  return zone;
+}
+}  // namespace
+
 MeshSize generated_mesh_size(const GeometryParameters& g) {
   const std::uint64_t disc = g.quarter ? 3 : 5;  // quarter_hyper_ball / hyper_ball cells
   MeshSize size;
   size.section_cells = disc << (2 * g.radial_refinements);
   size.cells = size.section_cells * g.axial_cells;
+  if (g.junction_cycles > 0) {  // layers whose centre lies near a junction plane
+    std::uint64_t layers[3] = {0, 0, 0};
+    const double dz = g.length / g.axial_cells;
+    for (unsigned k = 0; k < g.axial_cells; ++k) ++layers[junction_zone(g, (k + 0.5) * dz, dz)];
+    size.cells = refined_cells(size.cells, layers[1] * size.section_cells, layers[2] * size.section_cells,
+                               g.junction_cycles);
+  }
   return size;
 }
 
-MeshSize msh_file_size(const std::filesystem::path& file) {
+MeshSize msh_file_size(const std::filesystem::path& file, const GeometryParameters& g) {
   MeshSize size;
   size.cells = meshes::count_msh_volume_cells(file);
+  if (g.junction_cycles == 0) return size;
+  const meshes::MshFile mesh = meshes::read_msh(file);
+  std::uint64_t zones[3] = {0, 0, 0};
+  for (const auto& e : mesh.elements) {
+    if (e.type != 5) continue;  // hexahedra, the only cells deal.II reads in 3D
+    double z = 0.0, low = std::numeric_limits<double>::max(), high = -low;
+    for (const long node : e.nodes) {
+      const double zn = mesh.nodes.at(node)[2];
+      z += zn / static_cast<double>(e.nodes.size());
+      low = std::min(low, zn);
+      high = std::max(high, zn);
+    }
+    ++zones[junction_zone(g, z, high - low)];
+  }
+  size.cells = refined_cells(size.cells, zones[1], zones[2], g.junction_cycles);
   return size;
 }
 
@@ -64,7 +108,7 @@ double field_output_estimate(const MeshSize& mesh, unsigned degree, const Parame
 void check_run_resources(const Parameters& p, unsigned ranks, const std::optional<std::uint64_t>& max_memory,
                          const std::optional<std::uint64_t>& available, const std::optional<std::uint64_t>& free_disk,
                          const std::string& source, const std::filesystem::path& out) {
-  const MeshSize mesh = p.geometry.mesh_file.empty() ? generated_mesh_size(p.geometry) : msh_file_size(p.geometry.mesh_file);
+  const MeshSize mesh = p.geometry.mesh_file.empty() ? generated_mesh_size(p.geometry) : msh_file_size(p.geometry.mesh_file, p.geometry);
   const unsigned degree = p.formulation.degree;
   std::ostringstream what;
   what << mesh.cells << (p.geometry.mesh_file.empty() ? " cells" : " cells of " + p.geometry.mesh_file.string())

@@ -13,6 +13,8 @@
 //     858 MiB at 11 712, 4.84 GiB at 78 720 (the first load steps): 39, 59 and 62 KiB a cell.
 // A cell's cost is taken at or above every measured figure of its kind, so the estimate errs
 // towards refusing; `--max-memory` overrides it. No deal.II here: plain sizes in.
+// Junction refinement (junction_refinement.hpp) adds the children of the cells near the junction
+// planes, counted from the mesh before it is built (see refined_cells).
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -28,11 +30,20 @@ struct MeshSize {
 };
 
 // The size of the generated mesh of `g` (no mesh file): the quarter or full disc refined
-// `radial_refinements` times, extruded into `axial_cells` layers.
+// `radial_refinements` times, extruded into `axial_cells` layers, then refined at the junctions.
 MeshSize generated_mesh_size(const GeometryParameters& g);
 // The 3D elements of a gmsh .msh file (ASCII 2.x or 4.x), counted without building the mesh
-// (meshes::count_msh_volume_cells: InputError naming the file and line it cannot read).
-MeshSize msh_file_size(const std::filesystem::path& file);
+// (meshes::count_msh_volume_cells: InputError naming the file and line it cannot read). With
+// junction refinement (g.junction_cycles > 0) the file is read (meshes::read_msh, a few hundred
+// bytes a cell against the run's tens of KiB) to find the hexahedra near the junction planes.
+MeshSize msh_file_size(const std::filesystem::path& file, const GeometryParameters& g = {});
+
+// Active cells after `cycles` junction refinements of a mesh of `cells` cells of which `near`
+// have their centre within the half-width of a junction plane and `ring` (the others) within the
+// half-width plus their own z extent (their neighbours along the wire): each cycle splits the near
+// cells and their children into 8, and p4est's 2:1 balance keeps the k-th ring of neighbours at
+// most k levels coarser, counted as `ring` cells for every k (the first ring's size).
+std::uint64_t refined_cells(std::uint64_t cells, std::uint64_t near, std::uint64_t ring, unsigned cycles);
 
 // Peak resident memory (bytes) of a run on `ranks` ranks with elements of `degree`.
 double run_memory_estimate(const MeshSize& mesh, unsigned degree, unsigned ranks);

@@ -1,5 +1,7 @@
 #include "solver.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <ostream>
 
@@ -42,6 +44,28 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
   PETScWrappers::MPI::Vector saved(s.owned, s.comm), last_step(s.owned, s.comm), scaled(s.owned, s.comm);
   double last_dt = 0.0, last_knot = -1.0;
   bool retry = false;
+  // After a step in which the failure indicator is at or past 1: logs it and tells whether the run
+  // stops. Without softening the indicator's first reaching 1 is the failure; with softening the
+  // cracked points lose their stress and the run stops when the force has fallen to the stop
+  // fraction of its peak (a tensile machine's break detection).
+  const auto stop_after_failure = [&s](const StepRecord& record) {
+    const bool first = s.history.size() < 2 || s.history[s.history.size() - 2].damage < 1.0;
+    if (first)
+      s.log << "  ductile failure indicator reached " << record.damage << " at z = " << record.damage_z * 1e3
+            << " mm, r = " << record.damage_r * 1e3 << " mm (triaxiality " << record.damage_triaxiality
+            << ", Lode parameter " << record.damage_lode << ")\n";
+    if (!s.prm.material.stop_at_failure) return false;
+    if (!s.prm.material.failure.softens()) {
+      s.log << "  stopping at failure (Stop at failure = true)\n";
+      return true;
+    }
+    double peak = 0.0;
+    for (const auto& r : s.history) peak = std::max(peak, std::abs(r.force));
+    if (std::abs(record.force) > s.prm.material.stop_force_fraction * peak) return false;
+    s.log << "  the force fell to " << std::abs(record.force) << " N, at most " << s.prm.material.stop_force_fraction
+          << " of its peak " << peak << " N: stopping after the fracture (Failure stop force fraction)\n";
+    return true;
+  };
   s.log << std::setprecision(6);
   StepRecord record;
   if (s.restart_step >= 0) {
@@ -121,18 +145,11 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       s.record_probes(record);
       s.log << "  converged in " << iterations << " iteration(s): force " << record.force << " N, neck radius "
             << record.neck_radius * 1e3 << " mm" << std::endl;  // flushed: progress of long runs
+      s.log_junction_state();
       on_step(record);
       s.history.push_back(record);
       if (interval > 0 && step % interval == 0) s.write_fields(step, t);
-      if (s.prm.material.failure.enabled() && record.damage >= 1.0) {
-        s.log << "  ductile failure indicator reached " << record.damage << " at z = " << record.damage_z * 1e3
-              << " mm, r = " << record.damage_r * 1e3 << " mm (triaxiality " << record.damage_triaxiality
-              << ", Lode parameter " << record.damage_lode << ")\n";
-        if (s.prm.material.stop_at_failure) {
-          s.log << "  stopping at failure (Stop at failure = true)\n";
-          break;
-        }
-      }
+      if (s.prm.material.failure.enabled() && record.damage >= 1.0 && stop_after_failure(record)) break;
       if (iterations <= stepping.easy_iterations && dt < stepping.maximum_step) {
         const double grown = std::min(stepping.maximum_step, dt * stepping.growth_factor);
         s.log << "  easy step (" << iterations << " <= " << stepping.easy_iterations << " iterations): dt "
@@ -147,6 +164,14 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
       ++s.stats.cutbacks;
       const double reduced = dt_try * stepping.cutback_factor;
       s.log << "  step failed (" << reason << "): cut back dt " << dt_try << " -> " << reduced << std::endl;
+      if (reduced < stepping.minimum_step && s.prm.material.failure.softens() && s.history.back().damage >= 1.0) {
+        // A crack that releases more elastic energy than it dissipates snaps back: no static
+        // state follows the last one. The curve up to it is the answer; the log says why it ends.
+        s.log << "  dt below the minimum step " << stepping.minimum_step << " after the failure indicator reached 1: "
+              << "no static state follows the crack (snap-back); the curve ends at t = " << t << "\n";
+        s.stats.ended_in_snap_back = true;
+        break;
+      }
       if (reduced < stepping.minimum_step) {
         s.log << "  dt below the minimum step " << stepping.minimum_step << ": giving up at t = " << t << "\n";
         throw ComputationError("load stepping failed at pseudo-time " + std::to_string(t) + " (" + reason +

@@ -53,6 +53,8 @@ struct SolverStatistics {
   std::size_t steps = 0, newton_iterations = 0, cutbacks = 0, assemblies = 0;
   std::size_t factorisations = 0;  // direct and lagged-lu solvers (this run, not counting a restart's past)
   double assembly_seconds = 0.0, solve_seconds = 0.0;
+  // With softening: the run ended because no static state followed the crack (see WireSolver::run).
+  bool ended_in_snap_back = false;
   FormingSummary forming;
 };
 
@@ -84,6 +86,15 @@ class WireSolver {
   const GeometryParameters& geometry() const;  // after reading the mesh
   bool is_root() const;
   std::vector<std::string> field_files() const;  // the .pvd record and .pvtu files written
+  // Junction refinement (junction_refinement.hpp): the hanging-node constraints made afresh from
+  // the mesh (not the solver's own), checked against the reference vertices and the solution:
+  // the hanging nodes' count (all ranks) and how far a hanging node lies from the point of the
+  // coarse edge or face it hangs on (m; largest over its components), before and after loading.
+  struct HangingNodeCheck {
+    std::size_t nodes = 0;
+    double reference_gap = 0.0, displaced_gap = 0.0;
+  };
+  HangingNodeCheck hanging_node_check();
 
  private:
   struct Impl;

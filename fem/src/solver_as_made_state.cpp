@@ -1,6 +1,7 @@
 // The as-made state file (As made/State file): the springback's result written once and read by
-// later runs instead of forming and releasing again. Rank-independent: one block per mesh cell,
-// keyed by its coarse-cell index (the order of the mesh file), holding the cell's centre (to
+// later runs instead of forming and releasing again. Rank-independent: one block per active cell,
+// in the order of cell_order_key (the mesh file's order of coarse cells, then the children of a
+// junction refinement, junction_refinement.hpp), holding the cell's centre (to
 // recognise the mesh), its displacement dof values and the committed material state of its
 // quadrature points; written by rank 0 from what every rank gathered, read whole by every rank.
 #include <boost/archive/binary_iarchive.hpp>
@@ -10,12 +11,14 @@
 
 #include <deal.II/base/timer.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
 #include "dtwire/core/error.hpp"
 #include "dtwire/version.hpp"
 #include "forming_history.hpp"
+#include "junction_refinement.hpp"
 #include "plastic_state_pack.hpp"
 #include "solver_impl.hpp"
 
@@ -25,7 +28,7 @@ using namespace dealii;
 
 namespace {
 
-constexpr char kStateMagic[16] = "dtwire-asmade-1";
+constexpr char kStateMagic[16] = "dtwire-asmade-2";  // 2: the softening in each point's state
 
 // The material's answer to three uniaxial forming paths (compression, moderate and large
 // tension): a state formed with other hardening, backstress or failure parameters differs.
@@ -73,6 +76,21 @@ void unpack_summary(const std::vector<double>& v, FormingSummary& f) {
 }
 constexpr std::size_t kSummarySize = 15;
 
+// Every active cell's order key, from all ranks, sorted: a cell's block is at its key's position.
+std::vector<double> sorted_cell_keys(const parallel::distributed::Triangulation<3>& tria, MPI_Comm comm) {
+  std::vector<double> owned;
+  for (const auto& cell : tria.active_cell_iterators())
+    if (cell->is_locally_owned()) owned.push_back(cell_order_key(cell->id()));
+  std::vector<double> keys;
+  for (const auto& block : Utilities::MPI::all_gather(comm, owned)) keys.insert(keys.end(), block.begin(), block.end());
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+std::size_t cell_position(const std::vector<double>& keys, const CellId& id) {
+  return static_cast<std::size_t>(std::lower_bound(keys.begin(), keys.end(), cell_order_key(id)) - keys.begin());
+}
+
 }  // namespace
 
 // Header: cells, DoFs, degree, quadrature points per cell, dof values per cell, forming scale.
@@ -85,11 +103,12 @@ std::vector<double> WireSolver::Impl::as_made_header() const {
 void WireSolver::Impl::write_as_made_state(const std::filesystem::path& file) {
   refresh_relevant_values();
   const unsigned n_q = quadrature.size(), per_cell = 3 + fe.n_dofs_per_cell() + kPackedPlasticStateSize * n_q;
-  std::vector<double> blocks;  // per owned cell: coarse index, then its values
+  const std::vector<double> keys = sorted_cell_keys(triangulation, comm);
+  std::vector<double> blocks;  // per owned cell: its position in the file, then its values
   Vector<double> cell_values(fe.n_dofs_per_cell());
   for (const auto& cell : dof_handler.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
-    blocks.push_back(static_cast<double>(cell->id().get_coarse_cell_id()));
+    blocks.push_back(static_cast<double>(cell_position(keys, cell->id())));
     const Point<3> centre = cell->center();
     blocks.insert(blocks.end(), {centre[0], centre[1], centre[2]});
     cell->get_dof_values(ghosted, cell_values);
@@ -161,10 +180,11 @@ void WireSolver::Impl::read_as_made_state(const std::filesystem::path& file) {
   if (cells.size() != expected[0] * per_cell) throw InputError(name, "truncated as-made state");
 
   // The same cell count on another geometry (say, longer arms): the cell centres tell.
+  const std::vector<double> keys = sorted_cell_keys(triangulation, comm);
   double misplaced = 0.0;
   for (const auto& cell : triangulation.active_cell_iterators())
     if (cell->is_locally_owned()) {
-      const double* centre = cells.data() + cell->id().get_coarse_cell_id() * per_cell;
+      const double* centre = cells.data() + cell_position(keys, cell->id()) * per_cell;
       misplaced = std::max(misplaced, cell->center().distance(Point<3>(centre[0], centre[1], centre[2])));
     }
   misplaced = Utilities::MPI::max(misplaced, comm);
@@ -174,7 +194,7 @@ void WireSolver::Impl::read_as_made_state(const std::filesystem::path& file) {
   std::vector<types::global_dof_index> dofs(fe.n_dofs_per_cell());
   for (const auto& cell : dof_handler.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
-    const double* values = cells.data() + cell->id().get_coarse_cell_id() * per_cell + 3;
+    const double* values = cells.data() + cell_position(keys, cell->id()) * per_cell + 3;
     cell->get_dof_indices(dofs);
     for (unsigned i = 0; i < dofs.size(); ++i)
       if (owned.is_element(dofs[i])) solution[dofs[i]] = values[i];

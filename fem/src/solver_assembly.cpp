@@ -103,7 +103,12 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
     }
     if (with_matrix) constraints.distribute_local_to_global(copy.matrix, copy.rhs, copy.dofs, matrix, rhs);
     else constraints.distribute_local_to_global(copy.rhs, copy.dofs, rhs);
-    internal_force.add(copy.dofs, copy.internal_force);
+    if (hanging.n_constraints() > 0) {  // a hanging node's share goes to the nodes it follows
+      const Vector<double> local(copy.internal_force.begin(), copy.internal_force.end());
+      hanging.distribute_local_to_global(local, copy.dofs, internal_force);
+    } else {
+      internal_force.add(copy.dofs, copy.internal_force);
+    }
     elastic_energy += copy.elastic_energy;
     dissipation += copy.dissipation;
   };

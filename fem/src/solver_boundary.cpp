@@ -50,6 +50,12 @@ class TopEndIncrement : public Function<3> {
 void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double t_old, double t_new) const {
   c.clear();
   c.reinit(relevant);
+  // Hanging nodes first: a Dirichlet value is then not set on a hanging node (it follows its
+  // face), and close() resolves a hanging node whose masters are prescribed.
+  for (const auto& line : hanging.get_lines()) {
+    c.add_line(line.index);
+    c.add_entries(line.index, line.entries);
+  }
   const FEValuesExtractors::Scalar ux(0), uy(1), uz(2);
   const ComponentMask all(3, true), z_only = fe.component_mask(uz);
   const auto zero = Functions::ZeroFunction<3>(3);
@@ -71,7 +77,7 @@ void WireSolver::Impl::make_constraints(AffineConstraints<double>& c, double t_o
       VectorTools::interpolate_boundary_values(dof_handler, fixed, c, ComponentMask(std::vector<bool>{true, true, false}));
     }
     for (const auto i : top_loaded_dofs)
-      if (i != force_dof && relevant.is_element(i)) {
+      if (i != force_dof && relevant.is_element(i) && !c.is_constrained(i)) {
         c.add_line(i);
         c.add_entry(i, force_dof, 1.0);
       }

@@ -23,7 +23,7 @@ std::filesystem::path WireSolver::Impl::checkpoint_file(unsigned step) const {
 }
 
 namespace {
-constexpr char kCheckpointMagic[16] = "dtwire-ckpt-5";
+constexpr char kCheckpointMagic[16] = "dtwire-ckpt-6";  // 6: 16 doubles per point (softening)
 }  // namespace
 
 // Layout: magic, then one boost binary archive: the header (ranks, DoFs, cells, quadrature

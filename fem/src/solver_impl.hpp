@@ -89,6 +89,10 @@ struct WireSolver::Impl {
   double applied_force = 0.0;
   // Krylov option: orthonormal rigid-body modes (3 translations, 3 rotations) for GAMG.
   std::vector<PETScWrappers::MPI::Vector> rigid_body_modes;
+  // Hanging-node constraints of a junction-refined mesh (junction_refinement.hpp), empty on a
+  // conforming mesh: the first lines of homogeneous and predictor; internal_force is condensed
+  // through them, so that a hanging node carries no force of its own.
+  AffineConstraints<double> hanging;
   AffineConstraints<double> homogeneous, predictor;
   PETScWrappers::MPI::SparseMatrix matrix;
   DirectSolver direct_solver{MPI_COMM_WORLD};  // keeps MUMPS's analysis while the pattern stays
@@ -141,6 +145,9 @@ struct WireSolver::Impl {
   double reaction() const;
   double neck_radius() const;
   void record_damage(StepRecord& record) const;
+  // The junction's state (solver_junction.cpp): largest equivalent plastic strain of the cells
+  // near a junction plane, with the triaxiality and Lode parameter there; one log line.
+  void log_junction_state() const;
   bool solve_step(double t_old, double t_new, const PETScWrappers::MPI::Vector* extrapolation,
                   unsigned& iterations, std::string& reason);
   void write_fields(unsigned step, double time);

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "dtwire/core/error.hpp"
+#include "junction_refinement.hpp"
 #include "solver_impl.hpp"
 #include "wire_mesh.hpp"
 
@@ -17,6 +18,7 @@ using namespace dealii;
 
 void WireSolver::Impl::setup() {
   make_wire_mesh(prm.geometry, triangulation);
+  refine_junctions(prm.geometry, triangulation);
   dof_handler.distribute_dofs(fe);
   owned = dof_handler.locally_owned_dofs();
   DoFTools::extract_locally_relevant_dofs(dof_handler, relevant);
@@ -89,6 +91,20 @@ void WireSolver::Impl::setup() {
     wire_contact = wires.get();
     contact_parts.push_back(std::move(wires));
     relevant.add_indices(wire_contact->needed_dofs());
+  }
+  if (prm.geometry.junction_cycles > 0) {
+    if (prm.wire_contact.enabled && prm.wire_contact.smoothed_normals)
+      throw InputError("Wire contact", "'Smoothed normals = true' needs a conforming mesh: set 'Junction refinement "
+                                       "cycles = 0' (averaged normals at hanging nodes are not implemented)");
+    const IndexSet shared = wire_contact ? wire_contact->needed_dofs() : IndexSet(dof_handler.n_dofs());
+    make_shared_hanging_node_constraints(dof_handler, relevant, shared, comm, hanging);
+    for (const auto& line : hanging.get_lines())
+      for (const auto& entry : line.entries)
+        if (!relevant.is_element(entry.first))
+          throw std::logic_error("junction refinement: a hanging node's master dof is not locally relevant");
+    log << "junction refinement: " << prm.geometry.junction_cycles << " cycle(s) within "
+        << prm.geometry.junction_half_width * 1e3 << " mm of the junction planes, "
+        << Utilities::MPI::sum(hanging.n_constraints(), comm) << " hanging-node constraint lines (summed over ranks)\n";
   }
   make_constraints(homogeneous, 0.0, 0.0);
   make_constraints(predictor, 0.0, 1.0);  // same sparsity; values reset per step

@@ -22,7 +22,7 @@ namespace {
 bool is_free_part(types::material_id id) {
   return (id - 1) % 10 == static_cast<int>(regions::WirePart::Free);
 }
-constexpr unsigned kPackedPoint = 1 + 1 + 3 + 15;  // wire, station, position, state (b_e, ...)
+constexpr unsigned kPackedPoint = 1 + 1 + 3 + kPackedPlasticStateSize;  // wire, station, position, state (b_e, ...)
 }  // namespace
 
 void WireSolver::Impl::write_twisted_pair_state(const std::filesystem::path& file) {

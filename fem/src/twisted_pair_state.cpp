@@ -33,6 +33,7 @@ const std::vector<Column>& columns() {
     c.push_back({"damage", Dimension::Dimensionless, "1"});
     for (const char* k : {"backstress_xx", "backstress_yy", "backstress_zz", "backstress_xy", "backstress_xz", "backstress_yz"})
       c.push_back({k, Dimension::Stress, "MPa"});
+    c.push_back({"softening", Dimension::Dimensionless, "1"});
     return c;
   }();
   return list;
@@ -65,6 +66,7 @@ void write_twisted_pair_csv(const std::filesystem::path& file, double z0, double
     for (unsigned k = 0; k < 6; ++k) row.push_back(p.state.plastic_metric_inverse[kRow[k]][kCol[k]]);
     row.insert(row.end(), {p.state.equivalent_plastic_strain, p.state.plastic_dissipation, p.state.damage});
     for (unsigned k = 0; k < 6; ++k) row.push_back(p.state.backstress[kRow[k]][kCol[k]]);
+    row.push_back(p.state.softening);
     for (std::size_t c = 0; c < row.size(); ++c) si[c].push_back(row[c]);
   }
   Curve curve;
@@ -112,6 +114,9 @@ TwistedPairState::TwistedPairState(const std::filesystem::path& file,
     p.state.plastic_dissipation = v(15);
     p.state.damage = v(16);
     for (unsigned k = 0; k < 6; ++k) p.state.backstress[kRow[k]][kCol[k]] = v(17 + k);
+    p.state.softening = v(23);
+    if (!(p.state.softening >= 0.0 && p.state.softening < 1.0))
+      throw InputError(name, "row " + std::to_string(i + 1) + ": softening must lie in [0, 1)");
     points_[p.wire].push_back(p);
   }
   for (unsigned w = 0; w < 2; ++w) {

@@ -46,12 +46,13 @@ J2LogPlasticity model(HardeningLaw which) {
 }
 
 // Uniaxial stress: F = diag(lambda, mu, mu), mu from tau_22 = 0 by Newton with the tangent.
-StressUpdate uniaxial(const J2LogPlasticity& m, double lambda, const PlasticState& state, double& mu) {
+StressUpdate uniaxial(const J2LogPlasticity& m, double lambda, const PlasticState& state, double& mu,
+                      double cell_size = 0.0) {
   for (int it = 0; it < 50; ++it) {
     Tensor2 F;
     F[0][0] = lambda;
     F[1][1] = F[2][2] = mu;
-    const StressUpdate r = m.update(F, state, true);
+    const StressUpdate r = m.update(F, state, true, cell_size);
     const double residual = r.first_piola[1][1];
     if (std::abs(residual) < 1e-2) return r;  // Pa: round-off of K * eps (1.6e11 * 1e-16) ~ 1e-5
     mu -= residual / (r.tangent[1][1][1][1] + r.tangent[1][1][2][2]);
@@ -110,8 +111,9 @@ INSTANTIATE_TEST_SUITE_P(EveryHardeningLaw, HomogeneousBar,
                                            HardeningLaw::table),
                          law_name);
 
-double relative_tangent_error(const J2LogPlasticity& m, const Tensor2& F, const PlasticState& state) {
-  const StressUpdate r = m.update(F, state, true);
+double relative_tangent_error(const J2LogPlasticity& m, const Tensor2& F, const PlasticState& state,
+                              double cell_size = 0.0) {
+  const StressUpdate r = m.update(F, state, true, cell_size);
   const double h = 1e-6;
   double err2 = 0.0, ref2 = 0.0;
   for (unsigned k = 0; k < 3; ++k)
@@ -119,7 +121,8 @@ double relative_tangent_error(const J2LogPlasticity& m, const Tensor2& F, const 
       Tensor2 Fp = F, Fm = F;
       Fp[k][l] += h;
       Fm[k][l] -= h;
-      const Tensor2 dP = (m.update(Fp, state, false).first_piola - m.update(Fm, state, false).first_piola) / (2 * h);
+      const Tensor2 dP =
+          (m.update(Fp, state, false, cell_size).first_piola - m.update(Fm, state, false, cell_size).first_piola) / (2 * h);
       for (unsigned i = 0; i < 3; ++i)
         for (unsigned j = 0; j < 3; ++j) {
           err2 += std::pow(dP[i][j] - r.tangent[i][j][k][l], 2);
@@ -328,6 +331,151 @@ TEST(KinematicHardening, ConsistentTangentMatchesCentralFiniteDifferences) {
   F_unload[0][0] -= 0.002;
   ASSERT_EQ(m.update(F_unload, plastic.state, false).plastic_increment, 0.0);
   EXPECT_LT(relative_tangent_error(m, F_unload, plastic.state), 1e-6);
+}
+
+}  // namespace
+}  // namespace dtwire::fem
+
+namespace dtwire::fem {
+namespace {
+
+// Hosford-Coulomb locus (Mohr & Marcadet 2015, IJSS 67-68, eq. 20) at the stress states where it
+// has a closed form: b in uniaxial (eta 1/3, xi 1) and equibiaxial tension (eta 2/3, xi -1) for
+// every a, c; in shear (eta 0, xi 0) the Hosford term is 1 for a = 2 (von Mises) and 2/sqrt(3)
+// for a = 1 (Tresca), the Coulomb term 0; in plane-strain tension (eta 1/sqrt(3), xi 0) the
+// Coulomb term is 2 c / sqrt(3). Tolerance: round-off of pow and cos (1e-12 relative).
+FailureParameters hosford_coulomb(double a, double b, double c, double n = 0.1) {
+  FailureParameters f;
+  f.locus = FractureLocus::hosford_coulomb;
+  f.hc_a = a, f.hc_b = b, f.hc_c = c, f.hc_n = n;
+  return f;
+}
+
+TEST(HosfordCoulomb, ClosedFormsAtUniaxialEquibiaxialShearAndPlaneStrain) {
+  for (const double a : {1.0, 1.4, 2.0})
+    for (const double c : {0.0, 0.05, 0.2}) {
+      const FailureParameters f = hosford_coulomb(a, 0.8, c);
+      EXPECT_NEAR(f.strain_to_failure(1.0 / 3.0, 1.0), 0.8, 1e-12) << "a " << a << ", c " << c;
+      EXPECT_NEAR(f.strain_to_failure(2.0 / 3.0, -1.0), 0.8, 1e-12) << "a " << a << ", c " << c;
+    }
+  const double c = 0.1, n = 0.1, b = 0.8;
+  EXPECT_NEAR(hosford_coulomb(2.0, b, c).strain_to_failure(0.0, 0.0) / (b * std::pow(1.0 + c, 1.0 / n)), 1.0, 1e-12);
+  EXPECT_NEAR(hosford_coulomb(1.0, b, c).strain_to_failure(0.0, 0.0) /
+                  (b * std::pow((1.0 + c) * std::sqrt(3.0) / 2.0, 1.0 / n)),
+              1.0, 1e-12);
+  EXPECT_NEAR(hosford_coulomb(2.0, b, c).strain_to_failure(1.0 / std::sqrt(3.0), 0.0) /
+                  (b * std::pow((1.0 + c) / (1.0 + 2.0 * c / std::sqrt(3.0)), 1.0 / n)),
+              1.0, 1e-12);
+  // a < 2 lowers the shear ductility against uniaxial tension: the junction's shear can fail first.
+  EXPECT_LT(hosford_coulomb(1.2, b, 0.02).strain_to_failure(0.0, 0.0), b);
+  // Under enough pressure the bracket turns negative: no damage accrues.
+  EXPECT_TRUE(std::isinf(hosford_coulomb(2.0, b, 0.5).strain_to_failure(-3.0, -1.0)));
+  EXPECT_FALSE(hosford_coulomb(2.0, 0.0, 0.1).enabled());
+}
+
+// The indicator along a material-point path is the plastic strain over the locus at the path's
+// stress state: uniaxial (D = alpha / b) and isochoric plane strain F = diag(l, 1/l, 1), pure
+// shear (D = alpha / eps_f(0, 0)). Tolerance: the lateral-equilibrium iteration's eta (1e-9).
+TEST(HosfordCoulomb, IndicatorAccruesAlongUniaxialAndShearPaths) {
+  HardeningParameters h;
+  h.law = HardeningLaw::linear;
+  h.yield_stress = 400e6;
+  h.linear_modulus = 1e9;
+  const FailureParameters locus = hosford_coulomb(1.3, 0.9, 0.05);
+  const J2LogPlasticity m(ElasticParameters{200e9, 0.3}, IsotropicHardening(h), locus);
+  PlasticState tension, shear;
+  double mu = 1.0;
+  for (int k = 1; k <= 20; ++k) {
+    tension = uniaxial(m, std::exp(0.01 * k), tension, mu).state;
+    Tensor2 F;
+    F[0][0] = std::exp(0.01 * k);
+    F[1][1] = std::exp(-0.01 * k);
+    F[2][2] = 1.0;
+    shear = m.update(F, shear, false).state;
+  }
+  ASSERT_GT(tension.equivalent_plastic_strain, 0.1);
+  EXPECT_NEAR(tension.damage, tension.equivalent_plastic_strain / 0.9, 1e-9);
+  EXPECT_NEAR(shear.damage, shear.equivalent_plastic_strain / locus.strain_to_failure(0.0, 0.0), 1e-9);
+}
+
+// Crack-band softening (Bazant & Oh 1983): a perfectly plastic bar in uniaxial tension whose
+// indicator reaches 1 at alpha_i loses its stress as w = (alpha - alpha_i) h / u_f. The work per
+// unit crack area after initiation, h times the dissipation density, is
+//   G = sigma_y u_f (w_max - w_max^2 / 2) + psi w_max h   (psi = sigma_y^2 / 2E, the elastic
+// energy released), the same for every cell size h. Tolerance 0.5 %: the trapezoidal rule over
+// 2e-3 strain steps and the step in which D crosses 1.
+TEST(Softening, CrackBandWorkIsIndependentOfTheCellSize) {
+  HardeningParameters h;
+  h.law = HardeningLaw::linear;
+  h.yield_stress = 400e6;
+  h.linear_modulus = 0.0;
+  FailureParameters locus{0.2, 0.0, 0.0};  // eps_f = 0.2 at every stress state
+  locus.softening_displacement = 0.5e-3;
+  locus.largest_softening = 0.99;
+  const J2LogPlasticity m(ElasticParameters{200e9, 0.3}, IsotropicHardening(h), locus);
+  const double psi = 400e6 * 400e6 / (2.0 * 200e9);
+  for (const double cell : {1e-3, 0.25e-3}) {
+    PlasticState state;
+    double mu = 1.0, initiation = -1.0, dissipation_at_initiation = 0.0, stress = 0.0;
+    const double end_strain = 0.2 + 1.2 * 0.5e-3 / cell;  // past w_max
+    for (int k = 1; k * 2e-3 <= end_strain; ++k) {
+      const StressUpdate r = uniaxial(m, std::exp(2e-3 * k), state, mu, cell);
+      if (initiation < 0.0 && r.state.damage >= 1.0) {
+        initiation = state.equivalent_plastic_strain + (1.0 - state.damage) * 0.2;
+        dissipation_at_initiation = state.plastic_dissipation + (initiation - state.equivalent_plastic_strain) * 400e6;
+        // Before the crack: the undegraded flow stress.
+        EXPECT_NEAR(stress, 400e6, 1e-6 * 400e6);
+      }
+      if (initiation >= 0.0 && r.state.softening < locus.largest_softening) {
+        const double w = (r.state.equivalent_plastic_strain - initiation) * cell / locus.softening_displacement;
+        EXPECT_NEAR(r.state.softening, w, 1e-9) << "cell " << cell << ", step " << k;
+      }
+      stress = r.kirchhoff[0][0];
+      state = r.state;
+    }
+    ASSERT_GE(initiation, 0.0);
+    EXPECT_NEAR(state.softening, 0.99, 1e-15);
+    EXPECT_NEAR(stress, 0.01 * 400e6, 1e-6 * 400e6);  // the cracked point keeps 1 - w_max
+    const double w_max = 0.99;
+    const double expected = 400e6 * 0.5e-3 * (w_max - 0.5 * w_max * w_max) + psi * w_max * cell;
+    // After w_max the point flows at 1 % of its stress: subtract that tail's work.
+    const double tail = (state.equivalent_plastic_strain - initiation - w_max * 0.5e-3 / cell) * 0.01 * 400e6;
+    EXPECT_NEAR((state.plastic_dissipation - dissipation_at_initiation - tail) * cell / expected, 1.0, 5e-3)
+        << "cell " << cell;
+  }
+}
+
+// The algorithmic tangent with softening (a step past initiation, w growing) and after it (w at
+// w_max) against central differences; tolerance as the undamaged tangent's (1e-6), looser (1e-5)
+// where the stress is 1 % of the flow stress and round-off weighs more.
+TEST(Softening, TangentMatchesCentralFiniteDifferences) {
+  HardeningParameters h;
+  h.law = HardeningLaw::linear;
+  h.yield_stress = 400e6;
+  h.linear_modulus = 1e9;
+  for (const bool kinematic : {false, true}) {
+    FailureParameters locus{0.05, 0.0, 0.0};
+    locus.softening_displacement = 0.2e-3;
+    const J2LogPlasticity m(ElasticParameters{200e9, 0.3}, IsotropicHardening(h), locus,
+                            kinematic ? KinematicParameters{20e9, 100.0} : KinematicParameters{});
+    const double cell = 0.5e-3;
+    PlasticState state;
+    Tensor2 F = dealii::unit_symmetric_tensor<3>();
+    for (int k = 1; k <= 200 && state.softening < 0.3; ++k) {
+      F[0][0] = 1.0 + 2e-3 * k;
+      F[1][1] = F[2][2] = 1.0 - 1e-3 * k;
+      F[0][1] = 5e-4 * k;
+      state = m.update(F, state, false, cell).state;
+    }
+    ASSERT_GT(state.softening, 0.0) << "kinematic " << kinematic;
+    ASSERT_LT(state.softening, 0.99);
+    Tensor2 next = F;
+    next[0][0] += 2e-3;
+    next[1][1] -= 1e-3;
+    const StressUpdate step = m.update(next, state, false, cell);
+    ASSERT_GT(step.state.softening, state.softening);
+    EXPECT_LT(relative_tangent_error(m, next, state, cell), 1e-6) << "kinematic " << kinematic;
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // imperfection from summary figures.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <filesystem>
@@ -102,6 +103,38 @@ TEST(GapModelPrm, ShearFailureEditsTheFailureLocus) {
   EXPECT_EQ(dt.unsupported.count("shear_failure"), 0u);
   const SimulationModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_s2");
   EXPECT_NE(column.unsupported.at("shear_failure").find("failure locus"), std::string::npos);
+}
+
+// With the Hosford-Coulomb locus (issue 50) shear_failure sets the Hosford exponent a whose shear
+// ductility is p times the uniaxial one: in shear eps_f / b = ((1 + c) / g_a)^(1/n) with g_a the
+// Hosford term of the principal stresses (1/sqrt3, 0, -1/sqrt3) (Mohr & Marcadet 2015); checked
+// on the edited value to 1e-6 (the value's printed digits). A ratio below the range's end
+// (a = 1: 0.237 at c = 0) takes that end.
+TEST(GapModelPrm, ShearFailureSetsTheHosfordExponentOfAHosfordCoulombLocus) {
+  const std::string prm =
+      "subsection Material\n  set Failure locus = hosford-coulomb\n  set Hosford-Coulomb b = 1.15\n"
+      "  set Hosford-Coulomb c = 0.05\nend\n";
+  const auto exponent = [&](double ratio) {
+    const std::string edited = edited_text(prm, {{&gap::find_effect("shear_failure"), {ratio}}}, ".");
+    const auto at = edited.find("set Hosford-Coulomb a = ");
+    EXPECT_NE(at, std::string::npos) << edited;
+    return std::stod(edited.substr(at + 24));
+  };
+  const auto ratio_of = [](double a, double c) {
+    const double g = std::pow(0.5 * (2.0 * std::pow(1.0 / std::sqrt(3.0), a) + std::pow(2.0 / std::sqrt(3.0), a)), 1.0 / a);
+    return std::pow((1.0 + c) / g, 10.0);
+  };
+  const double a = exponent(0.6);
+  EXPECT_GT(a, 1.0);
+  EXPECT_LT(a, 2.0);
+  EXPECT_NEAR(ratio_of(a, 0.05), 0.6, 1e-6);
+  EXPECT_DOUBLE_EQ(exponent(0.1), 1.0);
+  const std::string off = "subsection Material\n  set Failure locus = hosford-coulomb\nend\n";
+  fs::create_directories(fs::temp_directory_path() / "dtwire_gap_fe_test_hc");
+  const fs::path file = fs::temp_directory_path() / "dtwire_gap_fe_test_hc" / "off.prm";
+  std::ofstream(file) << off;
+  const SimulationModel model = make_fe_model(file, fs::temp_directory_path() / "dtwire_gap_fe_test_hc" / "out");
+  EXPECT_NE(model.unsupported.at("shear_failure").find("Hosford-Coulomb b = 0"), std::string::npos);
 }
 
 // coating_slip: the top grips' bond (penalty factor 10) slides at p x the clamped model's peak

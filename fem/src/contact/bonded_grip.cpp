@@ -77,7 +77,9 @@ BondedGrip::BondedGrip(const GripParameters& parameters, double young, const DoF
         points_.push_back(p);
       }
       faces_.push_back(std::move(face));
-      smallest_face = std::min(smallest_face, cell->face(f)->minimum_vertex_distance());
+      // h of the unrefined face (a junction-refined child doubles it back per level): refining
+      // resolves the junction without stiffening the penalty of every contact point.
+      smallest_face = std::min(smallest_face, cell->face(f)->minimum_vertex_distance() * std::ldexp(1.0, cell->level()));
     }
   }
   smallest_face = Utilities::MPI::min(smallest_face, comm_);

@@ -39,7 +39,7 @@ void declare_contact_parameters(dealii::ParameterHandler& prm) {
                     "DT mesh: 3, 13)");
   prm.declare_entry("Friction coefficient", "0", Patterns::Double(0.0), "Coulomb mu");
   prm.declare_entry("Normal penalty factor", "10", Patterns::Double(0.0),
-                    "epsilon_N = factor * E / h, h the smallest contact face size");
+                    "epsilon_N = factor * E / h, h the smallest contact face size before junction refinement");
   prm.declare_entry("Tangential penalty factor", "10", Patterns::Double(0.0), "epsilon_T = factor * E / h");
   prm.declare_entry("Augmentations", "0", Patterns::Integer(0),
                     "augmented-Lagrange (Uzawa) updates per load step; 0: pure penalty");

@@ -111,7 +111,9 @@ WireWireContact::WireWireContact(const WireContactParameters& parameters, double
       } else {
         continue;
       }
-      smallest_face = std::min(smallest_face, cell->face(f)->minimum_vertex_distance());
+      // h of the unrefined face (a junction-refined child doubles it back per level): refining
+      // resolves the junction without stiffening the penalty of every contact point.
+      smallest_face = std::min(smallest_face, cell->face(f)->minimum_vertex_distance() * std::ldexp(1.0, cell->level()));
     }
   }
   // Every rank holds the whole master surface (it is small next to the volume mesh).

@@ -1,5 +1,6 @@
 // The .prm reader of one concern (parameters_reading.hpp): Geometry: the wire's size, cross-section, mesh and imperfections.
 #include <deal.II/base/parameter_handler.h>
+#include <deal.II/base/utilities.h>
 
 #include <cmath>
 #include <sstream>
@@ -33,6 +34,12 @@ void declare_geometry(ParameterHandler& prm) {
                     "Lateral offset at mid-length, shape of the fixed-fixed buckling mode");
   prm.declare_entry("Mesh distortion", "0", Patterns::Double(0.0, 0.4),
                     "Random shift of interior vertices, fraction of the local cell size");
+  prm.declare_entry("Junction refinement cycles", "0", Patterns::Integer(0, 3),
+                    "Refinements of the cells near the junction planes (0: none; docs/fem_dt.md, Junction refinement)");
+  prm.declare_entry("Junction refinement half-width (mm)", "4", Patterns::Double(0.0),
+                    "Cells whose centre lies this close to a junction plane are refined");
+  prm.declare_entry("Junction planes (mm)", "", Patterns::List(Patterns::Double()),
+                    "z of the junction planes (the DT's twist ends, e.g. 0, 40); needed with cycles > 0");
   prm.leave_subsection();
 }
 
@@ -63,6 +70,15 @@ void read_geometry(const Source& source, Parameters& p) {
   const bool generated = p.geometry.mesh_file.empty();  // a mesh file brings its own sizes
   source.require(!generated || p.geometry.diameter > 0.0, "Geometry", "Diameter (mm)", "a diameter > 0");
   source.require(!generated || p.geometry.length > 0.0, "Geometry", "Length (mm)", "a length > 0");
+  p.geometry.junction_cycles = prm.get_integer("Junction refinement cycles");
+  p.geometry.junction_half_width = prm.get_double("Junction refinement half-width (mm)") * 1e-3;
+  p.geometry.junction_planes.clear();
+  for (const auto& z : dealii::Utilities::split_string_list(prm.get("Junction planes (mm)")))
+    p.geometry.junction_planes.push_back(std::stod(z) * 1e-3);
+  source.require(p.geometry.junction_cycles == 0 || !p.geometry.junction_planes.empty(), "Geometry",
+                 "Junction planes (mm)", "the z of at least one junction plane when 'Junction refinement cycles' > 0");
+  source.require(p.geometry.junction_cycles == 0 || p.geometry.junction_half_width > 0.0, "Geometry",
+                 "Junction refinement half-width (mm)", "a half-width > 0 when 'Junction refinement cycles' > 0");
   if (p.geometry.bow != 0.0 && p.geometry.quarter)
     throw InputError(name, "'Bow imperfection (mm)' needs Cross section = full");
   prm.leave_subsection();

@@ -32,7 +32,26 @@ void declare_material(ParameterHandler& prm) {
   prm.declare_entry("Failure shear ductility ratio", "1", Patterns::Double(0.01, 1.0),
                     "s: strain to failure in shear (Lode angle parameter 0) over that in axisymmetric "
                     "tension at the same triaxiality, eps_f = JC(eta) (s + (1 - s) theta^2); 1: Johnson-Cook");
-  prm.declare_entry("Stop at failure", "true", Patterns::Bool(), "end the run when the indicator reaches 1");
+  prm.declare_entry("Failure locus", "johnson-cook", Patterns::Selection("johnson-cook|hosford-coulomb"),
+                    "johnson-cook: Failure d1-d3 and the shear ductility ratio; hosford-coulomb: Mohr & "
+                    "Marcadet (2015) with Hosford-Coulomb a, b, c, n");
+  prm.declare_entry("Hosford-Coulomb a", "2", Patterns::Double(1.0), "Hosford exponent (2: von Mises, 1: Tresca)");
+  prm.declare_entry("Hosford-Coulomb b", "0", Patterns::Double(0.0),
+                    "strain to fracture in uniaxial and equibiaxial tension; 0: off");
+  prm.declare_entry("Hosford-Coulomb c", "0", Patterns::Double(0.0), "friction coefficient (normal stress weight)");
+  prm.declare_entry("Hosford-Coulomb n", "0.1", Patterns::Double(0.0),
+                    "stress-to-strain transformation exponent (Mohr & Marcadet 2015: 0.1)");
+  prm.declare_entry("Softening displacement (mm)", "0", Patterns::Double(0.0),
+                    "u_f: after the indicator reaches 1 the stress falls to zero over a crack opening u_f "
+                    "(crack band, w grows by d(alpha) h / u_f); 0: the indicator only, no softening");
+  prm.declare_entry("Largest softening", "0.99", Patterns::Double(0.0, 1.0),
+                    "w_max: a cracked point keeps 1 - w_max of its stress (a solvable system)");
+  prm.declare_entry("Stop at failure", "true", Patterns::Bool(),
+                    "end the run when the indicator reaches 1 (with softening: when the force has "
+                    "fallen to the Failure stop force fraction of its peak)");
+  prm.declare_entry("Failure stop force fraction", "0.1", Patterns::Double(0.0, 1.0),
+                    "with softening: the break detection of a tensile machine, a drop to this fraction "
+                    "of the largest force");
   prm.declare_entry("Kinematic modulus (MPa)", "0", Patterns::Double(0.0),
                     "Armstrong-Frederick C (0: no kinematic hardening), combined with the isotropic law");
   prm.declare_entry("Kinematic saturation rate", "0", Patterns::Double(0.0),
@@ -55,7 +74,21 @@ void read_material(const Source& source, Parameters& p) {
   p.material.failure.d2 = prm.get_double("Failure d2");
   p.material.failure.d3 = prm.get_double("Failure d3");
   p.material.failure.shear_ductility_ratio = prm.get_double("Failure shear ductility ratio");
+  auto& f = p.material.failure;
+  f.locus = prm.get("Failure locus") == "hosford-coulomb" ? FractureLocus::hosford_coulomb : FractureLocus::johnson_cook;
+  f.hc_a = prm.get_double("Hosford-Coulomb a");
+  f.hc_b = prm.get_double("Hosford-Coulomb b");
+  f.hc_c = prm.get_double("Hosford-Coulomb c");
+  f.hc_n = prm.get_double("Hosford-Coulomb n");
+  source.require(f.hc_n > 0.0, "Material", "Hosford-Coulomb n", "an exponent > 0 (Mohr & Marcadet 2015: 0.1)");
+  f.softening_displacement = prm.get_double("Softening displacement (mm)") * 1e-3;
+  f.largest_softening = prm.get_double("Largest softening");
+  source.require(f.largest_softening > 0.0 && f.largest_softening < 1.0, "Material", "Largest softening",
+                 "a fraction in (0, 1) exclusive (1 leaves a cracked cell without stiffness)");
+  source.require(f.softening_displacement == 0.0 || f.enabled(), "Material", "Softening displacement (mm)",
+                 "0 unless a failure locus is on (Failure d1/d2 or Hosford-Coulomb b)");
   p.material.stop_at_failure = prm.get_bool("Stop at failure");
+  p.material.stop_force_fraction = prm.get_double("Failure stop force fraction");
   p.material.kinematic.modulus = prm.get_double("Kinematic modulus (MPa)") * 1e6;
   p.material.kinematic.saturation_rate = prm.get_double("Kinematic saturation rate");
   h.yield_stress = prm.get_double("Yield stress (MPa)") * 1e6;
