@@ -72,6 +72,28 @@ std::vector<std::string> per_lab(const std::vector<std::string>& values, std::si
 
 bool is_dem_model(const std::string& file) { return std::filesystem::path(file).extension() == ".toml"; }
 
+// The loading mode a DEM model implies: its tool (a punch or a strip tension), read from the
+// input without a run.
+gap::ModeGuess dem_model_mode(const std::string& file, const DemModelOptions& options) {
+  const std::string tool = read_dem_model(file, options).tool;
+  return {tool == "platter" ? "punch" : "panel_tension", "--model " + file + " (tool.kind = \"" + tool + "\")"};
+}
+
+// A --mode that contradicts its --model is refused naming both: a DEM model is its tool's mesh
+// test, an FE .prm a wire test (its wire mode is the user's to give).
+void check_mode_against_model(const std::string& mode, const std::string& model, const DemModelOptions& dem) {
+  if (model.empty()) return;
+  if (is_dem_model(model)) {
+    const gap::ModeGuess implied = dem_model_mode(model, dem);
+    if (implied.mode != mode)
+      throw InputError("--mode", "'" + mode + "' contradicts " + implied.basis + ", which is a " + implied.mode +
+                                     " test: give --mode " + implied.mode + " or leave --mode out");
+  } else if (gap::mesh_mode(mode)) {
+    throw InputError("--mode", "'" + mode + "' is a mesh test, but --model " + model +
+                                   " is an FE wire experiment (.prm): give a wire mode or a DEM --model (.toml)");
+  }
+}
+
 std::string png_for_mode(const std::string& png, const std::string& mode) {
   std::filesystem::path p(png);
   const std::string extension = p.extension().string();
@@ -189,12 +211,12 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     std::vector<RemoveWhenEmpty> cleanup;
     std::vector<std::filesystem::path> temporary_caches;  // removed after a diagnosis that ends well
     cleanup.reserve(options->models.size());
+    const DemModelOptions dem_options{options->model_set, options->model_set_params, options->model_cache};
     const auto fe_model = [&](const std::string& file) -> SimulationModel& {
       auto found = fe_models.find(file);
       if (found == fe_models.end()) {
         if (is_dem_model(file)) {
-          DemModelOptions dem{options->model_set, options->model_set_params, options->model_cache};
-          found = fe_models.emplace(file, make_dem_model(file, dem)).first;
+          found = fe_models.emplace(file, make_dem_model(file, dem_options)).first;
           if (options->model_cache.empty()) temporary_caches.push_back(found->second.work);
         } else {
           const std::filesystem::path work = std::filesystem::temp_directory_path() /
@@ -221,15 +243,21 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
                          "--lab-summary compares one simulation: give --sim and --model at most once");
       if (!options->plot.empty())
         throw InputError("--plot", "not available with --lab-summary (no laboratory curve to draw)");
+      if (options->modes.size() > 1)
+        throw InputError("--mode", "--lab-summary compares one simulation: give one loading mode");
+      if (!options->modes.empty() && !options->models.empty())
+        check_mode_against_model(gap::parse_loading_mode(options->modes.front(), "--mode"), options->models.front(),
+                                 dem_options);
       SimulationModel none;
       SimulationModel& fe = options->models.empty() ? none : fe_model(options->models.front());
       const gap::ForceCurve sim = !options->sims.empty() ? gap::load_force_curve(options->sims.front(), conversion)
                                                          : fe.run({});
-      if (options->modes.size() > 1)
-        throw InputError("--mode", "--lab-summary compares one simulation: give one loading mode");
-      // The loading mode: --mode, else the simulated curve's (metadata, channels, sign).
+      // The loading mode: --mode, else a DEM model's tool, else the simulated curve's (metadata,
+      // channels, sign).
       const gap::ModeGuess mode =
           !options->modes.empty() ? gap::ModeGuess{gap::parse_loading_mode(options->modes.front(), "--mode"), "--mode"}
+          : !options->models.empty() && is_dem_model(options->models.front())
+              ? dem_model_mode(options->models.front(), dem_options)
           : !options->sims.empty() ? gap::detect_loading_mode(read_csv(options->sims.front()), sim, options->sims.front())
                                    : gap::detect_loading_mode(fe.run_curve({}), sim, options->models.front());
       gap::SummaryOptions summary_options;
@@ -272,11 +300,27 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
         std::cerr << "warning: " << warning << "\n";
         order_warnings.push_back(warning);
       }
-      const gap::ModeGuess guess = given_modes.empty()
-                                       ? gap::detect_loading_mode(read_csv(path), lab, path)
-                                       : gap::ModeGuess{gap::parse_loading_mode(given_modes[k], "--mode"), "--mode"};
       const std::string sim = sims.empty() ? "" : sims[k];
       const std::string model = models.empty() ? "" : models[k];
+      // The mode: --mode (checked against the model); else the model's (a DEM input's tool; an
+      // FE model's simulated curve: --sim, else its base run); else the laboratory curve's.
+      gap::ModeGuess guess;
+      if (!given_modes.empty()) {
+        guess = {gap::parse_loading_mode(given_modes[k], "--mode"), "--mode"};
+        check_mode_against_model(guess.mode, model, dem_options);
+      } else if (!model.empty() && is_dem_model(model)) {
+        guess = dem_model_mode(model, dem_options);
+      } else if (!model.empty() && !sim.empty()) {
+        const gap::ModeGuess of_sim = gap::detect_loading_mode(read_csv(sim), gap::load_force_curve(sim, conversion), sim);
+        guess = {of_sim.mode, "--sim " + sim + " of --model " + model + " (" + of_sim.basis + ")"};
+      } else if (!model.empty()) {
+        SimulationModel& fe = fe_model(model);
+        const Curve base = fe.run_curve({});
+        const gap::ModeGuess of_run = gap::detect_loading_mode(base, fe.run({}), model);
+        guess = {of_run.mode, "--model " + model + " (its run: " + of_run.basis + ")"};
+      } else {
+        guess = gap::detect_loading_mode(read_csv(path), lab, path);
+      }
       auto in = std::find_if(inputs.begin(), inputs.end(), [&](const gap::ModeInput& i) { return i.mode == guess.mode; });
       if (in == inputs.end()) {
         inputs.push_back({guess.mode, guess.basis, {}, {}, {}, {}});

@@ -208,8 +208,12 @@ SimulationModel make_dem_model(const std::filesystem::path& toml, const DemModel
   model.run = [full = model.run_curve, label = input.filename().string()](const std::vector<gap::AppliedEffect>& effects) {
     const Curve curve = full(effects);
     gap::ForceCurve c;
-    c.u = curve.si("tool_displacement");
-    c.f = curve.si("tool_force");
+    // A punch writes the tool's channels; a strip tension the clamp bar's elongation and force,
+    // with its width and free length (the standard's figures are per metre and per strain).
+    const bool strip = !curve.find("tool_displacement") && curve.find("elongation");
+    c.u = curve.si(strip ? "elongation" : "tool_displacement");
+    c.f = curve.si(strip ? "force" : "tool_force");
+    gap::read_strip_geometry(curve, c);
     c.source = label;
     return c;
   };

@@ -1,6 +1,7 @@
 #include "dtwire/gap/diagnosis.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -258,6 +259,8 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   Context ctx;
   ctx.problem.sim = d.sim;
   ctx.problem.scale = curve_scale(d.sim);
+  for (const ForceCurve& lab : d.labs)
+    ctx.problem.scale.test_end_m = std::max(ctx.problem.scale.test_end_m, *std::max_element(lab.u.begin(), lab.u.end()));
   if (options.model) {
     ctx.problem.runner = [runner = options.model](const std::vector<AppliedEffect>& effects) {
       return oriented(runner(effects));
@@ -338,10 +341,26 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
 
   std::mt19937 rng(options.seed);
   std::vector<EffectFit> fits;
-  for (const EffectSpec* e : candidates)
-    fits.push_back(fit_effects(ctx.problem, {e}, {}, options.random_starts, rng));
+  std::vector<std::pair<std::size_t, double>> model_cost;  // per candidate: model runs, wall seconds
+  for (const EffectSpec* e : candidates) {
+    if (e->needs_model) {
+      // Derivative-free within --model-runs (issue 51): a model run's response to a small step
+      // is its noise, and the least-squares engine's differences cost runs without bound.
+      const auto started = std::chrono::steady_clock::now();
+      const ModelEffectSearch search = search_model_effect(ctx.problem, *e, options.model_runs);
+      fits.push_back(search.fit);
+      model_cost.emplace_back(search.runs, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+    } else {
+      fits.push_back(fit_effects(ctx.problem, {e}, {}, options.random_starts, rng));
+      model_cost.emplace_back(0, 0.0);
+    }
+  }
   std::vector<RankedEffect> ranking;
-  for (const EffectFit& f : fits) ranking.push_back(rank_entry(ctx, f));
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    ranking.push_back(rank_entry(ctx, fits[i]));
+    ranking.back().model_runs = static_cast<int>(model_cost[i].first);
+    ranking.back().model_seconds = model_cost[i].second;
+  }
   score_ranking(ranking, fits, ctx, baseline_mse, d);
 
   // Pairs, when no single effect brings the gap down to the noise floor.
@@ -362,40 +381,38 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
                                 ranking[order[b]].fitted[0].effect->needs_model;
         if (model_pair && options.model_runs == 0) continue;  // no FE run allowed for pairs
         int points = 0;
+        const auto started = std::chrono::steady_clock::now();
         fits.push_back(fit_pair(ctx, ranking[order[a]], fits[order[a]], ranking[order[b]],
                                 fits[order[b]], options.model_runs, rng, &points));
         ranking.push_back(rank_entry(ctx, fits.back()));
         ranking.back().search_points = points;
+        if (model_pair) {
+          ranking.back().model_runs = points;
+          ranking.back().model_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        }
       }
     score_ranking(ranking, fits, ctx, baseline_mse, d);
     evidence::demote_weak_pairs(ranking, singles, single_gap);
     parsimony::apply(ranking, fits, singles, ctx.problem, rng);
   }
-  for (RankedEffect& r : ranking)
-    if (!magnitudes_plausible(r.fitted, ctx.problem.scale)) {
-      r.implausible = true;
-      r.qualifies = false;
-    }
+  // A magnitude fitted beyond its range's edge by no more than the data can tell (the edge leaves
+  // the gap within 0.3 x the noise-only area of the fit's) is the edge, not implausible: a real
+  // set-up at the edge of the range fits a little beyond it half the time.
+  const auto edge_fits = [&](const RankedEffect& r) {
+    for (const AppliedEffect& a : r.fitted)
+      if (a.effect->needs_model) return false;  // no extra model run for this
+    const ForceCurve at_edge = augment(ctx.problem.sim, magnitudes_at_edge(r.fitted, ctx.problem.scale),
+                                       ctx.problem.scale, ctx.problem.runner);
+    return mean_gap(at_edge, ctx.problem) - r.gap_after <= kMinimumReduction * ctx.noise_area;
+  };
+  evidence::mark_implausible(ranking, {ctx.problem.scale}, edge_fits);
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });
   d.ranking = ranking;
-
+  evidence::decide(d, !candidates.empty());
   const RankedEffect* cause = nullptr;
   for (const RankedEffect& r : d.ranking)
-    if (r.qualifies) {
-      cause = &r;
-      break;
-    }
-  if (d.gap_before <= d.noise_floor) {
-    d.reason = "the gap is within the noise floor";
-  } else if (!cause) {
-    d.reason = candidates.empty() ? "no effect could be tested on this curve (see not_tested)"
-                                  : "no effect reduces the gap by more than the noise floor";
-  } else {
-    d.cause = cause->effect;
-    d.reason = cause->gap_after <= d.noise_floor ? "closes the gap to the noise floor"
-                                                 : "reduces the gap most, but not to the noise floor";
-  }
+    if (r.effect == d.cause) cause = &r;
   const RankedEffect* shown = cause ? cause : (d.ranking.empty() ? nullptr : &d.ranking.front());
   d.best_model = shown ? augment(d.sim, shown->fitted, ctx.problem.scale, ctx.problem.runner) : d.sim;
 

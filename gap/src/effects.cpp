@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace dtwire::gap {
@@ -33,7 +34,9 @@ std::vector<EffectSpec> make_catalogue() {
     e.magnitude = 0;
     e.neutral = 1.0;
     e.parameters = [](const CurveScale&) {
-      return std::vector<ParameterSpec>{{"stress_factor_1", 0.6, 1.6, 0.9, 1.15, {}, {}},
+      // Plausible 0.85-1.15: Johnson-Cook C = 0.022 of Armco iron (Johnson and Cook 1985) over
+      // rate ratios up to 1000 either way, 1 +- 0.022 ln 1000 (docs/gap.md, the ranges' table).
+      return std::vector<ParameterSpec>{{"stress_factor_1", 0.6, 1.6, 0.85, 1.15, {}, {}},
                                         {"gain_lost_at_end_1", -1.0, 1.0, -1.0, 1.0, {}, 0.0},
                                         {"gain_grown_in_neck_1", 0.0, 1.0, 0.0, 1.0, {}, 0.0}};
     };
@@ -83,6 +86,16 @@ std::vector<EffectSpec> make_catalogue() {
       return std::vector<ParameterSpec>{{"onset_mm", 0.0, end, 0.0, end, {}, {}},
                                         {"damage_at_end_1", 0.0, 0.95, 0.02, 0.5, {}, {}}};
     };
+    // The damage the test shows: the force lost by its end, which the plausible range is
+    // stated for (a test that stops at a third of the model's travel shows a ninth of the
+    // damage at the model's end).
+    e.shown_name = "damage_at_test_end_1";
+    e.shown_magnitude = [](const std::vector<double>& p, const CurveScale& s) {
+      const double onset = p[0] * kMm;
+      const double end = s.test_end_m > 0 ? std::min(s.test_end_m, s.max_displacement_m) : s.max_displacement_m;
+      const double x = std::clamp((end - onset) / std::max(s.max_displacement_m - onset, 1e-12), 0.0, 1.0);
+      return p[1] * x * x;
+    };
     e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale& s) {
       ForceCurve out = sim;
       const double onset = p[0] * kMm;
@@ -107,7 +120,10 @@ std::vector<EffectSpec> make_catalogue() {
     e.magnitude = 0;
     e.neutral = 1.0;
     e.parameters = [](const CurveScale&) {
-      return std::vector<ParameterSpec>{{"scale_1", 0.5, 2.0, 0.85, 1.3, {}, {}},
+      // Plausible 0.5-1.5: an extensometer over half the free length (EN ISO 6892-1 Annex C's
+      // 100 mm gauge on a 200 mm free length) to a crosshead over 1.5 x the simulated gauge
+      // (docs/gap.md, the ranges' table).
+      return std::vector<ParameterSpec>{{"scale_1", 0.3, 2.5, 0.5, 1.5, {}, {}},
                                         {"elastic_unscaled_1", 0.0, 1.0, 0.0, 1.0, {}, 0.0}};
     };
     e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale& s) {
@@ -326,18 +342,48 @@ ForceCurve augment(const ForceCurve& sim, const std::vector<AppliedEffect>& effe
   return apply_effects(runner(model_effects), curve_effects, scale);
 }
 
-bool magnitudes_plausible(const std::vector<AppliedEffect>& effects, const CurveScale& scale) {
+std::string BeyondRange::text() const {
+  std::ostringstream s;
+  s.precision(3);
+  s << "a " << parameter << " of " << value << ", outside [" << plausible_lower << ", " << plausible_upper << "]";
+  return s.str();
+}
+
+std::vector<BeyondRange> magnitudes_beyond_range(const std::vector<AppliedEffect>& effects, const CurveScale& scale) {
+  std::vector<BeyondRange> out;
   for (const AppliedEffect& a : effects) {
     const ParameterSpec spec = a.effect->parameters(scale).at(a.effect->magnitude);
-    const double value = a.params.at(a.effect->magnitude), tolerance = 1e-9 * spec.width();
+    const double value = a.effect->shown_magnitude ? a.effect->shown_magnitude(a.params, scale)
+                                                   : a.params.at(a.effect->magnitude);
+    const double tolerance = 1e-9 * spec.width();
     // Only a magnitude stronger than the plausible range is implausible; one between the neutral
     // value and the range is a weak effect (e.g. no compliance in a mode whose curve is clean).
     const double neutral = a.effect->neutral;
     const bool beyond_lower = value < spec.plausible_lower - tolerance && value < neutral - tolerance;
     const bool beyond_upper = value > spec.plausible_upper + tolerance && value > neutral + tolerance;
-    if (beyond_lower || beyond_upper) return false;
+    if (beyond_lower || beyond_upper)
+      out.push_back({a.effect->name, a.effect->shown_magnitude ? a.effect->shown_name : spec.name, value,
+                     spec.plausible_lower, spec.plausible_upper});
   }
-  return true;
+  return out;
+}
+
+std::vector<AppliedEffect> magnitudes_at_edge(std::vector<AppliedEffect> effects, const CurveScale& scale) {
+  for (AppliedEffect& a : effects)
+    for (const BeyondRange& b : magnitudes_beyond_range({a}, scale)) {
+      const double edge = b.value > a.effect->neutral ? b.plausible_upper : b.plausible_lower;
+      double& p = a.params.at(a.effect->magnitude);
+      if (a.effect->shown_magnitude) {
+        if (b.value != 0.0) p *= edge / b.value;  // the shown damage is proportional to it
+      } else {
+        p = edge;
+      }
+    }
+  return effects;
+}
+
+bool magnitudes_plausible(const std::vector<AppliedEffect>& effects, const CurveScale& scale) {
+  return magnitudes_beyond_range(effects, scale).empty();
 }
 
 double plausibility(const EffectSpec& effect, const std::vector<double>& params,
@@ -346,7 +392,7 @@ double plausibility(const EffectSpec& effect, const std::vector<double>& params,
   double p = 1.0;
   for (std::size_t i = 0; i < specs.size() && i < params.size(); ++i) {
     const ParameterSpec& s = specs[i];
-    const double v = params[i];
+    const double v = i == effect.magnitude && effect.shown_magnitude ? effect.shown_magnitude(params, scale) : params[i];
     if (v < s.plausible_lower) {
       const double width = s.plausible_lower - s.lower;
       p *= width > 0 ? 1.0 - 0.8 * std::min(1.0, (s.plausible_lower - v) / width) : 0.2;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "dtwire/gap/noise.hpp"
 
@@ -65,6 +66,95 @@ void demote_weak_pairs(std::vector<RankedEffect>& ranking, std::size_t first_pai
       ranking[i].qualifies = false;
       ranking[i].score *= 0.1;
     }
+}
+
+void mark_implausible(std::vector<RankedEffect>& ranking, const std::vector<CurveScale>& scales,
+                      const std::function<bool(const RankedEffect&)>& edge_fits) {
+  for (RankedEffect& r : ranking) {
+    std::vector<BeyondRange> beyond;
+    if (r.fitted_by_mode.empty()) {
+      beyond = magnitudes_beyond_range(r.fitted, scales.at(0));
+    } else {
+      for (std::size_t m = 0; m < r.fitted_by_mode.size(); ++m)
+        for (const BeyondRange& b : magnitudes_beyond_range(r.fitted_by_mode[m].second, scales.at(m)))
+          beyond.push_back(b);
+    }
+    if (beyond.empty() || (edge_fits && edge_fits(r))) continue;
+    r.implausible = true;
+    r.beyond_range = beyond;
+    r.qualifies_but_implausible = r.qualifies;
+    r.qualifies = false;
+  }
+}
+
+namespace {
+
+std::string percent(double share) {
+  std::ostringstream s;
+  s << static_cast<int>(std::lround(100.0 * std::max(0.0, share))) << " %";
+  return s.str();
+}
+
+}  // namespace
+
+void decide(Diagnosis& d, bool testable) {
+  d.cause = "none";
+  d.refused_effect.clear();
+  const auto cause = std::find_if(d.ranking.begin(), d.ranking.end(), [](const RankedEffect& r) { return r.qualifies; });
+  if (d.gap_before <= d.noise_floor) {
+    d.verdict = "within_noise";
+    d.reason = "the gap is within the noise floor";
+    return;
+  }
+  if (!testable) {
+    d.verdict = "nothing_tested";
+    d.reason = "no effect could be tested on this curve (see not_tested)";
+    return;
+  }
+  const auto refused = std::find_if(d.ranking.begin(), d.ranking.end(),
+                                    [](const RankedEffect& r) { return r.qualifies_but_implausible; });
+  // A plausible effect that leaves the gap above the floor and removes less than half of what an
+  // implausible one removes is no cause: the verdict is the implausible one's (issue 51: a
+  // plausible 8 % beside an implausible 99 % read "reduces the gap most").
+  const bool outdone = cause != d.ranking.end() && refused != d.ranking.end() && cause->gap_after > d.noise_floor &&
+                       cause->shrink < kOutdoneRatio * refused->shrink;
+  if (cause != d.ranking.end() && !outdone) {
+    d.verdict = "cause";
+    d.cause = cause->effect;
+    d.reason = cause->gap_after <= d.noise_floor ? "closes the gap to the noise floor"
+                                                 : "reduces the gap most, but not to the noise floor";
+    return;
+  }
+  if (refused != d.ranking.end()) {
+    d.verdict = "beyond_plausible_range";
+    d.refused_effect = refused->effect;
+    std::string needs;
+    for (const BeyondRange& b : refused->beyond_range)
+      needs += (needs.empty() ? "" : " and ") + b.text() + (refused->beyond_range.size() > 1 ? " (" + b.effect + ")" : "");
+    d.reason = "no cause within the plausible ranges: " + refused->effect + " explains " + percent(refused->shrink) +
+               " of the gap but needs " + needs;
+    if (outdone) d.reason += "; the best plausible effect, " + cause->effect + ", explains " + percent(cause->shrink);
+    return;
+  }
+  d.verdict = "no_effect_closes";
+  const auto best = std::min_element(d.ranking.begin(), d.ranking.end(), [](const RankedEffect& a, const RankedEffect& b) {
+    return a.gap_after < b.gap_after;
+  });
+  if (best == d.ranking.end() || !(best->shrink > 0)) {
+    d.reason = "no effect reduces the gap";
+  } else {
+    std::ostringstream why;
+    why.precision(3);
+    if (best->implausible)
+      why << "and needs " << best->beyond_range.front().text();
+    else if (best->delta_aicc >= -kInformationMargin)
+      why << "too little for the information criterion (dAICc " << best->delta_aicc << ", at least -"
+          << kInformationMargin << " needed)";
+    else
+      why << "less than the noise explains";
+    d.reason = "no effect closes the gap: the best, " + best->effect + ", removes " + percent(best->shrink) +
+               " of it, " + why.str();
+  }
 }
 
 }  // namespace dtwire::gap::evidence

@@ -1,6 +1,7 @@
 #pragma once
 // Evidence shared by the single-mode and the combined (several loading modes) diagnosis:
 // the information criterion, the score and whether a candidate qualifies as the cause.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -36,5 +37,20 @@ void score(std::vector<RankedEffect>& ranking, const std::vector<FitStatistics>&
 // Pairs (entries from `first_pair` on) that do not cut the best single's gap by 20 % are a
 // refinement, not a second cause: they do not qualify and their score is divided by 10.
 void demote_weak_pairs(std::vector<RankedEffect>& ranking, std::size_t first_pair, double single_gap);
+
+// Marks the candidates whose magnitude is beyond its plausible range (issue 37: never the
+// cause), keeping whether they met every other rule of a cause. `scales` are the problems'
+// scales, one per mode of `fitted_by_mode` (or one for `fitted`).
+// `edge_fits` (optional): whether the candidate at its range's edge fits as well, within the
+// noise; such a candidate is not implausible (its magnitude is the edge within what the data tell).
+void mark_implausible(std::vector<RankedEffect>& ranking, const std::vector<CurveScale>& scales,
+                      const std::function<bool(const RankedEffect&)>& edge_fits = {});
+
+// The cause and the verdict's three cases (issue 51) from a ranking sorted by score: the
+// top-scored qualifying candidate is the cause; else the top-scored candidate that met every
+// rule but its magnitude is named with its figures ("gauge_length explains 83 % of the gap but
+// needs a scale_1 of 0.64, outside [0.85, 1.3]"); else no effect closes the gap (the best
+// reduction is stated). `testable`: whether any candidate was fitted.
+void decide(Diagnosis& d, bool testable);
 
 }  // namespace dtwire::gap::evidence

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
@@ -65,11 +66,27 @@ std::string row_order_warning(const ForceCurve& curve) {
          "shuffled or sorted by force read as dozens of load cycles)";
 }
 
+void read_strip_geometry(const Curve& curve, ForceCurve& out) {
+  const auto metre = [&](const std::string& key) {
+    const std::string text = curve.metadata(key);
+    if (text.empty()) return 0.0;
+    try {
+      const double v = std::stod(text);
+      return std::isfinite(v) && v > 0 ? v : 0.0;
+    } catch (const std::exception&) {
+      return 0.0;
+    }
+  };
+  out.strip_width_m = metre("strip_width_m");
+  out.free_length_m = metre("free_length_m");
+}
+
 ForceCurve load_force_curve(const std::filesystem::path& path, const CurveConversion& conversion) {
   const std::string file = path.string();
   const Curve curve = read_csv(path);
   ForceCurve out;
   out.source = file;
+  read_strip_geometry(curve, out);
   if (!conversion.displacement_channel.empty()) {
     const Channel* displacement = curve.find(conversion.displacement_channel);
     const Channel* force = curve.find(conversion.force_channel);

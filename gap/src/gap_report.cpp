@@ -1,5 +1,6 @@
 #include "dtwire/gap/gap_report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -46,6 +47,34 @@ void require_finite(const nlohmann::json& value, const std::string& path) {
     for (std::size_t i = 0; i < value.size(); ++i) require_finite(value[i], path + "/" + std::to_string(i));
 }
 
+namespace {
+
+bool uses_model(const RankedEffect& r) {
+  return std::any_of(r.fitted.begin(), r.fitted.end(), [](const AppliedEffect& a) { return a.effect->needs_model; });
+}
+
+// Values run by the searches of the model-only candidates (each at most one model run) and
+// their wall time.
+std::pair<int, double> model_cost(const Diagnosis& d) {
+  int runs = 0;
+  double seconds = 0.0;
+  for (const RankedEffect& r : d.ranking) {
+    runs += r.model_runs;
+    seconds += r.model_seconds;
+  }
+  return {runs, seconds};
+}
+
+}  // namespace
+
+nlohmann::json beyond_range_json(const std::vector<BeyondRange>& beyond) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const BeyondRange& b : beyond)
+    out.push_back({{"effect", b.effect}, {"parameter", b.parameter}, {"value", b.value},
+                   {"plausible", {b.plausible_lower, b.plausible_upper}}});
+  return out;
+}
+
 nlohmann::json diagnosis_json(const Diagnosis& d) {
   const CurveScale scale = curve_scale(d.sim);
   nlohmann::json where = nlohmann::json::array();
@@ -77,6 +106,14 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                        {"qualifies", r.qualifies},
                        {"implausible", r.implausible}});
     if (r.search_points > 0) ranking.back()["search_points"] = r.search_points;
+    if (uses_model(r)) {
+      ranking.back()["model_runs"] = r.model_runs;
+      ranking.back()["model_seconds"] = r.model_seconds;
+    }
+    if (r.implausible) {
+      ranking.back()["beyond_plausible_range"] = beyond_range_json(r.beyond_range);
+      ranking.back()["qualifies_but_implausible"] = r.qualifies_but_implausible;
+    }
     if (r.against_single.done) {
       const PairEvidence& e = r.against_single;
       nlohmann::json j = {{"single", e.single}, {"lag1_autocorrelation", e.lag1},
@@ -135,9 +172,17 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
     out["specimen_scale_bounds"] = {{"force_1", d.specimen_force_bound},
                                     {"displacement_1", d.specimen_length_bound}};
   }
+  out["verdict"] = d.verdict;
+  const auto [runs, seconds] = model_cost(d);
+  out["model_runs"] = runs;
+  out["model_seconds"] = seconds;
   std::vector<std::string> also_possible;
-  for (const RankedEffect& r : d.ranking)
+  for (const RankedEffect& r : d.ranking) {
     if (r.also_possible) also_possible.push_back(r.effect);
+    if (r.effect == d.refused_effect)
+      out["refused_for_magnitude"] = {{"effect", r.effect}, {"shrink", r.shrink}, {"gap_after", r.gap_after},
+                                      {"beyond_plausible_range", beyond_range_json(r.beyond_range)}};
+  }
   out["also_possible"] = also_possible;
   require_finite(out);
   return out;
@@ -173,6 +218,13 @@ std::string diagnosis_markdown(const Diagnosis& d) {
       const auto why = d.not_tested_reason.find(n);
       s << " " << n << (why != d.not_tested_reason.end() ? " (" + why->second + ")" : std::string()) << ";";
     }
+    s << "\n";
+  }
+  if (const auto [runs, seconds] = model_cost(d); runs > 0) {
+    s << "- model runs of the searches (each value at most one run, cached runs free): " << runs << ", "
+      << seconds << " s:";
+    for (const RankedEffect& r : d.ranking)
+      if (uses_model(r)) s << " " << r.effect << " " << r.model_runs << " (" << r.model_seconds << " s);";
     s << "\n";
   }
   if (d.predictive.done)

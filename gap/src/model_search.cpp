@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 namespace dtwire::gap {
 
@@ -84,6 +85,62 @@ PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
     }
     if (fine) break;
   }
+  return out;
+}
+
+ModelEffectSearch search_model_effect(const FitProblem& problem, const EffectSpec& effect, std::size_t runs) {
+  const ParameterSpec spec = effect.parameters(problem.scale).front();
+  std::vector<double> weight;
+  for (const Comparison& c : problem.labs) weight.insert(weight.end(), c.weight.begin(), c.weight.end());
+  std::map<double, EffectFit> sampled;
+  EffectFit neutral = evaluate_fit(problem, {});
+  neutral.effects = {{&effect, {effect.neutral}}};
+  neutral.parameter_count = 1;
+  sampled.emplace(effect.neutral, neutral);
+  ModelEffectSearch out;
+  const auto run = [&](double v) {
+    v = spec.snapped(std::clamp(v, spec.lower, spec.upper));
+    if (sampled.count(v) || out.runs >= runs) return;
+    sampled.emplace(v, evaluate_fit(problem, {{&effect, {v}}}));
+    ++out.runs;
+  };
+  if (spec.grid.empty()) {
+    // The end farther from the neutral value first: with one run, the stronger effect.
+    const bool upper_first = std::abs(spec.plausible_upper - effect.neutral) >= std::abs(spec.plausible_lower - effect.neutral);
+    run(upper_first ? spec.plausible_upper : spec.plausible_lower);
+    run(upper_first ? spec.plausible_lower : spec.plausible_upper);
+  }
+  for (double v : spec.grid) run(v);
+  while (spec.grid.empty() && out.runs < runs) {
+    const double lo = sampled.begin()->first, hi = sampled.rbegin()->first;
+    double best_v = lo, best_sse = INFINITY;
+    for (int k = 0; k <= 400; ++k) {
+      const double v = lo + (hi - lo) * k / 400.0;
+      auto right = sampled.lower_bound(v);
+      if (right == sampled.end()) --right;
+      const auto left = right == sampled.begin() ? right : std::prev(right);
+      const double t = right->first > left->first ? (v - left->first) / (right->first - left->first) : 0.0;
+      double sse = 0.0;
+      for (std::size_t i = 0; i < weight.size(); ++i) {
+        const double r = left->second.residual[i] + t * (right->second.residual[i] - left->second.residual[i]);
+        sse += weight[i] * r * r;
+      }
+      if (sse < best_sse) {
+        best_sse = sse;
+        best_v = v;
+      }
+    }
+    bool known = false;
+    for (const auto& [v, fit] : sampled) known = known || std::abs(v - best_v) < 0.02 * (hi - lo);
+    if (known) break;
+    run(best_v);
+  }
+  const EffectFit* best = nullptr;
+  for (const auto& [v, fit] : sampled) {
+    out.samples.emplace_back(v, fit.weighted_sse);
+    if (!best || fit.weighted_sse < best->weighted_sse) best = &fit;
+  }
+  out.fit = *best;
   return out;
 }
 

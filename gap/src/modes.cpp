@@ -1,6 +1,7 @@
 #include "dtwire/gap/modes.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <random>
 #include <set>
@@ -207,6 +208,32 @@ JointFit model_pair(const Combined& cb, const std::vector<JointEffect>& pair, co
   return out;
 }
 
+// A model-only effect (a specimen effect: one value over every mode) fitted jointly without
+// derivatives (issue 51): the bounded pattern search from each mode's own answer, at most
+// `points` values (each at most one model run per mode; the modes' own runs are cached).
+JointFit joint_model_single(const Combined& cb, const JointEffect& e, const std::vector<Start>& starts,
+                            std::size_t points, int* spent) {
+  const auto applied = [&](double v) {
+    std::vector<std::vector<AppliedEffect>> out(cb.problems.size());
+    for (std::size_t g = 0; g < cb.problems.size(); ++g)
+      if (e.block_of[g] >= 0) out[g].push_back({e.effect, {v}});
+    return out;
+  };
+  std::vector<std::vector<double>> from_modes;
+  for (const Start& start : starts) from_modes.push_back({start.at(0).at(0).at(0)});
+  if (from_modes.empty()) from_modes.push_back({e.effect->neutral});
+  const PatternSearch s = pattern_search({e.effect->parameters(cb.problems.front().scale)[0]}, {}, from_modes,
+                                         [&](const std::vector<double>& x) {
+                                           return evaluate_joint(cb.problems, applied(x[0])).weighted_sse;
+                                         },
+                                         std::max<std::size_t>(points, from_modes.size()));
+  *spent = static_cast<int>(s.points);
+  JointFit out = evaluate_joint(cb.problems, applied(s.best[0]));
+  out.blocks = {{{s.best[0]}}};
+  out.parameter_count = 1;
+  return out;
+}
+
 Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDiagnosis>& modes,
                   const DiagnosisOptions& options) {
   Diagnosis c;
@@ -220,6 +247,8 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
     Group g;
     g.problem.sim = d.sim;
     g.problem.scale = curve_scale(d.sim);
+    for (const ForceCurve& lab : d.labs)
+      g.problem.scale.test_end_m = std::max(g.problem.scale.test_end_m, *std::max_element(lab.u.begin(), lab.u.end()));
     if (inputs[m].model)
       g.problem.runner = [runner = inputs[m].model](const std::vector<AppliedEffect>& effects) {
         return oriented(runner(effects));
@@ -281,9 +310,15 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
   std::vector<std::vector<JointEffect>> fitted_effects;
   std::vector<RankedEffect> ranking;
   for (const JointEffect& e : singles) {
-    fits.push_back(fit_joint(cb.problems, {e}, starts_from_modes(e, modes, cb), options.random_starts, rng));
+    int runs = 0;
+    const auto started = std::chrono::steady_clock::now();
+    fits.push_back(e.effect->needs_model ? joint_model_single(cb, e, starts_from_modes(e, modes, cb), options.model_runs, &runs)
+                                         : fit_joint(cb.problems, {e}, starts_from_modes(e, modes, cb), options.random_starts, rng));
     fitted_effects.push_back({e});
     ranking.push_back(rank_combined(cb, {e}, fits.back(), mode_names, c.gap_before));
+    ranking.back().model_runs = runs;
+    if (e.effect->needs_model)
+      ranking.back().model_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
   const auto rescore = [&] {
     std::vector<evidence::FitStatistics> statistics;
@@ -323,25 +358,13 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
     evidence::demote_weak_pairs(ranking, first_pair, single_gap);
     parsimony::apply_joint(ranking, fits, fitted_effects, first_pair, cb.problems, cb.curves, rng);
   }
-  for (RankedEffect& r : ranking)
-    for (std::size_t m = 0; m < r.fitted_by_mode.size(); ++m)
-      if (!magnitudes_plausible(r.fitted_by_mode[m].second, cb.problems.at(m).scale)) {
-        r.implausible = true;
-        r.qualifies = false;
-      }
+  std::vector<CurveScale> scales;
+  for (const FitProblem& problem : cb.problems) scales.push_back(problem.scale);
+  evidence::mark_implausible(ranking, scales);
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });
   c.ranking = ranking;
-  const auto cause = std::find_if(c.ranking.begin(), c.ranking.end(), [](const RankedEffect& r) { return r.qualifies; });
-  if (c.gap_before <= c.noise_floor) {
-    c.reason = "the gap is within the noise floor";
-  } else if (cause == c.ranking.end()) {
-    c.reason = singles.empty() ? "no effect was testable" : "no effect reduces the gap by more than the noise floor";
-  } else {
-    c.cause = cause->effect;
-    c.reason = cause->gap_after <= c.noise_floor ? "closes the gap to the noise floor"
-                                                 : "reduces the gap most, but not to the noise floor";
-  }
+  evidence::decide(c, !singles.empty());
   c.predictive.note = "per loading mode: see modes[].predictive_check";
   return c;
 }

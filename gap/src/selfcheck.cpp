@@ -25,9 +25,23 @@ double uniform(std::mt19937& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
 }
 
-// Away from the neutral value on either side: [lo, hi] or its mirror below the neutral.
-double either_side(std::mt19937& rng, double neutral, double lo, double hi, double lo_below) {
-  return uniform(rng, 0, 1) < 0.5 ? uniform(rng, lo, hi) : uniform(rng, lo_below, neutral - (lo - neutral));
+// A magnitude from `inner` (the smallest the trial should show above its noise) to `outer` (the
+// plausible range's edge away from the neutral value, issue 51): uniform, with a fifth of the
+// draws on the edge itself, so that a range too narrow for the diagnosis shows as missed trials.
+double toward_edge(std::mt19937& rng, double inner, double outer) {
+  return inner + (outer - inner) * std::min(1.0, uniform(rng, 0, 1) / 0.8);
+}
+
+// The plausible range of an effect's magnitude (the catalogue's).
+ParameterSpec magnitude_range(const std::string& effect, const ForceCurve& sim) {
+  const EffectSpec& e = find_effect(effect);
+  return e.parameters(curve_scale(sim)).at(e.magnitude);
+}
+
+// Away from the neutral value on either side, out to the plausible range's edges.
+double either_side(std::mt19937& rng, const ParameterSpec& range, double neutral, double margin) {
+  return uniform(rng, 0, 1) < 0.5 ? toward_edge(rng, neutral + margin, range.plausible_upper)
+                                  : toward_edge(rng, neutral - margin, range.plausible_lower);
 }
 
 struct Base {
@@ -36,29 +50,32 @@ struct Base {
   double min_end_fraction;
 };
 
-// Realistic magnitudes for an injected effect, relative to the visible part of the test.
+// Magnitudes for an injected effect over its whole plausible range (catalogue), relative to the
+// visible part of the test where the range is.
 std::vector<double> draw_params(const std::string& effect, const ForceCurve& sim, double end_m,
                                 double visible_peak_N, std::mt19937& rng) {
-  if (effect == "machine_compliance") return {uniform(rng, 0.1, 1.0)};
+  const ParameterSpec range = magnitude_range(effect, sim);
+  if (effect == "machine_compliance") return {toward_edge(rng, 0.1, range.plausible_upper)};
   if (effect == "grip_slip") {
     const double step = uniform(rng, 0, 1) < 0.5 ? 0.0 : uniform(rng, 0.1, 0.5);
-    return {uniform(rng, 0.3, 0.8) * visible_peak_N, uniform(rng, 1.0, 6.0), step};
+    return {uniform(rng, 0.3, 0.8) * visible_peak_N, toward_edge(rng, 1.0, range.plausible_upper), step};
   }
-  if (effect == "initial_slack")
-    return {uniform(rng, 0.2, 1.5), uniform(rng, 0.01, 0.08) * visible_peak_N};
-  if (effect == "gauge_length") return {either_side(rng, 1.0, 1.05, 1.3, 0.85)};
+  if (effect == "initial_slack") {
+    const ParameterSpec toe = find_effect(effect).parameters(curve_scale(sim)).at(1);
+    const double toe_edge = toe.plausible_upper / curve_scale(sim).peak_force_N;
+    return {toward_edge(rng, 0.2, range.plausible_upper), toward_edge(rng, 0.01, toe_edge) * visible_peak_N};
+  }
+  if (effect == "gauge_length") return {either_side(rng, range, 1.0, 0.05)};
   if (effect == "ductile_damage") {
-    // The parameter is the damage at the model's end, beyond the test's end: held below its
-    // plausible upper bound (with a margin for the noise), since a fitted magnitude beyond it is
-    // never the cause.
+    // The plausible range is the damage the test shows at its end (catalogue); the parameter is
+    // the damage at the model's end, beyond the test's end, within its fit bound.
     const double total = sim.u.back();
     const double onset = uniform(rng, 0.2, 0.6) * end_m;
-    const double visible = uniform(rng, 0.05, 0.3);  // damage reached at the test end
+    const double shown = toward_edge(rng, 0.05, range.plausible_upper);
     const double x = (end_m - onset) / (total - onset);
-    const double upper = find_effect("ductile_damage").parameters(curve_scale(sim)).at(1).plausible_upper;
-    return {onset * 1e3, std::min(0.9 * upper, visible / (x * x))};
+    return {onset * 1e3, std::min(range.upper, shown / (x * x))};
   }
-  if (effect == "strain_rate") return {either_side(rng, 1.0, 1.04, 1.15, 0.88)};
+  if (effect == "strain_rate") return {either_side(rng, range, 1.0, 0.04)};
   return {};
 }
 

@@ -15,7 +15,8 @@ namespace {
 
 const std::vector<std::string>& fixed_features() {
   static const std::vector<std::string> names = {"peak_force_N", "residual_force_N",
-                                                 "peak_displacement_mm", "onset_displacement_mm"};
+                                                 "peak_displacement_mm", "onset_displacement_mm",
+                                                 "strength_N_per_m", "secant_stiffness_N_per_m"};
   return names;
 }
 
@@ -141,6 +142,29 @@ double curve_feature(const ForceCurve& c, const std::string& name) {
     return c.u.front() * 1e3;
   }
   if (const auto mm = force_at_displacement_mm(name)) return force_at(c, *mm * 1e-3);
+  if (name == "strength_N_per_m" || name == "secant_stiffness_N_per_m") {
+    if (!(c.strip_width_m > 0) || !(c.free_length_m > 0))
+      throw InputError(c.source, name + " needs a strip tension (its metadata strip_width_m and free_length_m, as "
+                                        "`dtwire dem run` writes them for tool.kind = \"strip_tension\")");
+    if (name == "strength_N_per_m") return *peak / c.strip_width_m;
+    // The chord between the first crossings of 10 % and 50 % of the peak force on the way up,
+    // per metre of width and per unit strain (dtwire dem run's summary.json, "secant EA").
+    const auto peak_index = static_cast<std::size_t>(peak - c.f.begin());
+    const auto crossing = [&](double level) {
+      for (std::size_t i = 1; i <= peak_index; ++i)
+        if (c.f[i] >= level) {
+          const double t = c.f[i] > c.f[i - 1] ? (level - c.f[i - 1]) / (c.f[i] - c.f[i - 1]) : 1.0;
+          return c.u[i - 1] + std::clamp(t, 0.0, 1.0) * (c.u[i] - c.u[i - 1]);
+        }
+      return c.u[peak_index];
+    };
+    const double du = crossing(kSecantHigh * *peak) - crossing(kSecantLow * *peak);
+    if (!(du > 0))
+      throw InputError(c.source, "secant_stiffness_N_per_m: the force does not rise between " +
+                                     std::to_string(static_cast<int>(100 * kSecantLow)) + " % and " +
+                                     std::to_string(static_cast<int>(100 * kSecantHigh)) + " % of its peak");
+    return (kSecantHigh - kSecantLow) * *peak / c.strip_width_m / (du / c.free_length_m);
+  }
   throw std::invalid_argument("unknown summary feature " + name);
 }
 

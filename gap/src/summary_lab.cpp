@@ -234,11 +234,18 @@ void assess(SummaryCandidate& c, const SummaryDiagnosis& d, const CurveScale& sc
   c.score = c.plausibility * std::max(0.0, c.shrink);
   c.parameters = parameter_count(c.fitted);
   c.aic = aic_of(d.lab, c.gap_after, c.parameters);
-  c.implausible = !magnitudes_plausible(c.fitted, scale);
+  c.beyond_range = magnitudes_beyond_range(c.fitted, scale);
+  c.implausible = !c.beyond_range.empty();
 }
 
-bool single_qualifies(const SummaryCandidate& c, const SummaryDiagnosis& d) {
-  return d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && !c.implausible;
+// Every rule of a cause but the plausible range.
+bool closes_enough(const SummaryCandidate& c, const SummaryDiagnosis& d) {
+  return d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink;
+}
+
+bool single_qualifies(SummaryCandidate& c, const SummaryDiagnosis& d) {
+  c.qualifies_but_implausible = closes_enough(c, d) && c.implausible;
+  return closes_enough(c, d) && c.plausibility >= 0.5 && !c.implausible;
 }
 
 // The one member of a fitted pair that is not at its neutral value, if the other one is: such a
@@ -447,19 +454,44 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
       SummaryCandidate& c = d.ranking[i];
       const bool beats_singles = c.aic < best_aic && c.gap_after < kPairGapRatio * best_gap;
       c.qualifies = !c.implausible && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && beats_singles;
+      c.qualifies_but_implausible = c.implausible && c.shrink >= kSummaryMinimumShrink && beats_singles;
       if (!beats_singles) c.score *= 0.1;
     }
   }
   std::stable_sort(d.ranking.begin(), d.ranking.end(),
                    [](const SummaryCandidate& a, const SummaryCandidate& b) { return a.score > b.score; });
-  const auto cause = std::find_if(d.ranking.begin(), d.ranking.end(),
+  auto cause = std::find_if(d.ranking.begin(), d.ranking.end(),
                                   [](const SummaryCandidate& c) { return c.qualifies; });
+  const auto refused = std::find_if(d.ranking.begin(), d.ranking.end(),
+                                    [](const SummaryCandidate& c) { return c.qualifies_but_implausible; });
   if (d.gap_before <= d.noise_floor) {
+    d.verdict = "within_noise";
     d.reason = "the simulated features lie within one laboratory standard deviation (rms z-score " +
                std::to_string(d.gap_before) + ")";
+  } else if (refused != d.ranking.end() &&
+             (cause == d.ranking.end() ||
+              (cause->gap_after > d.noise_floor && cause->shrink < kOutdoneRatio * refused->shrink))) {
+    d.verdict = "beyond_plausible_range";
+    d.refused_effect = refused->effect;
+    std::string needs;
+    for (const BeyondRange& b : refused->beyond_range) needs += (needs.empty() ? "" : " and ") + b.text();
+    d.reason = "no cause within the plausible ranges: " + refused->effect + " explains " +
+               std::to_string(static_cast<int>(std::lround(100 * refused->shrink))) + " % of the gap but needs " + needs;
+    if (cause != d.ranking.end())
+      d.reason += "; the best plausible effect, " + cause->effect + ", explains " +
+                  std::to_string(static_cast<int>(std::lround(100 * cause->shrink))) + " %";
+    cause = d.ranking.end();
   } else if (cause == d.ranking.end()) {
-    d.reason = "no plausible effect removes 30 % of the gap";
+    d.verdict = "no_effect_closes";
+    const auto best = std::min_element(d.ranking.begin(), d.ranking.end(), [](const SummaryCandidate& a, const SummaryCandidate& b) {
+      return a.gap_after < b.gap_after;
+    });
+    d.reason = best == d.ranking.end() || !(best->shrink > 0)
+                   ? "no effect reduces the gap"
+                   : "no plausible effect removes 30 % of the gap: the best, " + best->effect + ", removes " +
+                         std::to_string(static_cast<int>(std::lround(100 * best->shrink))) + " %";
   } else {
+    d.verdict = "cause";
     d.cause = cause->effect;
     d.reason = cause->gap_after <= d.noise_floor ? "brings the features within the laboratory scatter"
                                                  : "reduces the gap most, but not to the laboratory scatter";
@@ -506,7 +538,9 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
                      {"from_mm", at * 1e3},
                      {"to_mm", at * 1e3},
                      {"share", total > 0 ? z2[i] / total : 1.0 / static_cast<double>(d.lab.size())},
-                     {"direction", d.lab[i].name == "peak_displacement_mm" ? "horizontal offset" : "vertical offset"},
+                     {"direction", d.lab[i].name == "peak_displacement_mm"       ? "horizontal offset"
+                                   : d.lab[i].name == "secant_stiffness_N_per_m" ? "slope"
+                                                                                 : "vertical offset"},
                      {"feature", d.lab[i].name},
                      {"z", z}});
     lab.push_back({{"feature", d.lab[i].name}, {"mean", d.lab[i].mean}, {"sd", d.lab[i].sd},
@@ -520,6 +554,10 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
                        {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility}, {"implausible", c.implausible},
                        {"aic", c.aic}, {"parameters", c.parameters},
                        {"features_after", c.features}, {"fe_runs", c.runs}, {"qualifies", c.qualifies}});
+    if (c.implausible) {
+      ranking.back()["beyond_plausible_range"] = beyond_range_json(c.beyond_range);
+      ranking.back()["qualifies_but_implausible"] = c.qualifies_but_implausible;
+    }
     if (!c.samples.empty()) {
       nlohmann::json samples = nlohmann::json::array();
       for (const auto& [v, f] : c.samples)
@@ -532,7 +570,11 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
                         {"ranking", ranking},       {"cause", d.cause},
                         {"cause_reason", d.reason}, {"compression", d.compression},
                         {"not_tested", d.not_tested}, {"not_tested_reason", d.not_tested_reason},
-                        {"lab_summary", lab},       {"sim", d.sim.source}};
+                        {"lab_summary", lab},       {"sim", d.sim.source}, {"verdict", d.verdict}};
+  for (const SummaryCandidate& c : d.ranking)
+    if (c.effect == d.refused_effect)
+      out["refused_for_magnitude"] = {{"effect", c.effect}, {"shrink", c.shrink},
+                                      {"beyond_plausible_range", beyond_range_json(c.beyond_range)}};
   require_finite(out);
   return out;
 }

@@ -96,6 +96,8 @@ case_ "Value -1 not in range 1 to 1024" fit "$fit" --threads -1 -o "$work/fit"
 case_ "Value 0 not in range 1 to 1024" fit "$fit" --threads 0 -o "$work/fit"
 case_ "--trials: Value -1 not in range" gap selfcheck --trials -1
 case_ "--force-at-fraction: Value 1.5 not in range" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction 1.5
+# CLI::Range lets NaN through (every comparison with it is false).
+case_ "--force-at-fraction: Value nan is not a finite number" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction nan
 case_ "a mesh-test effect: it acts on a DEM panel model" gap features --model "$src/experiments/dt/dt_tension.prm" --effects mesh_distortion --json "$work/features.json"
 case_ "--steps" export --params "$src/experiments/data/macroelement_thesis_params.json" --steps 0 --out "$work/export"
 case_ "no_such.prm" run no_such.prm $out

@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli.hpp"
+#include "dtwire/core/csv.hpp"
 #include "commands/gap_dem_model.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/loading_mode.hpp"
@@ -119,6 +122,45 @@ TEST_F(GapDemModel, FindsADistortionDrawnPerLinkAndReusesItsRuns) {
   SimulationModel again = make_dem_model(toml, options);
   again.run({effect("mesh_distortion", 0.1)});
   EXPECT_EQ(*again.runs, 0);
+}
+
+// `gap --model punch.toml --lab other_code.csv` (issue 51): without --mode the mode is the
+// model's (its tool), not the curve's sign (a punch curve from another code reads as tension);
+// a --mode that contradicts the model is refused before any run, naming both.
+TEST_F(GapDemModel, TheModeFollowsTheModelsToolAndAContradictingModeIsRefused) {
+  const DemModelOptions options{{}, {}, dir / "cache"};
+  const gap::ForceCurve base = make_dem_model(toml, options).run({});
+  fs::create_directories(dir);
+  Curve curve;  // displacement and force only: no metadata saying what test it is
+  std::vector<double> mm;
+  for (double u : base.u) mm.push_back(u * 1e3);
+  curve.add_channel("displacement", *find_unit("mm"), mm);
+  curve.add_channel("force", *find_unit("N"), base.f);
+  const fs::path lab = dir / "other_code.csv";
+  write_csv(curve, lab);
+
+  testing::internal::CaptureStderr();
+  const int refused = run_command_line({"gap", "--lab", lab.string(), "--model", toml.string(), "--mode", "tension",
+                                        "--model-cache", (dir / "cache").string()});
+  const std::string message = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(refused, 2);
+  EXPECT_NE(message.find("'tension' contradicts --model"), std::string::npos) << message;
+  EXPECT_NE(message.find("punch test"), std::string::npos) << message;
+
+  const fs::path json = dir / "inferred.json";
+  const int code = run_command_line({"gap", "--lab", lab.string(), "--model", toml.string(), "--effects",
+                                     "edge_sliding", "--no-pairs", "--model-cache", (dir / "cache").string(),
+                                     "--json", json.string()});
+  ASSERT_EQ(code, 0);
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j.at("modes")[0].at("mode"), "punch");
+  EXPECT_NE(j.at("modes")[0].at("mode_basis").get<std::string>().find("tool.kind = \"platter\""), std::string::npos)
+      << j.at("modes")[0].at("mode_basis");
+  // Tested as a punch: the mesh effect, not "no effect could be tested".
+  EXPECT_NE(j.at("verdict"), "nothing_tested");
+  EXPECT_EQ(j.at("ranking")[0].at("effect"), "edge_sliding");
+  EXPECT_LE(j.at("model_runs").get<int>(), 3);
 }
 
 }  // namespace

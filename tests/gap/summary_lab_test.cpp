@@ -111,6 +111,32 @@ TEST(GapSummaryLab, ForceBeyondTheSimulatedTravelIsRefused) {
 
 // A grid parameter (three nodes per wire or two) is only ever evaluated at its grid values, the
 // continuous one beside it refined as before.
+// The standard's figures of a mesh strip (EN 10223-3, 8x10 / 2.7 mm: 50 kN/m, axial stiffness
+// about 500 kN/m): per metre of width and per unit strain over the free length.
+TEST(GapSummaryLab, StripStrengthPerMetreAndSecantStiffness) {
+  ForceCurve strip;
+  strip.source = "strip";
+  strip.strip_width_m = 1.0;
+  strip.free_length_m = 0.99;
+  // A toe (the first 10 mm at a tenth of the stiffness: 0.5 kN), then 500 kN/m per metre of
+  // width (k = 500e3 x 1.0 / 0.99 N/m) up to 50 kN, a plateau and a drop.
+  const double k = 500e3 * 1.0 / 0.99;
+  for (int i = 0; i <= 200; ++i) {
+    const double u = 1e-3 * i;
+    strip.u.push_back(u);
+    strip.f.push_back(u <= 0.01 ? 0.1 * k * u : std::min(0.1 * k * 0.01 + k * (u - 0.01), 50e3));
+  }
+  strip.u.push_back(0.201);
+  strip.f.push_back(10e3);
+  EXPECT_NEAR(curve_feature(strip, "strength_N_per_m"), 50e3, 1e-6);
+  // 10 % and 50 % of the peak both lie on the steep part: the chord is its stiffness.
+  EXPECT_NEAR(curve_feature(strip, "secant_stiffness_N_per_m"), 500e3, 1e-3);
+  EXPECT_EQ(parse_lab_summary("strength_N_per_m=50000:5000,secant_stiffness_N_per_m=500000:50000").size(), 2u);
+  ForceCurve wire = strip;
+  wire.strip_width_m = 0.0;
+  EXPECT_THROW(curve_feature(wire, "strength_N_per_m"), InputError);
+}
+
 TEST(GapModelSearch, GridParameterTakesOnlyGridValues) {
   ParameterSpec slack{"slack", 0.0, 1.0, 0.0, 1.0, {}, {}};
   ParameterSpec nodes{"nodes_per_wire", 2.0, 3.0, 2.0, 3.0, {2.0, 3.0}, {}};

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "dtwire/gap/curve_metrics.hpp"
+#include "dtwire/gap/effects.hpp"
 #include "independent_effects.hpp"
 
 namespace dtwire::gap::independent {
@@ -11,6 +12,24 @@ double magnitude(const Setting& s, std::size_t k, double lo, double hi) {
   const double u = k < s.draws.size() ? s.draws[k] : 0.5;
   return (lo + (hi - lo) * u) * s.scatter;
 }
+
+double toward_edge(const Setting& s, std::size_t k, double neutral, double inner, double outer) {
+  const double u = k < s.draws.size() ? s.draws[k] : 0.5;
+  const double nominal = inner + (outer - inner) * std::min(1.0, u / 0.8);
+  const double scattered = neutral + (nominal - neutral) * s.scatter;
+  return outer > neutral ? std::min(scattered, outer) : std::max(scattered, outer);
+}
+
+namespace {
+ParameterSpec range_of(const std::string& effect, std::size_t index) {
+  CurveScale unit;
+  unit.peak_force_N = 1.0;
+  return find_effect(effect).parameters(unit).at(index);
+}
+}  // namespace
+
+double plausible_lower(const std::string& effect, std::size_t index) { return range_of(effect, index).plausible_lower; }
+double plausible_upper(const std::string& effect, std::size_t index) { return range_of(effect, index).plausible_upper; }
 
 double force_at(const ForceCurve& base, double u) {
   if (u <= base.u.front()) return base.f.front();

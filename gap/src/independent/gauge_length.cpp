@@ -9,12 +9,13 @@ namespace dtwire::gap::independent {
 // the test, lambda(u) = lambda0 + (lambda1 - lambda0) u / u_end with |lambda1 - lambda0| 0.02-0.06.
 // Shape 1, crosshead displacement over a longer free length whose ends stay elastic (shoulders
 // in the grips): the plastic part is scaled, the elastic part is not, u' = f/k0 + lambda (u - f/k0).
-// lambda 1.05-1.3 or 0.85-0.95 (as the fitted family).
+// lambda from 1.05 or 0.95 out to the plausible range's edges (the catalogue's; e.g. 0.5: an
+// extensometer over half the free length).
 ForceCurve gauge_length(const ForceCurve& base, const Setting& s) {
   ForceCurve out = visible(base, s.end_m);
-  const double d0 = s.draws.empty() ? 0.5 : s.draws[0];
   const bool above = (s.draws.size() > 1 ? s.draws[1] : 0.5) < 0.5;
-  const double lambda = 1.0 + (above ? 0.05 + 0.25 * d0 : -(0.05 + 0.10 * d0)) * s.scatter;
+  const double lambda = above ? toward_edge(s, 0, 1.0, 1.05, plausible_upper("gauge_length", 0))
+                              : toward_edge(s, 0, 1.0, 0.95, plausible_lower("gauge_length", 0));
   const double drift = (s.draws.size() > 2 && s.draws[2] < 0.5 ? -1.0 : 1.0) *
                        (0.02 + 0.04 * (s.draws.size() > 3 ? s.draws[3] : 0.5));
   for (std::size_t i = 0; i < out.size(); ++i) {

@@ -11,11 +11,12 @@ namespace dtwire::gap::independent {
 // is on the crosshead displacement, the specimen sees u_lab - slip.
 // Shape 1, smooth creep: slip growing with the square of the excess force,
 // s = c (F_max - F_s)^2 / (F_p - F_s) (a friction grip whose slip rate rises with the load).
-// Onset 0.3-0.8 x the visible peak, c 1-6 mm/kN, steps 0.1-0.5 mm (as the fitted family).
+// Onset 0.3-0.8 x the visible peak, c from 1 mm/kN out to the plausible range's edge (the
+// catalogue's), steps 0.1-0.5 mm (as the fitted family).
 ForceCurve grip_slip(const ForceCurve& base, const Setting& s) {
   const double peak = s.visible_peak_N;
   const double onset = magnitude(s, 0, 0.3, 0.8) * peak / s.scatter;
-  const double c = magnitude(s, 1, 1.0, 6.0) * 1e-6;
+  const double c = toward_edge(s, 1, 0.0, 1.0, plausible_upper("grip_slip", 1)) * 1e-6;
   if (s.shape == 1) {
     ForceCurve out = visible(base, s.end_m);
     const std::vector<double> fmax = running_max(out.f);

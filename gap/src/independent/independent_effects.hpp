@@ -25,6 +25,17 @@ int shape_count(const std::string& effect);
 // Magnitude in [lo, hi] from draw `k` of the setting, times its scatter.
 double magnitude(const Setting& s, std::size_t k, double lo, double hi);
 
+// A magnitude from draw `k`: from `inner` out to `outer` (the plausible range's edge away from the
+// neutral value), a fifth of the draws on the edge itself (issue 51); the specimen scatter then
+// multiplies the distance from `neutral`, held within the edge (a real set-up's effect lies in
+// the range, a specimen's too).
+double toward_edge(const Setting& s, std::size_t k, double neutral, double inner, double outer);
+
+// The edges of the plausible range of an effect's magnitude parameter (or of its parameter
+// `index`), from the catalogue with a unit peak force (ranges in fractions of the peak).
+double plausible_lower(const std::string& effect, std::size_t index);
+double plausible_upper(const std::string& effect, std::size_t index);
+
 // Force of the base model at u (linear, clamped; base.u increasing).
 double force_at(const ForceCurve& base, double u);
 

@@ -9,10 +9,10 @@ namespace dtwire::gap::independent {
 // grows with the logarithm of the force, u' = u + C f + C F_b ln(1 + f / F_b).
 // Shape 1, Hertzian contacts in the load train (pins, wedge faces): u' = u + C F_p (f / F_p)^(2/3)
 // (contact approach proportional to load^(2/3), Johnson, Contact Mechanics, 1985, eq. 4.23).
-// C 0.1-1 mm/kN as the fitted family; F_b 5-20 % of the visible peak.
+// C from 0.1 mm/kN out to the plausible range's edge (the catalogue's); F_b 5-20 % of the visible peak.
 ForceCurve machine_compliance(const ForceCurve& base, const Setting& s) {
   ForceCurve out = visible(base, s.end_m);
-  const double c = magnitude(s, 0, 0.1, 1.0) * 1e-6;  // mm/kN -> m/N
+  const double c = toward_edge(s, 0, 0.0, 0.1, plausible_upper("machine_compliance", 0)) * 1e-6;  // mm/kN -> m/N
   const double peak = s.visible_peak_N;
   const double seating = (0.05 + 0.15 * (s.draws.size() > 1 ? s.draws[1] : 0.5)) * peak;
   for (std::size_t i = 0; i < out.size(); ++i) {

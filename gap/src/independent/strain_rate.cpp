@@ -18,12 +18,12 @@ namespace dtwire::gap::independent {
 // the hardening part grows with it while the yield part keeps a share a (0.3-0.7) of the end
 // gain: s = 1 + (s1 - 1)(a + (1 - a) H / H_end), H = 1 - F_y / F_max the hardening's share of
 // the running peak force, F_y the force at 0.2 % plastic strain (not the fitted linear clock).
-// s0, s1: 1.04-1.15 or 0.88-0.96 (as the fitted family).
+// s0, s1: from 1.04 or 0.96 out to the plausible range's edges (the catalogue's).
 ForceCurve strain_rate(const ForceCurve& base, const Setting& s) {
   ForceCurve out = visible(base, s.end_m);
-  const double d0 = s.draws.empty() ? 0.5 : s.draws[0];
   const bool above = (s.draws.size() > 1 ? s.draws[1] : 0.5) < 0.5;
-  const double factor = 1.0 + (above ? 0.04 + 0.11 * d0 : -(0.04 + 0.08 * d0)) * s.scatter;
+  const double factor = above ? toward_edge(s, 0, 1.0, 1.04, plausible_upper("strain_rate", 0))
+                              : toward_edge(s, 0, 1.0, 0.96, plausible_lower("strain_rate", 0));
   const double d2 = s.draws.size() > 2 ? s.draws[2] : 0.5;
   const double jump = (0.3 + 0.3 * d2) * s.end_m;
   std::vector<double> share(out.size(), 1.0);

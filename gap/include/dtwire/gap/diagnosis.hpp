@@ -24,7 +24,7 @@ struct DiagnosisOptions {
   std::map<std::string, std::string> inapplicable;
   // Pairs with a model-only effect: at most this many points of the bounded search (each at most
   // one FE run; cached runs are free).
-  std::size_t model_runs = 3;
+  std::size_t model_runs = 3;  // also: values run per single model-only effect (issue 51)
 };
 
 // Evidence for a pair against the best single effect (see gap/src/parsimony.cpp).
@@ -53,7 +53,15 @@ struct RankedEffect {
   std::vector<double> gap_after_by_segment;  // per entry of Diagnosis::where
   bool qualifies = false;  // beats the noise floor and the information criterion
   bool implausible = false;  // a magnitude fitted outside its plausible range: never the cause
+  // Which magnitudes lie beyond their plausible range (empty unless implausible), and whether
+  // the candidate met every other rule of a cause (then the verdict names it, issue 51).
+  std::vector<BeyondRange> beyond_range;
+  bool qualifies_but_implausible = false;
   int search_points = 0;   // pairs with a model-only effect: points of the bounded search
+  // Candidates with a model-only effect: values run by its search (each at most one model run;
+  // cached runs are free) and the search's wall time.
+  int model_runs = 0;
+  double model_seconds = 0.0;
   PairEvidence against_single;  // pairs only
   bool also_possible = false;   // a pair that fits better but fails the parsimony rule
   // Combined ranking over several loading modes: the effects as applied in each mode.
@@ -88,6 +96,12 @@ struct Diagnosis {
   std::vector<RankedEffect> ranking;
   std::string cause = "none";
   std::string reason;
+  // The verdict (issue 51), one of: "cause" (an effect closes the gap with a plausible
+  // magnitude), "beyond_plausible_range" (an effect closes it, but only with a magnitude beyond
+  // its plausible range: `refused` names it), "no_effect_closes" (none does), "within_noise"
+  // (nothing to explain), "nothing_tested".
+  std::string verdict = "no_effect_closes";
+  std::string refused_effect;  // "beyond_plausible_range": the ranking entry it names
   std::vector<std::string> not_tested;
   std::map<std::string, std::string> not_tested_reason;
   PredictiveCheck predictive;
@@ -110,6 +124,9 @@ inline constexpr double kMinimumReduction = 0.3;    // x expected noise-only are
 inline constexpr double kMinimumOverlap = 0.2;      // of the laboratory displacement range
 inline constexpr double kInformationMargin = 10.0;  // AICc units an accepted effect must gain
 inline constexpr double kPairGapRatio = 0.8;        // a pair must cut the single's gap by 20 %
+// A plausible candidate that leaves the gap above the floor is the cause only when it removes at
+// least this share of what the best implausible candidate removes (the verdict, issue 51).
+inline constexpr double kOutdoneRatio = 0.5;
 inline constexpr double kPairBicMargin = 6.0;       // BIC units a pair must gain over the single
 inline constexpr double kPairHeldOutRatio = 0.8;    // held-out error of the pair / the single's
 inline constexpr int kHeldOutBlocks = 10;           // alternate blocks: even fitted, odd held out

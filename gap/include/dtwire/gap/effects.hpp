@@ -23,6 +23,9 @@ struct CurveScale {
   // Where the force first peaks (a tension test's neck starts there, Considere); at most
   // max_displacement_m, equal to it when the force rises to the end.
   double peak_displacement_m = 1.0;
+  // Where the laboratory test ends (its largest displacement; 0: the simulation's end). An
+  // effect whose size grows along the test (ductile damage) is judged by what the test shows.
+  double test_end_m = 0.0;
 };
 CurveScale curve_scale(const ForceCurve& sim);
 
@@ -65,6 +68,10 @@ struct EffectSpec {
   std::size_t magnitude = 0; // index of the parameter that measures the effect's size
   double neutral = 0.0;      // value of that parameter for which the effect vanishes
   std::function<std::vector<ParameterSpec>(const CurveScale&)> parameters;
+  // The magnitude as the test shows it, which the plausible range of parameter `magnitude` is
+  // stated for (unset: the parameter itself), and its name for the verdict.
+  std::function<double(const std::vector<double>&, const CurveScale&)> shown_magnitude;
+  std::string shown_name;
   std::function<ForceCurve(const ForceCurve&, const std::vector<double>&, const CurveScale&)> apply;
 };
 
@@ -97,6 +104,20 @@ ForceCurve apply_effects(const ForceCurve& sim, std::vector<AppliedEffect> effec
 // neutral value): such an effect is reported as implausible and is never the cause (issue 37).
 // A magnitude between the neutral value and the range is a weak effect, not an implausible one.
 bool magnitudes_plausible(const std::vector<AppliedEffect>& effects, const CurveScale& scale);
+
+// An effect's magnitude stronger than its plausible range: which effect, which parameter (or the
+// shown magnitude), the value and the range, for the verdict ("needs a scale_1 of 0.64, outside
+// [0.85, 1.3]").
+struct BeyondRange {
+  std::string effect, parameter;
+  double value = 0.0, plausible_lower = 0.0, plausible_upper = 0.0;
+  std::string text() const;  // "a <parameter> of <value>, outside [<lower>, <upper>]"
+};
+// The magnitudes of `effects` that lie beyond their plausible range (empty when none).
+std::vector<BeyondRange> magnitudes_beyond_range(const std::vector<AppliedEffect>& effects, const CurveScale& scale);
+// `effects` with every magnitude beyond its range brought to the range's edge (a shown
+// magnitude by scaling its parameter).
+std::vector<AppliedEffect> magnitudes_at_edge(std::vector<AppliedEffect> effects, const CurveScale& scale);
 
 // 1 inside the plausible range, falling linearly to 0.2 at the fit bounds; product over params.
 double plausibility(const EffectSpec& effect, const std::vector<double>& params,

@@ -7,14 +7,23 @@
 #include <string>
 #include <vector>
 
+#include "dtwire/core/curve.hpp"
+
 namespace dtwire::gap {
 
 struct ForceCurve {
   std::vector<double> u;  // displacement [m]
   std::vector<double> f;  // force [N]
   std::string source;     // file name or a description, for messages
+  // A strip tension of a panel of mesh (a DEM run's metadata strip_width_m, free_length_m; 0:
+  // not a strip): the standard's figures are per metre of width and per unit strain.
+  double strip_width_m = 0.0, free_length_m = 0.0;
   std::size_t size() const { return u.size(); }
 };
+
+// Takes a strip tension's width and free length from a curve's metadata (strip_width_m,
+// free_length_m), when it has them.
+void read_strip_geometry(const Curve& curve, ForceCurve& out);
 
 struct CurveConversion {
   std::optional<double> gauge_length_m;  // turns strain_1 into displacement

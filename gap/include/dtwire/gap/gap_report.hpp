@@ -15,6 +15,9 @@ std::string diagnosis_markdown(const Diagnosis& diagnosis);
 // Curves (mm, N), gap regions and the best augmented model.
 nlohmann::json plot_data_json(const Diagnosis& diagnosis);
 
+// Magnitudes beyond their plausible range: [{effect, parameter, value, plausible: [lo, hi]}].
+nlohmann::json beyond_range_json(const std::vector<BeyondRange>& beyond);
+
 // Throws ComputationError naming the first non-finite number's path.
 void require_finite(const nlohmann::json& value, const std::string& path = "");
 

@@ -9,6 +9,7 @@
 #include <functional>
 #include <vector>
 
+#include "dtwire/gap/effect_fit.hpp"
 #include "dtwire/gap/effects.hpp"
 
 namespace dtwire::gap {
@@ -28,5 +29,19 @@ PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
                              const std::vector<std::vector<double>>& starts,
                              const std::function<double(const std::vector<double>&)>& objective,
                              std::size_t points);
+
+// One model-only effect against laboratory curves (issue 51), derivative-free within `runs`
+// model runs, as the summary mode searches it: the plausible range's ends first (a grid
+// parameter: its grid values), then the minimum of the weighted SSE of the residual taken as
+// linear in the parameter between the values run, until the runs are spent or that minimum lies
+// within 2 % of the range of a value already run. The simulation is the neutral value's run. The
+// answer is the best value actually run. No finite differences: a DEM run's response to a change
+// of 1e-4 is its own noise, not a derivative.
+struct ModelEffectSearch {
+  EffectFit fit;
+  std::size_t runs = 0;                          // values run (each at most one model run)
+  std::vector<std::pair<double, double>> samples;  // value -> weighted SSE, the neutral one included
+};
+ModelEffectSearch search_model_effect(const FitProblem& problem, const EffectSpec& effect, std::size_t runs);
 
 }  // namespace dtwire::gap

@@ -32,7 +32,10 @@ std::string summary_feature_names();
 // peak_displacement_mm the displacement at the peak, onset_displacement_mm where the force first
 // reaches kOnsetFraction of the peak, force_at_<D>mm_N the force where the displacement first
 // reaches D mm (linear between samples; the first force before the curve's start, the last
-// after its end: diagnose_summary refuses a simulation that does not reach D).
+// after its end: diagnose_summary refuses a simulation that does not reach D);
+// strength_N_per_m the peak force per metre of a strip's width, secant_stiffness_N_per_m its chord
+// between kSecantLow and kSecantHigh of the peak, per metre and per unit strain over the free
+// length (both need a strip tension's geometry, else InputError).
 double curve_feature(const ForceCurve& curve, const std::string& name);
 // D of a force_at_<D>mm_N name (D a positive plain decimal, e.g. force_at_420mm_N), else none.
 std::optional<double> force_at_displacement_mm(const std::string& name);
@@ -68,6 +71,8 @@ struct SummaryCandidate {
   std::vector<std::pair<std::vector<double>, std::vector<double>>> samples;
   bool qualifies = false;
   bool implausible = false;  // a magnitude fitted outside its plausible range: never the cause
+  std::vector<BeyondRange> beyond_range;  // which magnitudes, with their ranges
+  bool qualifies_but_implausible = false;  // met every rule of a cause but the plausible range
 };
 
 struct SummaryDiagnosis {
@@ -79,6 +84,9 @@ struct SummaryDiagnosis {
   bool compression = false;
   std::vector<SummaryCandidate> ranking;  // by score
   std::string cause = "none", reason;
+  // As Diagnosis::verdict (issue 51): cause, beyond_plausible_range (refused_effect names the
+  // candidate), no_effect_closes, within_noise.
+  std::string verdict = "no_effect_closes", refused_effect;
   std::vector<std::string> not_tested;
   std::map<std::string, std::string> not_tested_reason;
   ForceCurve sim, best_model;  // oriented
@@ -94,6 +102,9 @@ nlohmann::json summary_json(const SummaryDiagnosis& d);
 std::string summary_markdown(const SummaryDiagnosis& d);
 
 inline constexpr double kOnsetFraction = 0.04;
+// secant_stiffness_N_per_m: the chord between these fractions of the peak force (as `dem run`'s
+// strip summary; the standard states no range for its "about 500 kN/m").
+inline constexpr double kSecantLow = 0.1, kSecantHigh = 0.5;
 // A qualifying effect must remove at least this fraction of the gap.
 inline constexpr double kSummaryMinimumShrink = 0.3;
 // Pairs (with a model-only effect) are tried among this many best single effects.
