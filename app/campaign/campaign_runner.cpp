@@ -226,9 +226,26 @@ class Runner {
         outputs_exist(outputs)) {
       outcome.status = StepStatus::Skipped;
       outcome.seconds = previous.value("seconds", 0.0);
+      remove_stale_temporaries_below(step_folder(options_.out, step.name), outputs);
       return {outcome, std::nullopt, "up to date, skipped"};
     }
     return {std::nullopt, launch, {}};
+  }
+
+  // An up-to-date step is not run again, but a writer killed after it finished (or a later
+  // command into its folders) may have left temporaries there: they never outlive the next
+  // campaign (issue 53). Its folder and its outputs' folders, with everything below them.
+  static void remove_stale_temporaries_below(const std::filesystem::path& step_folder,
+                                             const std::vector<std::string>& outputs) {
+    std::set<std::filesystem::path> folders{step_folder};
+    for (const auto& output : outputs) folders.insert(std::filesystem::path(output).parent_path());
+    for (const auto& folder : folders) {
+      std::error_code error;
+      if (!std::filesystem::is_directory(folder, error)) continue;
+      remove_stale_temporaries(folder);
+      for (std::filesystem::recursive_directory_iterator it(folder, error), end; !error && it != end; it.increment(error))
+        if (it->is_directory(error)) remove_stale_temporaries(it->path());
+    }
   }
 
   void start(std::size_t i, const Launch& launch) {

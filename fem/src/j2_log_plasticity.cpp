@@ -81,6 +81,18 @@ Tensor4 chain_tangent(const Spectral& s, const Tensor2& F, const Tensor2& F_inv_
   return tangent;
 }
 
+// Scales a softened point's stress and stored energy by 1 - w; returns its undamaged Kirchhoff
+// stress, which the softening's tangent term needs.
+SymTensor2 soften(double w, StressUpdate& r) {
+  const SymTensor2 undamaged = r.kirchhoff;
+  if (w > 0.0) {
+    r.kirchhoff *= 1.0 - w;
+    r.first_piola *= 1.0 - w;
+    r.elastic_energy *= 1.0 - w;
+  }
+  return undamaged;
+}
+
 }  // namespace
 
 J2LogPlasticity::J2LogPlasticity(ElasticParameters elastic, IsotropicHardening hardening, FailureParameters failure,
@@ -192,12 +204,7 @@ StressUpdate J2LogPlasticity::update(const Tensor2& F, const PlasticState& commi
       0.5 * ((1.0 - w_n) * hardening_.flow_stress(alpha_n) + (1.0 - w) * hardening_.flow_stress(alpha_n + dgamma)) *
           dgamma +
       r.elastic_energy * (w - w_n);
-  const SymTensor2 tau_undamaged = r.kirchhoff;
-  if (w > 0.0) {
-    r.kirchhoff *= 1.0 - w;
-    r.first_piola *= 1.0 - w;
-    r.elastic_energy *= 1.0 - w;
-  }
+  const SymTensor2 tau_undamaged = soften(w, r);
   if (!with_tangent) return r;
 
   // Algorithmic modulus D = d tau / d eps_tr (de Souza Neto et al. 2008, eq. 7.120, in log space).
@@ -278,12 +285,7 @@ StressUpdate J2LogPlasticity::update_kinematic(const Tensor2& F, const Tensor2& 
   r.state.plastic_dissipation = committed.plastic_dissipation +
                                 (1.0 - 0.5 * (w_n + w)) * (deviator * plastic_strain_increment) +
                                 r.elastic_energy * (w - w_n);
-  const SymTensor2 tau_undamaged = r.kirchhoff;
-  if (w > 0.0) {
-    r.kirchhoff *= 1.0 - w;
-    r.first_piola *= 1.0 - w;
-    r.elastic_energy *= 1.0 - w;
-  }
+  const SymTensor2 tau_undamaged = soften(w, r);
   if (!with_tangent) return r;
 
   // Linearisation of the return: d(Delta alpha) from dg = 0, d n_hat from d eta.
