@@ -144,6 +144,14 @@ struct WireSolver::Impl {
   void commit();
   double reaction() const;
   double neck_radius() const;
+  // The quadrature point with the largest `key` over the owned steel cells `select` accepts, on
+  // every rank: the value (-1 if no cell is selected anywhere), its stress state, place (cell
+  // centre: z and distance from the z axis) and failure indicator.
+  struct LargestPoint {
+    double value = -1.0, triaxiality = 0.0, lode_parameter = 0.0, z = 0.0, r = 0.0, damage = 0.0;
+  };
+  LargestPoint largest_point(const std::function<bool(const Triangulation<3>::active_cell_iterator&)>& select,
+                             const std::function<double(const PlasticState&)>& key) const;
   void record_damage(StepRecord& record) const;
   // The junction's state (solver_junction.cpp): largest equivalent plastic strain of the cells
   // near a junction plane, with the triaxiality and Lode parameter there; one log line.

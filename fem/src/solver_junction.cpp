@@ -4,7 +4,6 @@
 // stress state (triaxiality, Lode parameter), place and failure indicator.
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/mapping_q1.h>
-#include <mpi.h>
 
 #include <cmath>
 #include <map>
@@ -18,37 +17,17 @@ using namespace dealii;
 
 void WireSolver::Impl::log_junction_state() const {
   if (prm.geometry.junction_planes.empty()) return;
-  const unsigned n_q = quadrature.size();
-  struct {
-    double value;
-    int rank;
-  } local{-1.0, static_cast<int>(Utilities::MPI::this_mpi_process(comm))}, global{};
-  double where[5] = {0, 0, 0, 0, 0};  // triaxiality, Lode, z, r, failure indicator
-  double largest_damage = 0.0;
-  for (const auto& cell : triangulation.active_cell_iterators()) {
-    if (!cell->is_locally_owned() || is_coating(cell->material_id()) || !near_junction(prm.geometry, cell->center()))
-      continue;
-    for (unsigned q = 0; q < n_q; ++q) {
-      const auto& p = points[cell->active_cell_index() * n_q + q];
-      largest_damage = std::max(largest_damage, p.committed.damage);
-      if (p.committed.equivalent_plastic_strain <= local.value) continue;
-      local.value = p.committed.equivalent_plastic_strain;
-      const StressInvariants inv = stress_invariants(p.cauchy);
-      const Point<3> x = cell->center();
-      where[0] = inv.triaxiality;
-      where[1] = inv.lode_parameter;
-      where[2] = x[2];
-      where[3] = std::hypot(x[0], x[1]);
-      where[4] = p.committed.damage;
-    }
-  }
-  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
-  MPI_Bcast(where, 5, MPI_DOUBLE, global.rank, comm);
-  largest_damage = Utilities::MPI::max(largest_damage, comm);
-  if (global.value < 0.0) return;  // no steel cell near a junction plane
-  log << "  junction: largest equivalent plastic strain " << global.value << " at z = " << where[2] * 1e3
-      << " mm, r = " << where[3] * 1e3 << " mm (triaxiality " << where[0] << ", Lode parameter " << where[1]
-      << ", failure indicator " << where[4] << "); largest failure indicator there " << largest_damage << "\n";
+  const auto near = [&](const Triangulation<3>::active_cell_iterator& cell) {
+    return !is_coating(cell->material_id()) && near_junction(prm.geometry, cell->center());
+  };
+  const LargestPoint strain =
+      largest_point(near, [](const PlasticState& state) { return state.equivalent_plastic_strain; });
+  if (strain.value < 0.0) return;  // no steel cell near a junction plane
+  const LargestPoint damage = largest_point(near, [](const PlasticState& state) { return state.damage; });
+  log << "  junction: largest equivalent plastic strain " << strain.value << " at z = " << strain.z * 1e3
+      << " mm, r = " << strain.r * 1e3 << " mm (triaxiality " << strain.triaxiality << ", Lode parameter "
+      << strain.lode_parameter << ", failure indicator " << strain.damage << "); largest failure indicator there "
+      << std::max(damage.value, 0.0) << "\n";
 }
 
 WireSolver::HangingNodeCheck WireSolver::hanging_node_check() {

@@ -88,34 +88,44 @@ double WireSolver::Impl::reaction() const {
   return Utilities::MPI::sum(local, comm) * force_multiplier();
 }
 
-void WireSolver::Impl::record_damage(StepRecord& record) const {
+WireSolver::Impl::LargestPoint WireSolver::Impl::largest_point(
+    const std::function<bool(const Triangulation<3>::active_cell_iterator&)>& select,
+    const std::function<double(const PlasticState&)>& key) const {
   const unsigned n_q = quadrature.size();
   struct {
     double value;
     int rank;
   } local{-1.0, static_cast<int>(Utilities::MPI::this_mpi_process(comm))}, global{};
-  double where[4] = {0, 0, 0, 0};  // triaxiality, Lode, z, r
+  double where[5] = {0, 0, 0, 0, 0};  // triaxiality, Lode, z, r, failure indicator
   for (const auto& cell : triangulation.active_cell_iterators()) {
-    if (!cell->is_locally_owned()) continue;
+    if (!cell->is_locally_owned() || !select(cell)) continue;
     for (unsigned q = 0; q < n_q; ++q) {
       const auto& p = points[cell->active_cell_index() * n_q + q];
-      if (p.committed.damage <= local.value) continue;
-      local.value = p.committed.damage;
+      const double value = key(p.committed);
+      if (value <= local.value) continue;
+      local.value = value;
       const StressInvariants inv = stress_invariants(p.cauchy);
       const Point<3> x = cell->center();
       where[0] = inv.triaxiality;
       where[1] = inv.lode_parameter;
       where[2] = x[2];
       where[3] = std::hypot(x[0], x[1]);
+      where[4] = p.committed.damage;
     }
   }
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
-  MPI_Bcast(where, 4, MPI_DOUBLE, global.rank, comm);
-  record.damage = std::max(global.value, 0.0);
-  record.damage_triaxiality = where[0];
-  record.damage_lode = where[1];
-  record.damage_z = where[2];
-  record.damage_r = where[3];
+  MPI_Bcast(where, 5, MPI_DOUBLE, global.rank, comm);
+  return {global.value, where[0], where[1], where[2], where[3], where[4]};
+}
+
+void WireSolver::Impl::record_damage(StepRecord& record) const {
+  const LargestPoint largest = largest_point([](const auto&) { return true; },
+                                             [](const PlasticState& state) { return state.damage; });
+  record.damage = std::max(largest.value, 0.0);
+  record.damage_triaxiality = largest.triaxiality;
+  record.damage_lode = largest.lode_parameter;
+  record.damage_z = largest.z;
+  record.damage_r = largest.r;
 }
 
 double WireSolver::Impl::neck_radius() const {

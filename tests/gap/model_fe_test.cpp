@@ -15,6 +15,9 @@
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/gap/summary_lab.hpp"
+#ifdef DTWIRE_HAVE_FEM_MATERIAL
+#include "j2_log_plasticity.hpp"
+#endif
 
 namespace dtwire::app {
 namespace {
@@ -128,6 +131,13 @@ TEST(GapModelPrm, ShearFailureSetsTheHosfordExponentOfAHosfordCoulombLocus) {
   EXPECT_GT(a, 1.0);
   EXPECT_LT(a, 2.0);
   EXPECT_NEAR(ratio_of(a, 0.05), 0.6, 1e-6);
+#ifdef DTWIRE_HAVE_FEM_MATERIAL
+  // The FE solver's own locus at that a: shear (triaxiality 0, Lode 0) over uniaxial tension.
+  fem::FailureParameters locus;
+  locus.locus = fem::FractureLocus::hosford_coulomb;
+  locus.hc_a = a, locus.hc_b = 1.15, locus.hc_c = 0.05;
+  EXPECT_NEAR(locus.strain_to_failure(0.0, 0.0) / locus.strain_to_failure(1.0 / 3.0, 1.0), 0.6, 1e-6);
+#endif
   EXPECT_DOUBLE_EQ(exponent(0.1), 1.0);
   const std::string off = "subsection Material\n  set Failure locus = hosford-coulomb\nend\n";
   fs::create_directories(fs::temp_directory_path() / "dtwire_gap_fe_test_hc");
