@@ -197,8 +197,6 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
       auto wall = std::make_unique<PlaneWall>(Vector3::UnitZ());
       wall->position = Vector3(centre.x(), centre.y(), -in.mesh.node_radius - in.wall_below);
       wall->contact = in.contact;
-      if (in.wall_kn > 0.0) wall->contact.normal_stiffness = in.wall_kn;
-      if (in.wall_ks > 0.0) wall->contact.shear_stiffness = in.wall_ks;
       engine->add_tool(std::move(wall));
     }
   } catch (const std::invalid_argument& e) {

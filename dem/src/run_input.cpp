@@ -317,8 +317,7 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   }
 
   if (const toml::table* boundary = r.table(root, "boundary")) {
-    r.check_keys(*boundary, "boundary.",
-                 {"pinned", "support", "pretension_strain", "presag_m", "wall_below_m", "wall_kn_N_per_m", "wall_ks_N_per_m"});
+    r.check_keys(*boundary, "boundary.", {"pinned", "support", "pretension_strain", "presag_m", "wall_below_m"});
     if (const toml::node* pinned = boundary->get("pinned")) {
       const toml::array* sides = pinned->as_array();
       if (!sides) r.fail(pinned, "boundary.pinned", "expected an array of sides");
@@ -353,12 +352,6 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
     if (in.wall_below > 0.0 && in.pretension_strain > 0.0)
       r.fail(boundary->get("wall_below_m"), "boundary.wall_below_m",
              "given with pretension_strain: a net settling slack onto the wall has no pre-tension");
-    // The wall's own contact stiffnesses (0: the tool's, read below).
-    in.wall_kn = r.number(*boundary, "boundary.", "wall_kn_N_per_m", 0.0, true);
-    in.wall_ks = r.number(*boundary, "boundary.", "wall_ks_N_per_m", 0.0, true);
-    for (const char* key : {"wall_kn_N_per_m", "wall_ks_N_per_m"})
-      if (boundary->get(key) && !(in.wall_below > 0.0))
-        r.fail(boundary->get(key), std::string("boundary.") + key, "given without wall_below_m: there is no wall");
   }
 
   if (const toml::table* dynamics = r.table(root, "dynamics")) {

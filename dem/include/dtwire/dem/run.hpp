@@ -49,10 +49,6 @@ struct RunInput {
   // Slack state of the thesis's cyclic tests: a horizontal wall this far below the net's base,
   // on which the net settles with its supported edges free in the plane (0: none) [m].
   double wall_below = 0.0;
-  // The wall's contact stiffnesses [N/m] (0: the tool's kn, ks; friction is the tool's). The wall
-  // carries the net's weight only, so a far softer spring than the platter's keeps it as rigid
-  // for the net and leaves the stability bound to the links (docs/dem_engine.md, "Speed").
-  double wall_kn = 0.0, wall_ks = 0.0;
   EngineOptions engine;
   double settle_time = 0.0;  // [s] gravity only, before the tool moves
   // Tool: "platter", "boulder", "none" or "strip_tension" (strip_tension.hpp).
