@@ -2,6 +2,8 @@
 // (docs/dem_engine.md: the energy bookkeeping).
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "dtwire/dem/engine.hpp"
 #include "engine_state.hpp"
@@ -61,6 +63,10 @@ void Engine::step() {
   // a law update is an opaque call, and between two of them the square roots and divisions of
   // one link's frame cannot overlap another's (the kinematics loop runs about twice as fast on
   // its own). The two loops give each thread the same links (static schedule), so no barrier.
+  // A law that gives up (an exception) must not leave the parallel region, where it would
+  // terminate the process: the first one is kept with its link and thrown after the region.
+  std::string law_failure;
+  std::size_t failed_link = links;
 #pragma omp parallel num_threads(threads) if (links >= options_.parallel_threshold)
   {
 #pragma omp for schedule(static) nowait
@@ -88,7 +94,18 @@ void Engine::step() {
     for (std::size_t l = 0; l < links; ++l) {
       LinkState& state = s.link_state[l];
       ContactLaw& law = *s.links[l].law;
-      if (!state.broken) law.update(state.increment);
+      if (!state.broken) {
+        try {
+          law.update(state.increment);
+        } catch (const std::exception& e) {
+#pragma omp critical(dtwire_dem_law_failure)
+          if (l < failed_link) {
+            failed_link = l;
+            law_failure = e.what();
+          }
+          continue;
+        }
+      }
       state.broken = law.broken();
       const Vector6 q = state.broken ? Vector6::Zero() : law.forces();
       const Vector3& axis = state.axis;
@@ -104,6 +121,11 @@ void Engine::step() {
       load.moment_on_b = -couple + lever;
     }
   }
+  if (failed_link < links)
+    throw std::runtime_error("link " + std::to_string(failed_link) + " (nodes " +
+                             std::to_string(s.links[failed_link].link.a) + "-" +
+                             std::to_string(s.links[failed_link].link.b) + ") at step " +
+                             std::to_string(steps_) + ": " + law_failure);
 
   // 2. Tools: every node against every tool (each node writes its own slot).
   for (ToolState& t : s.tools) {

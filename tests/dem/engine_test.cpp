@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 #include "net_node_support.hpp"
 #include "dtwire/dem/engine.hpp"
@@ -466,6 +468,51 @@ TEST(DemEngine, HeldSliderComponentsLeaveTheAutomaticStepAndReleasingThemBringsI
   EXPECT_THROW(fixed.set_time_step(1.1 * released), std::invalid_argument);
   EXPECT_NO_THROW(fixed.set_time_step(0.9 * released));
   EXPECT_THROW(make(1.1 * released), std::invalid_argument);
+}
+
+// A law that gives up inside the threaded link loop (the macro-element's "too many plastic
+// substeps") ends the step with an exception that names the link, never a terminate (SIGABRT):
+// `dem run` turns it into exit 1 with the message, `dem propagate` into a failed set.
+class GivesUpAfterStretch final : public ContactLaw {
+ public:
+  void update(const Vector6& increment) override {
+    stretch_ += increment[0];
+    if (stretch_ > 1e-4) throw std::runtime_error("too many plastic substeps in one increment");
+  }
+  Vector6 forces() const override { return Vector6::Zero(); }
+  EnergyAccount energy() const override { return {}; }
+  bool broken() const override { return false; }
+  std::string_view name() const override { return "gives_up"; }
+  std::unique_ptr<ContactLaw> clone() const override { return std::make_unique<GivesUpAfterStretch>(*this); }
+
+ private:
+  double stretch_ = 0.0;
+};
+
+TEST(DemEngine, ALawThatGivesUpInTheThreadedLoopEndsTheStepWithItsLinkNamed) {
+  for (const int threads : {1, 2}) {
+    std::vector<NetNode> nodes;
+    std::vector<EngineLink> links;
+    for (int i = 0; i < 8; ++i) nodes.push_back(make_node(Vector3(0.05 * i, 0, 0), 0.0043, i == 0 ? NodeFixity::Pinned : NodeFixity::Free));
+    for (std::size_t i = 0; i + 1 < nodes.size(); ++i) links.push_back({{i, i + 1, LinkTag::SingleWire}, std::make_unique<GivesUpAfterStretch>()});
+    EngineOptions options;
+    options.gravity = Vector3::Zero();
+    options.time_step = 1e-6;
+    options.allow_above_critical = true;
+    options.threads = threads;
+    options.parallel_threshold = 1;
+    Engine engine(nodes, std::move(links), options);
+    std::vector<Vector3> stretched;
+    for (int i = 0; i < 8; ++i) stretched.push_back(Vector3(0.05 * i + (i == 7 ? 1e-3 : 0.0), 0, 0));
+    engine.impose_positions(stretched);
+    try {
+      engine.step();
+      ADD_FAILURE() << "no exception with " << threads << " thread(s)";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("link 6 (nodes 6-7)"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("too many plastic substeps"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
