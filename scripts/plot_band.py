@@ -35,6 +35,10 @@ def read(path):
     return metadata, header, rows
 
 
+# The curve CSV's unit symbols that read better spelled out.
+UNIT_LABELS = {"Npm": "N/m", "1": "-"}
+
+
 def main():
     if len(sys.argv) != 4:
         sys.exit(__doc__)
@@ -60,8 +64,8 @@ def main():
     axes.plot(x, q50, linestyle="--", linewidth=1.2, label="median of the sampled sets")
     axes.plot(x, fitted, linewidth=1.8, label="fitted set")
     x_quantity, _, x_unit = x_name.rpartition("_")
-    axes.set_xlabel(f"{x_quantity.replace('_', ' ')} ({x_unit})")
-    axes.set_ylabel(f"{quantity.replace('_', ' ')} ({unit})")
+    axes.set_xlabel(f"{x_quantity.replace('_', ' ')} ({UNIT_LABELS.get(x_unit, x_unit)})")
+    axes.set_ylabel(f"{quantity.replace('_', ' ')} ({UNIT_LABELS.get(unit, unit)})")
     axes.set_title(title, fontsize=10)
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize=8)

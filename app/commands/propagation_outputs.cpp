@@ -223,7 +223,7 @@ void write_report(const PropagationResult& r, const std::filesystem::path& out, 
       const double lin_width = 2.0 * calibrate::kNormal95 * (*r.linearised)[f].sd;
       const double width = r.band[f].q95 - r.band[f].q05;
       md << "- " << r.figures[f].label << ": linearised " << fixed(lin_width, 3) << " " << r.figures[f].unit << ", sampled "
-         << fixed(width, 3) << " (ratio " << fixed(width > 0 ? lin_width / width : std::nan(""), 3) << "); sampled median-band centre "
+         << fixed(width, 3) << " (ratio " << fixed(width > 0 ? lin_width / width : std::nan(""), 3) << "); centre of the sampled band "
          << fixed(0.5 * (r.band[f].q05 + r.band[f].q95)) << " against the fitted set's " << fixed(r.base_figures[f]) << "\n";
     }
   }
