@@ -268,9 +268,11 @@ void write_report(const PropagationResult& r, const std::filesystem::path& out, 
     }
   std::size_t failed = 0;
   for (const std::string& s : r.sample_status) failed += s != "ok";
-  md << "\nDraws: " << r.accepted << " accepted, " << r.refused << " refused (outside a bound or an offset's order, or "
-     << "refused by the contact law: the truncated distribution by rejection); " << failed << " of "
-     << r.sample_status.size() << " runs stopped by their checks (left out of the band). DEM runs: " << r.runs_done << " ("
+  md << "\nDraws, summed over the fits (one per fit and set): " << r.accepted << " accepted, " << r.refused
+     << " refused (outside a bound or an offset's order, or refused by the contact law: the truncated distribution by "
+     << "rejection). " << failed << " of " << r.sample_status.size()
+     << " sets failed in their run (stopped by its checks, or the law gave up; reasons in samples.csv), left out of the "
+     << "band. DEM runs: " << r.runs_done << " ("
      << r.cache_hits << " from the cache), " << fixed(r.wall_seconds, 4) << " s.\n";
   for (const std::string& note : r.notes) md << "\n- " << note;
   if (have_plot) md << "\n\n![band of the curve](band.png)\n";

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <csignal>
 #include <cmath>
 #include <exception>
 #include <fstream>
@@ -68,20 +69,36 @@ RunOutcome PropagationRunner::run(const std::map<std::string, std::string>& para
       os << "\n";
     });
     const int code = run_step_process(calibrate::dtwire_executable(), arguments, run / "command.log", [](double) {});
-    // A run stopped by its own checks (exit 1) keeps its curve up to the failed check: the set
-    // counts as failed (named in the outputs), not as an error of the propagation.
+    // A run stopped by its own checks (exit 1 with its partial summary), or one the contact law
+    // gave up on (exit 1, or an abort: 128 + SIGABRT, e.g. "too many plastic substeps" at a
+    // corner of the ranges), is a set that fails: named in the outputs, kept in the cache, left
+    // out of the band. Anything else (bad input, a kill) ends the propagation.
     const bool stopped = code == 1 && std::filesystem::exists(run / "out" / "summary.json");
-    if (code != 0 && !stopped)
+    const bool law_failed = !stopped && (code == 1 || code == 128 + SIGABRT);
+    if (code != 0 && !stopped && !law_failed)
       throw ComputationError("DEM run (" + label + ") failed (exit " + std::to_string(code) + "), see " +
                              (run / "command.log").string());
+    if (law_failed)
+      write_file_atomically(run / "failure", [&](std::ostream& os) {
+        os << "failed (exit " << code << "): " << last_line(run / "command.log") << "\n";
+      });
     write_file_atomically(run / "finished", [&](std::ostream& os) { os << label << "\n"; });
     const std::lock_guard<std::mutex> lock(mutex_);
     ++runs_done_;
-    std::cout << "  DEM run " << label << (stopped ? ": stopped by its checks" : ": done") << "\n" << std::flush;
+    std::cout << "  DEM run " << label << (stopped ? ": stopped by its checks" : law_failed ? ": failed" : ": done") << "\n"
+              << std::flush;
+  }
+  if (std::filesystem::exists(run / "failure")) {
+    std::ifstream in(run / "failure");
+    std::getline(in, outcome.status);
+    outcome.figures.assign(figures_.size(), std::numeric_limits<double>::quiet_NaN());
+    return outcome;
   }
   std::ifstream in(run / "out" / "summary.json");
   const nlohmann::json summary = nlohmann::json::parse(in);
   outcome.status = summary.value("status", "ok");
+  if (summary.contains("failed_check") && summary["failed_check"].is_object())
+    outcome.status += ": " + summary["failed_check"].value("message", "");
   outcome.ok = outcome.status == "ok";
   for (const HeadlineFigure& f : figures_) {
     const auto found = summary.find(f.key);
