@@ -112,7 +112,8 @@ std::vector<TagFit> read_fits(const PropagateOptions& o) {
     bool joint = t.root.contains("parameters") && t.root["parameters"].is_array() && !t.root["parameters"].empty();
     if (joint)
       for (const nlohmann::json& p : t.root["parameters"]) {
-        const std::string name = p.is_object() ? p.value("name", "") : "";
+        if (!p.is_object() || !p.value("fitted", false)) continue;
+        const std::string name = p.value("name", "");
         joint = joint && (name.rfind("sw.", 0) == 0 || name.rfind("dt.", 0) == 0);
       }
     t.prefix = joint ? t.tag + "." : "";

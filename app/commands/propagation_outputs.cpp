@@ -172,7 +172,7 @@ void write_convergence(const PropagationResult& r, const std::filesystem::path& 
 // figure_unit per parameter_unit).
 void write_sensitivity(const PropagationResult& r, const std::filesystem::path& out) {
   write_file_atomically(out / "sensitivity.csv", [&](std::ostream& os) {
-    os << "figure,figure_unit,parameter,parameter_unit,identified,sampled_as,coordinate,"
+    os << "figure,figure_unit,parameter,parameter_unit,identified,sampled_as,coordinate,linearised_step_in_coordinate,"
           "derivative_figure_unit_per_parameter_unit,linearised_share_1,first_order_index_1,first_order_index_floor_1\n"
        << std::setprecision(6);
     for (std::size_t f = 0; f < r.figures.size(); ++f)
@@ -184,9 +184,11 @@ void write_sensitivity(const PropagationResult& r, const std::filesystem::path& 
           const double g = (*r.linearised)[f].gradient[i];
           // d f / d v = (d f / d y) / (d v / d y), d v / d y = v on a log coordinate.
           const double derivative = p.logarithmic ? g / p.value : g;
-          os << (std::isfinite(derivative) ? fixed(derivative, 6) : "") << "," << (*r.linearised)[f].share[i];
+          const double step = (*r.linearised)[f].step[i];
+          os << (std::isfinite(step) ? fixed(step, 6) : "") << "," << (std::isfinite(derivative) ? fixed(derivative, 6) : "") << ","
+             << (*r.linearised)[f].share[i];
         } else {
-          os << ",";
+          os << ",,";
         }
         std::vector<double> x, y;
         if (!r.sample_values.empty()) paired(r, f, i, x, y);
