@@ -187,7 +187,9 @@ void linearise(PropagationResult& r, const std::vector<TagFit>& fits, const dem:
     for (std::size_t m = 0; m < moved.size(); ++m) {
       const std::size_t i = moved[m];
       if (!outcomes[m].ok) {
-        if (f == 0) r.notes.push_back("linearised run of " + r.parameters[i].name + " stopped by its checks (" + outcomes[m].status + ")");
+        if (f == 0)
+          r.notes.push_back("linearised run of " + r.parameters[i].name + " failed (" + outcomes[m].status +
+                            "): the parameter is left out of the linearised band");
         continue;
       }
       lin[f].gradient[i] = (outcomes[m].figures[f] - r.base_figures[f]) / steps[i];
