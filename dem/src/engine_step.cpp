@@ -46,6 +46,7 @@ using engine_detail::ToolState;
 
 void Engine::step() {
   State& s = *s_;
+  if (supports_changed_ && options_.time_step <= 0.0 && !caller_step_) refresh_automatic_step();
   // Variable-step central differences: the last move x_{n-1} -> x_n took `moved` (the link and
   // contact increments are over it), the next takes dt, and the velocity update spans their mean
   // (v_{n+1/2} = v_{n-1/2} + (moved + dt)/2 a_n); with a constant step all three are dt.
@@ -114,19 +115,24 @@ void Engine::step() {
     for (std::size_t i = 0; i < n; ++i) {
       const double r = s.radius[i];
       SurfacePoint surface;
-      t.force_on_node[i].setZero();
-      t.moment_on_node[i].setZero();
-      t.contact_energy[i] = 0.0;
-      t.friction_increment[i] = 0.0;
       // Most nodes are far from the tool: its bounding sphere rejects them before the surface search.
       const double reach = bounding + r;
       if ((s.x[i] - tool.position).squaredNorm() > reach * reach || !tool.nearest(s.x[i], r, surface) ||
           surface.distance >= r) {
-        t.shear[i].setZero();
-        t.touching[i] = 0;
+        // A node's contact slots are zero while it is apart: written only when a contact ends
+        // (most nodes touch no tool, and the step is bound by memory traffic).
+        if (t.touching[i]) {
+          t.force_on_node[i].setZero();
+          t.moment_on_node[i].setZero();
+          t.contact_energy[i] = 0.0;
+          t.friction_increment[i] = 0.0;
+          t.shear[i].setZero();
+          t.touching[i] = 0;
+        }
         continue;
       }
       t.touching[i] = 1;
+      t.friction_increment[i] = 0.0;
       const double penetration = r - surface.distance;
       const Vector3& normal = surface.normal;
       const Vector3 arm = -(r - 0.5 * penetration) * normal;  // node centre -> contact point
@@ -224,6 +230,7 @@ void Engine::step() {
       m += is_a ? load.moment_on_a : load.moment_on_b;
     }
     for (const ToolState& t : s.tools) {
+      if (!t.touching[i]) continue;  // its slots are zero
       f += t.force_on_node[i];
       m += t.moment_on_node[i];
     }
