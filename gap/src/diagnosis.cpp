@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <sstream>
 
@@ -351,7 +352,11 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
       fits.push_back(search.fit);
       model_cost.emplace_back(search.runs, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
     } else {
-      fits.push_back(fit_effects(ctx.problem, {e}, {}, options.random_starts, rng));
+      // Each effect's random starts from its own stream (the seed and its name), so an effect's
+      // fit does not hang on how many parameters the effects fitted before it draw.
+      std::seed_seq own{options.seed, static_cast<unsigned>(std::hash<std::string>{}(e->name))};
+      std::mt19937 effect_rng(own);
+      fits.push_back(fit_effects(ctx.problem, {e}, {}, options.random_starts, effect_rng));
       model_cost.emplace_back(0, 0.0);
     }
   }

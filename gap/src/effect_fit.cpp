@@ -82,16 +82,24 @@ std::vector<double> solve_continuous(const FlatObjective& objective, const std::
   return summary.best ? continuous.flat_of(summary.x) : starts.front();
 }
 
-// Each grid value of each grid parameter in turn, the continuous parameters refitted for it.
-std::vector<double> search_grid(const FlatObjective& objective, std::vector<double> flat) {
+// Each grid value of each grid parameter in turn, the continuous parameters refitted for it from
+// the best answer so far and from every start of the multi-start: with a grid value set the
+// effect can be piecewise constant in the continuous parameters (stick-slip steps), so a
+// derivative-based refit keeps its start's staircase phase and only more starts find another.
+std::vector<double> search_grid(const FlatObjective& objective, std::vector<double> flat,
+                                const std::vector<std::vector<double>>& starts) {
   for (std::size_t j = 0; j < objective.specs.size(); ++j) {
     if (objective.specs[j].grid.empty()) continue;
     double best = objective.sse(flat);
     std::vector<double> best_flat = flat;
     for (double v : objective.specs[j].grid) {
-      std::vector<double> trial = flat;
-      trial[j] = v;
-      trial = solve_continuous(objective, {trial});
+      std::vector<std::vector<double>> from = {flat};
+      for (const auto& start : starts)
+        if (start.size() == flat.size()) from.push_back(start);
+      for (auto& start : from)
+        for (std::size_t k = 0; k < start.size(); ++k)
+          if (!objective.specs[k].grid.empty()) start[k] = k == j ? v : flat[k];
+      std::vector<double> trial = solve_continuous(objective, from);
       const double sse = objective.sse(trial);
       if (sse < best) {
         best = sse;
@@ -103,7 +111,7 @@ std::vector<double> search_grid(const FlatObjective& objective, std::vector<doub
   return flat;
 }
 
-// The starts given, then the plausible centre, the effects switched off (`neutral`) and random
+// The starts given, then the plausible centre, the basic forms, the effects switched off (`neutral`) and random
 // plausible values, so the fit can always fall back to the bare simulation; starts with the
 // same grid values are one multi-start solve. The best answer is refined on the grid.
 std::vector<double> minimise(const FlatObjective& objective, std::vector<std::vector<double>> starts,
@@ -113,6 +121,19 @@ std::vector<double> minimise(const FlatObjective& objective, std::vector<std::ve
   for (const ParameterSpec& s : objective.specs)
     centre.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
   starts.push_back(centre);
+  // The effects' basic forms (every shape parameter at its basic value, e.g. a rate that differs
+  // from the start): the form most laboratory records show, which the centre of a shape
+  // parameter's range (a rate changed half-way) may not reach.
+  std::vector<double> basic = centre;
+  for (std::size_t j = 0; j < objective.specs.size(); ++j)
+    if (objective.specs[j].shape_neutral && objective.specs[j].grid.empty()) basic[j] = *objective.specs[j].shape_neutral;
+  if (basic != centre) starts.push_back(basic);
+  for (std::size_t j = 0; j < objective.specs.size(); ++j)
+    for (double value : objective.specs[j].scan_starts) {
+      std::vector<double> scan = basic;
+      scan[j] = value;
+      starts.push_back(scan);
+    }
   starts.push_back(neutral);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (std::size_t k = 0; k < random_starts; ++k) {
@@ -141,7 +162,7 @@ std::vector<double> minimise(const FlatObjective& objective, std::vector<std::ve
       best = flat;
     }
   }
-  return search_grid(objective, best);
+  return search_grid(objective, best, starts);
 }
 
 std::vector<double> weighted(const FitProblem& problem, const EffectFit& fit) {

@@ -75,7 +75,12 @@ std::vector<double> draw_params(const std::string& effect, const ForceCurve& sim
     const double x = (end_m - onset) / (total - onset);
     return {onset * 1e3, std::min(range.upper, shown / (x * x))};
   }
-  if (effect == "strain_rate") return {either_side(rng, range, 1.0, 0.04)};
+  if (effect == "strain_rate") {
+    // Half the trials change the rate during the test (issue 51), at 20-60 % of what it shows.
+    const double factor = either_side(rng, range, 1.0, 0.04);
+    const double changed_at_mm = uniform(rng, 0, 1) < 0.5 ? 0.0 : uniform(rng, 0.2, 0.6) * end_m * 1e3;
+    return {factor, 0.0, 0.0, changed_at_mm};
+  }
   return {};
 }
 

@@ -138,8 +138,8 @@ TEST(GapSummaryLab, StripStrengthPerMetreAndSecantStiffness) {
 }
 
 TEST(GapModelSearch, GridParameterTakesOnlyGridValues) {
-  ParameterSpec slack{"slack", 0.0, 1.0, 0.0, 1.0, {}, {}};
-  ParameterSpec nodes{"nodes_per_wire", 2.0, 3.0, 2.0, 3.0, {2.0, 3.0}, {}};
+  ParameterSpec slack{"slack", 0.0, 1.0, 0.0, 1.0, {}, {}, {}};
+  ParameterSpec nodes{"nodes_per_wire", 2.0, 3.0, 2.0, 3.0, {2.0, 3.0}, {}, {}};
   std::vector<std::vector<double>> asked;
   const PatternSearch s = pattern_search(
       {slack, nodes}, {}, {{0.1, 2.4}},

@@ -38,6 +38,9 @@ struct ParameterSpec {
   // A shape parameter (issue 17): its value for the effect's basic form. Held there where a
   // few summary figures cannot tell shapes apart.
   std::optional<double> shape_neutral;
+  // Further values the fit starts from (the rest of the start at the basic form): for a
+  // parameter whose misfit has a basin per value, such as where a change sets in.
+  std::vector<double> scan_starts;
 
   // The fits' coordinate x = (p - plausible_lower) / plausible width: every unknown O(1).
   double width() const {
