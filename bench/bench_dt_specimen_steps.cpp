@@ -1,7 +1,7 @@
 // Timed program (not a test): the dem_specimen simulator of experiments/dt_fe_fit/dt_specimen_fit.toml
 // at three parameter points (the published sets, the file's start, the FE fit's best), with the
 // file's quasi-static settings and with variants of them: explicit steps, CPU milliseconds per run
-// (this thread's clock) and the largest difference of each fitted channel from the baseline
+// (this thread's clock), the sum of the fitted channels and the largest difference of each fitted channel from the baseline
 // setting's, as a fraction of the channel's range (the fit's residual unit). Issue 52.
 // usage: bench_dt_specimen_steps [move_steps:tolerance ...]   (first pair = the baseline)
 #include <ctime>
@@ -75,7 +75,11 @@ int main(int argc, char** argv) {
           }
           std::cout << " " << channel << "=" << std::setprecision(3) << (hi > lo ? dev / (hi - lo) : 0.0);
         }
-        std::cout << "\n" << std::flush;
+        // Every fitted channel's sum to the last digit: two builds of the same setting compare bit for bit.
+        double sum = 0.0;
+        for (const char* channel : {"force", "shear_force", "dt_elongation"})
+          for (double x : curves.back().si(channel)) sum += x;
+        std::cout << " sum=" << std::setprecision(17) << sum << "\n" << std::flush;
       }
     }
   }
