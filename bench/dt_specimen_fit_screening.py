@@ -1,27 +1,35 @@
 #!/usr/bin/env python3
-"""Timed run (not a test): the campaign step dt_specimen_fit with and without the multi-start's
-screening stages (experiments/dt_fe_fit/dt_specimen_fit.toml, [fit] screening_*; docs/calibrate.md,
-"Screening"), on the same FE curves, one after the other: CPU seconds (user + sys of the fit
-process), wall seconds, simulator runs, best start and cost, and the ratios. The unscreened run
-uses a copy of the file without the two screening lines. A start that passes the stages ends where
-it ends unscreened, so when the best start passes, the two answers (parameters.json) are the same.
-usage: bench/dt_specimen_fit_screening.py DTWIRE TARGETS OUT [--jobs N] [--only screened|unscreened]
+"""Timed run (not a test): the campaign step dt_specimen_fit as the file stands and with one of its
+speed-ups taken out, on the same FE curves, one after the other: CPU seconds (user + sys of the fit
+process), wall seconds, simulator runs, best start and cost, and the ratios.
+--without screening (default): a copy of experiments/dt_fe_fit/dt_specimen_fit.toml without the
+  two screening lines (docs/calibrate.md, "Screening"). A start that passes the stages ends where
+  it ends unscreened, so when the best start passes, the two answers (parameters.json) are the same.
+--without line_search: a copy without `line_search = "values"`, i.e. Ceres' cubic line search,
+  which takes a Jacobian at every trial step size (docs/calibrate.md, Optimisation). The starts'
+  paths differ, so compare the two fit_report.md (values, sigmas, NOT IDENTIFIED names).
+usage: bench/dt_specimen_fit_screening.py DTWIRE TARGETS OUT [--jobs N] [--without screening|line_search]
+       [--only file|reference]
 TARGETS: a campaign's fem/dt_fe_fit folder (tension/curve.csv, pull_angle_47deg/curve.csv)."""
 import json, os, re, resource, subprocess, sys, time
 
 args = sys.argv[1:]
 jobs = args[args.index("--jobs") + 1] if "--jobs" in args else "2"
 only = args[args.index("--only") + 1] if "--only" in args else None
+without = args[args.index("--without") + 1] if "--without" in args else "screening"
+patterns = {"screening": r"(?m)^screening_(iterations|cost_ratio) = .*\n", "line_search": r"(?m)^line_search = .*\n"}
+if without not in patterns or only not in (None, "file", "reference"):
+    sys.exit("bench: --without screening|line_search, --only file|reference")
 dtwire, targets, out = args[0], args[1], args[2]
 here = os.path.dirname(os.path.abspath(__file__))
 fit_file = os.path.join(here, "..", "experiments", "dt_fe_fit", "dt_specimen_fit.toml")
 os.makedirs(out, exist_ok=True)
-unscreened_file = os.path.join(os.path.dirname(fit_file), ".bench_unscreened_dt_specimen_fit.toml")
+reference_file = os.path.join(os.path.dirname(fit_file), f".bench_without_{without}_dt_specimen_fit.toml")
 text = open(fit_file).read()
-stripped = re.sub(r"(?m)^screening_(iterations|cost_ratio) = .*\n", "", text)
+stripped = re.sub(patterns[without], "", text)
 if stripped == text:
-    sys.exit("bench: the fit file has no screening lines to remove")
-with open(unscreened_file, "w") as f:  # beside the original: its relative paths stay valid
+    sys.exit(f"bench: the fit file has no {without} line to remove")
+with open(reference_file, "w") as f:  # beside the original: its relative paths stay valid
     f.write(stripped)
 
 def run(name, file):
@@ -42,16 +50,17 @@ def run(name, file):
     return result
 
 results = {}
+reference = "without_" + without
 try:
-    if only in (None, "unscreened"):
-        results["unscreened"] = run("unscreened", unscreened_file)
-    if only in (None, "screened"):
-        results["screened"] = run("screened", fit_file)
+    if only in (None, "reference"):
+        results[reference] = run(reference, reference_file)
+    if only in (None, "file"):
+        results["file"] = run("file", fit_file)
 finally:
-    os.remove(unscreened_file)
+    os.remove(reference_file)
 if len(results) == 2:
-    u, s = results["unscreened"], results["screened"]
-    print(f"ratio unscreened / screened: CPU {u['cpu_s'] / s['cpu_s']:.2f}, wall {u['wall_s'] / s['wall_s']:.2f}, "
+    u, s = results[reference], results["file"]
+    print(f"ratio {reference} / file: CPU {u['cpu_s'] / s['cpu_s']:.2f}, wall {u['wall_s'] / s['wall_s']:.2f}, "
           f"runs {u['runs'] / s['runs']:.2f}")
     same = json.dumps(u["file"].get("parameters"), sort_keys=True) == json.dumps(s["file"].get("parameters"), sort_keys=True)
-    print("parameters.json parameters: " + ("the same" if same else "DIFFERENT (compare the two folders)"))
+    print("parameters.json parameters: " + ("the same" if same else "DIFFERENT (compare the two fit_report.md)"))

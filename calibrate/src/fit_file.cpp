@@ -325,7 +325,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     fit.only({"loss", "loss_scale", "starts", "log_parameters", "seed", "max_iterations", "relative_step",
               "central_differences", "threads", "function_tolerance", "parameter_tolerance",
               "gradient_tolerance", "disk_cache", "identification_tolerance", "screening_iterations",
-              "screening_cost_ratio"});
+              "screening_cost_ratio", "line_search"});
     def.disk_cache = fit.boolean("disk_cache", false);
     def.fit.loss = loss_kind(fit);
     def.fit.loss_scale = fit.number("loss_scale", 1.0);
@@ -346,6 +346,10 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     def.evaluation.central_differences = fit.boolean("central_differences", false);
     def.evaluation.threads = static_cast<unsigned>(fit.integer("threads", 0, 0));
     read_screening(fit, def.fit);
+    const std::string line_search = fit.text("line_search", "gradients");
+    if (line_search != "gradients" && line_search != "values")
+      fit.fail(fit.get("line_search"), "line_search", "expected gradients or values, found '" + line_search + "'");
+    def.fit.value_only_line_search = line_search == "values";
   }
 
   const toml::node* parameters = root.get("parameter");

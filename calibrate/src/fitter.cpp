@@ -58,6 +58,7 @@ lsq::Options engine_options(const FitOptions& options) {
   o.initial_trust_region_radius = 1e4;
   o.parallel_starts = options.parallel_starts;
   for (const StartScreening& stage : options.screening) o.screening.push_back({stage.iterations, stage.cost_ratio});
+  o.value_only_line_search = options.value_only_line_search;
   return o;
 }
 
@@ -158,6 +159,8 @@ std::string fit_identity(const ProblemEvaluator& evaluator, const FitOptions& op
   // Only a screened fit's identity names its stages: checkpoints of unscreened fits stay valid.
   for (const StartScreening& stage : options.screening)
     text << "screening " << stage.iterations << " " << stage.cost_ratio << "\n";
+  // Likewise only the non-default line search is named (it changes the steps a start takes).
+  if (options.value_only_line_search) text << "line_search values\n";
   return sha256_text(text.str());
 }
 

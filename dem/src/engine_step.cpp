@@ -65,10 +65,13 @@ void Engine::step() {
   // its own). The two loops give each thread the same links (static schedule), so no barrier.
   // A law that gives up (an exception) must not leave the parallel region, where it would
   // terminate the process: the first one is kept with its link and thrown after the region.
+  // Below parallel_threshold (or on one thread) the loops run as orphaned worksharing loops on
+  // the calling thread: the same order and arithmetic, without entering a parallel region, whose
+  // team start and end (libgomp's futex calls) cost about a tenth of a 5-link specimen's step
+  // (bench_dt_specimen_steps, perf).
   std::string law_failure;
   std::size_t failed_link = links;
-#pragma omp parallel num_threads(threads) if (links >= options_.parallel_threshold)
-  {
+  const auto link_loops = [&] {
 #pragma omp for schedule(static) nowait
     for (std::size_t l = 0; l < links; ++l) {
       LinkState& state = s.link_state[l];
@@ -120,6 +123,12 @@ void Engine::step() {
       load.moment_on_a = couple + lever;
       load.moment_on_b = -couple + lever;
     }
+  };
+  if (threads > 1 && links >= options_.parallel_threshold) {
+#pragma omp parallel num_threads(threads)
+    link_loops();
+  } else {
+    link_loops();
   }
   if (failed_link < links)
     throw std::runtime_error("link " + std::to_string(failed_link) + " (nodes " +
@@ -243,7 +252,8 @@ void Engine::step() {
   // 3. Nodes: gather in a fixed order, damp, integrate.
   const Vector3 gravity = options_.gravity;
   const double alpha = options_.local_damping;
-#pragma omp parallel for num_threads(threads) schedule(static) if (n >= options_.parallel_threshold)
+  const auto node_loop = [&] {
+#pragma omp for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     Vector3 f = s.nodes[i].mass * gravity, m = Vector3::Zero();
     for (const auto& [l, is_a] : s.node_links[i]) {
@@ -288,6 +298,13 @@ void Engine::step() {
     hold(node, s.v[i], s.w[i]);
     s.node_kinetic[i] = 0.5 * free_components(node, v_old).dot(s.v[i]) / s.inverse_mass[i] +
                         0.5 * w_old.dot(s.w[i]) / s.inverse_inertia[i];
+  }
+  };
+  if (threads > 1 && n >= options_.parallel_threshold) {
+#pragma omp parallel num_threads(threads)
+    node_loop();
+  } else {
+    node_loop();
   }
 
   // Serial sums (fixed order: deterministic).

@@ -79,6 +79,7 @@ ceres::Solver::Options solver_options(const Options& options) {
   o.gradient_tolerance = options.gradient_tolerance;
   o.logging_type = ceres::SILENT;
   o.minimizer_progress_to_stdout = false;
+  if (options.value_only_line_search) o.line_search_interpolation_type = ceres::QUADRATIC;
   return o;
 }
 

@@ -127,6 +127,17 @@ TEST_F(FitFileTest, ScreeningStagesReadAndBadOnesNameTheirField) {
   }
 }
 
+// The bounded solve's line search (issue 52): "gradients" (default) or "values"; anything else
+// names its line and field.
+TEST_F(FitFileTest, LineSearchReadAndABadOneNamesItsField) {
+  EXPECT_FALSE(read_fit_file(write(kValid)).fit.value_only_line_search);
+  EXPECT_TRUE(read_fit_file(write(replace_line(kValid, 6, "starts = 2\nline_search = \"values\""))).fit.value_only_line_search);
+  const InputError e = error_of(replace_line(kValid, 6, "starts = 2\nline_search = \"cubic\""));
+  EXPECT_NE(std::string(e.what()).find("fit.line_search"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("gradients or values"), std::string::npos) << e.what();
+  EXPECT_EQ(e.line(), 7) << e.what();
+}
+
 TEST_F(FitFileTest, MissingChannelInTargetNamesLine) {
   const InputError e = error_of(replace_line(kValid, 17, "channels = [\"force\"]"));
   EXPECT_EQ(e.line(), 17);

@@ -140,6 +140,50 @@ TEST(LeastSquares, RecoversNonlinearModelFromFarStartWithCentralDifferences) {
   EXPECT_GT(s.starts[0].iterations, 2);
 }
 
+// A bounded problem runs Ceres' projected line search along every step. With its default cubic
+// interpolation each trial step size takes the gradient, i.e. a Jacobian; with the value-only
+// line search (issue 52) a Jacobian is taken only at the start and where a step is accepted,
+// and the solve still reaches the exact answer of the noise-free decay.
+TEST(LeastSquares, ValueOnlyLineSearchTakesJacobiansOnlyAtAcceptedPoints) {
+  std::vector<double> t, y;
+  Problem p = decay_problem(t, y);
+  p.lower = {0.0, 0.0};
+  p.upper = {100.0, 100.0};  // inactive at the answer: only makes the problem bounded
+  int jacobians = 0;
+  p.residuals_and_jacobian = [&](const std::vector<double>& x, std::vector<double>& r, std::vector<double>& J) {
+    ++jacobians;
+    r.resize(t.size());
+    J.resize(2 * t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const double e = std::exp(-x[1] * t[i]);
+      r[i] = x[0] * e - y[i];
+      J[2 * i] = e;
+      J[2 * i + 1] = -x[0] * t[i] * e;
+    }
+  };
+  for (const bool value_only : {false, true}) {
+    jacobians = 0;
+    int accepted = 0;
+    Options o;
+    o.function_tolerance = 1e-14;
+    o.parameter_tolerance = 1e-12;
+    o.value_only_line_search = value_only;
+    o.after_iteration = [&](const Iteration& it, const std::vector<Start>&) {
+      accepted += it.step_accepted ? 1 : 0;
+      return true;
+    };
+    const Summary s = solve(p, o, starts_at({{1.0, 3.0}}));
+    ASSERT_TRUE(s.best);
+    EXPECT_NEAR(s.x[0], 3.0, 1e-6) << value_only;
+    EXPECT_NEAR(s.x[1], 0.8, 1e-6) << value_only;
+    if (value_only) {
+      EXPECT_EQ(jacobians, accepted);  // iteration 0 counts as accepted
+    } else {
+      EXPECT_GT(jacobians, accepted);  // the far start's first steps are cut back by the search
+    }
+  }
+}
+
 TEST(LeastSquares, BoundsHoldTheAnswerAndClampTheStart) {
   std::vector<double> t, y;
   Problem p = decay_problem(t, y);

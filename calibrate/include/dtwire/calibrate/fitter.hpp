@@ -48,6 +48,9 @@ struct FitOptions {
   // threads. Each start ends where it would alone, so the result does not depend on it.
   unsigned parallel_starts = 1;
   std::vector<StartScreening> screening;  // in order; empty: every start runs to its end
+  // The bounded solve's line search from values alone (lsq::Options::value_only_line_search):
+  // [fit] line_search = "values"; the default "gradients" is Ceres' cubic interpolation.
+  bool value_only_line_search = false;
   const std::atomic<bool>* stop_requested = nullptr;  // e.g. set by a SIGINT handler
   std::ostream* progress = nullptr;
 };

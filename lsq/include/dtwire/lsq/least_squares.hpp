@@ -97,6 +97,13 @@ struct Options {
   unsigned parallel_starts = 1;
   // Applied in order (empty: every start runs to its end).
   std::vector<ScreeningStage> screening;
+  // Ceres' trust-region minimizer searches along each step of a problem with bounds (a projected
+  // Armijo line search). Its default (false) interpolates the step size cubically, which takes
+  // the gradient, i.e. a whole Jacobian, at every trial point: n + 1 runs per point where the
+  // Jacobian comes from forward differences. true interpolates quadratically from the values
+  // alone (the gradient at the current point is known), so a trial point costs one residual
+  // evaluation and a Jacobian is taken only where a step is accepted.
+  bool value_only_line_search = false;
 };
 
 std::vector<Start> starts_at(const std::vector<std::vector<double>>& points);
