@@ -1,10 +1,15 @@
-// The WirePM punch in our engine and in YADE (the script our exporter writes, run unchanged):
-// peak force and displacement at the peak within 5 %, and the force within 5 % of the peak up to
-// the first of the two peaks (issue requirement). Past one code's peak its links are failing in a
-// cascade whose order differs between the codes, so the post-peak branches are not compared.
+// The WirePM punch in our engine and in YADE (the script our exporter writes, run unchanged),
+// with the platter as one sphere in YADE (both codes have the exact hemisphere): the peak force
+// and its travel within 2 %, the force within 2 % of the peak at every travel up to the first of
+// the two peaks (issue 55's goal), and past the peak the same travel of the first broken link
+// (to one output interval, the resolution of both curves) and the force within 5 % of the peak
+// while the links fail in cascades whose order may differ.
 // experiments/dem/punch_yade_check.toml: a 1.6 x 1.6 m panel (not the 3 x 3 m of the thesis) so
-// that both codes finish in minutes; everything else as the punch input.
-// punch_yade_distortion_check.toml: the same with the Thoeni et al. 2013 random distortion.
+// that both codes finish in minutes; punch_yade_distortion_check.toml: the same with the
+// double twist's own curve and the Thoeni et al. 2013 random distortion, run here at
+// lambda_u = 0, 0.04 and 0.08 with two seeds. The facet platter of the semi-spheroid departs
+// from the exact one by up to 7 % near the peak while the nets agree link by link
+// (docs/dem_engine.md, "The YADE export"); it is not what these tests compare.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,13 +36,31 @@ std::size_t peak_index(const std::vector<double>& f) {
   return peak;
 }
 
-// Runs `input_name` (experiments/dem) in both codes and compares the curves as above; returns
-// YADE's log.
-// `window`: the force is compared up to this fraction of the first peak's displacement.
-std::string expect_punch_agrees_with_yade(const std::string& input_name, const std::string& scratch, double window = 1.0) {
-  const std::filesystem::path input_file = std::string(DTWIRE_SOURCE_DIR) + "/experiments/dem/" + input_name;
-  const RunInput input = read_run_input(input_file);
-  const auto dir = std::filesystem::temp_directory_path() / scratch;
+// Travel of the first row with a broken link; the end of the curve if none broke.
+double first_failure(const std::vector<double>& d, const std::vector<double>& broken) {
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (broken[i] > 0.0) return d[i];
+  return d.back();
+}
+
+struct PunchCase {
+  const char* name;
+  const char* input;  // experiments/dem
+  double lambda_u;    // distortion of both link types (distortion input only); 0: none
+  int seed;
+};
+
+// Runs the case in both codes and compares the curves as above; returns YADE's log.
+std::string expect_punch_agrees_with_yade(const PunchCase& c) {
+  const std::filesystem::path input_file = std::string(DTWIRE_SOURCE_DIR) + "/experiments/dem/" + c.input;
+  RunInput input = read_run_input(input_file);
+  const bool distortion_input = std::string(c.input) == "punch_yade_distortion_check.toml";
+  if (distortion_input)
+    for (LinkTag tag : {LinkTag::SingleWire, LinkTag::DoubleTwist}) {
+      Distortion& distortion = input.link_sets.at(tag).distortion;
+      distortion = c.lambda_u > 0.0 ? Distortion{DistortionMode::Random, c.lambda_u, c.seed} : Distortion{};
+    }
+  const auto dir = std::filesystem::temp_directory_path() / (std::string("dtwire_punch_yade_") + c.name);
   std::filesystem::create_directories(dir);
   RunOptions options;
   options.out = dir / "ours";
@@ -47,9 +70,9 @@ std::string expect_punch_agrees_with_yade(const std::string& input_name, const s
   const RunSummary ours = run_simulation(input, options);
 
   const auto script = dir / "punch_yade.py";
-  std::ofstream(script) << yade_run_script(input);
+  std::ofstream(script) << yade_run_script(input);  // a hemisphere: the sphere platter
   const auto yade_csv = dir / "yade.csv";
-  const std::string command = "cd " + dir.string() + " && yade -n -x " + script.string() + " " + yade_csv.string() + " > yade.log 2>&1";
+  const std::string command = "cd " + dir.string() + " && yade -j1 -n -x " + script.string() + " " + yade_csv.string() + " > yade.log 2>&1";
   EXPECT_EQ(std::system(command.c_str()), 0) << "see " << (dir / "yade.log").string();
   std::ifstream log_file(dir / "yade.log");
   const std::string log((std::istreambuf_iterator<char>(log_file)), std::istreambuf_iterator<char>());
@@ -58,41 +81,61 @@ std::string expect_punch_agrees_with_yade(const std::string& input_name, const s
 
   const std::vector<double> d_ours = ours.history.channel("tool_displacement").values;
   const std::vector<double> f_ours = ours.history.channel("tool_force").values;
+  const std::vector<double> b_ours = ours.history.channel("broken_links").values;
   const std::vector<double> d_yade = yade.channel("tool_displacement").values;
   const std::vector<double> f_yade = yade.channel("tool_force").values;
+  const std::vector<double> b_yade = yade.channel("broken_links").values;
   const std::size_t p_ours = peak_index(f_ours), p_yade = peak_index(f_yade);
-  const double first_peak = window * std::min(d_ours[p_ours], d_yade[p_yade]);
-  double worst = 0.0;
-  for (std::size_t i = 0; i <= p_ours && d_ours[i] <= first_peak; ++i)
-    worst = std::max(worst, std::abs(interpolate(d_yade, f_yade, d_ours[i]) - f_ours[i]));
-  std::cout << input_name << ": peak ours " << f_ours[p_ours] << " N at " << d_ours[p_ours] << " mm; YADE " << f_yade[p_yade]
-            << " N at " << d_yade[p_yade] << " mm; largest force difference up to the first peak "
-            << worst / f_ours[p_ours] * 100.0 << " % of the peak; sag ours " << 1000.0 * ours.sag << " mm, YADE "
-            << yade.metadata("sag_after_settling_mm") << " mm; our wall time " << ours.wall_seconds << " s\n";
-  EXPECT_NEAR(f_yade[p_yade] / f_ours[p_ours], 1.0, 0.05);
-  EXPECT_NEAR(d_yade[p_yade] / d_ours[p_ours], 1.0, 0.05);
-  EXPECT_LT(worst, 0.05 * f_ours[p_ours]);  // force up to the first peak, 5 % of the peak
+  const double peak = f_ours[p_ours];
+  const double first_peak = std::min(d_ours[p_ours], d_yade[p_yade]);
+  double worst_before = 0.0, worst_after = 0.0, at_before = 0.0;
+  for (std::size_t i = 0; i < d_ours.size(); ++i) {
+    const double difference = std::abs(interpolate(d_yade, f_yade, d_ours[i]) - f_ours[i]);
+    if (d_ours[i] <= first_peak) {
+      if (difference > worst_before) at_before = d_ours[i];
+      worst_before = std::max(worst_before, difference);
+    } else if (d_ours[i] <= d_yade.back()) {
+      worst_after = std::max(worst_after, difference);
+    }
+  }
+  const double interval_mm = 1000.0 * input.speed * input.output_interval;
+  const double failure_ours = first_failure(d_ours, b_ours), failure_yade = first_failure(d_yade, b_yade);
+  std::cout << c.name << ": peak ours " << peak << " N at " << d_ours[p_ours] << " mm; YADE " << f_yade[p_yade] << " N at "
+            << d_yade[p_yade] << " mm; largest force difference up to the first peak " << worst_before / peak * 100.0
+            << " % of the peak (at " << at_before << " mm), past it " << worst_after / peak * 100.0
+            << " %; first broken link at " << failure_ours << " mm (ours), " << failure_yade << " mm (YADE); broken at the end "
+            << b_ours.back() << " (ours), " << b_yade.back() << " (YADE); sag ours " << 1000.0 * ours.sag << " mm, YADE "
+            << yade.metadata("sag_after_settling_mm") << " mm\n";
+  EXPECT_NEAR(f_yade[p_yade] / peak, 1.0, 0.02);
+  EXPECT_NEAR(d_yade[p_yade] / d_ours[p_ours], 1.0, 0.02);
+  EXPECT_LT(worst_before, 0.02 * peak);
+  EXPECT_LE(std::abs(failure_yade - failure_ours), interval_mm + 1e-6);
+  EXPECT_LT(worst_after, 0.05 * peak);
   return log;
 }
 
-TEST(DemPunchYade, OurEngineAndYadeAgreeOnTheWirePmPunch) {
+class DemPunchYade : public ::testing::TestWithParam<PunchCase> {};
+
+TEST_P(DemPunchYade, OurEngineAndYadeAgree) {
   if (std::system("command -v yade > /dev/null 2>&1") != 0) GTEST_SKIP() << "yade is not installed";
-  expect_punch_agrees_with_yade("punch_yade_check.toml", "dtwire_punch_yade");
+  const PunchCase& c = GetParam();
+  const std::string log = expect_punch_agrees_with_yade(c);
+  // With a distortion the script stops unless YADE gave every link the slack our engine drew.
+  if (c.lambda_u > 0.0) {
+    EXPECT_NE(log.find("slack of every link as dtwire drew it"), std::string::npos) << log;
+  }
 }
 
-// Thoeni et al. 2013 random distortion (YADE type 2): the script stops unless YADE gave every
-// link the slack our engine drew (to 1e-12 m), then the same comparison of the peaks; the force
-// is compared over the first 75 % of the travel to the peak, where the slack is taken up
-// (measured 1.5 % of the peak up to 345 mm). Nearer the peak, at 160 kN, YADE's faceted platter
-// (64 x 16) departs from the exact spheroid by 7.3 % of the peak at 430 mm, and by 4.9 % with
-// 128 x 32 facets (29 min of YADE): the gap follows the facets, not the distortion
-// (docs/dem_engine.md).
-TEST(DemPunchYade, OurEngineAndYadeAgreeOnTheDistortedPunch) {
-  if (std::system("command -v yade > /dev/null 2>&1") != 0) GTEST_SKIP() << "yade is not installed";
-  const std::string log =
-      expect_punch_agrees_with_yade("punch_yade_distortion_check.toml", "dtwire_punch_yade_distortion", 0.75);
-  EXPECT_NE(log.find("slack of every link as dtwire drew it"), std::string::npos) << log;
-}
+// The Bertrand double twist (YADE type 0), the double twist's own curve (type 1) and the
+// distortion (type 2) at twice and four times Pol et al. 2017's quasi-static 1 %.
+INSTANTIATE_TEST_SUITE_P(Cases, DemPunchYade,
+                         ::testing::Values(PunchCase{"bertrand", "punch_yade_check.toml", 0.0, 0},
+                                           PunchCase{"own_curve", "punch_yade_distortion_check.toml", 0.0, 0},
+                                           PunchCase{"lambda_0_04_seed_2013", "punch_yade_distortion_check.toml", 0.04, 2013},
+                                           PunchCase{"lambda_0_04_seed_55", "punch_yade_distortion_check.toml", 0.04, 55},
+                                           PunchCase{"lambda_0_08_seed_2013", "punch_yade_distortion_check.toml", 0.08, 2013},
+                                           PunchCase{"lambda_0_08_seed_55", "punch_yade_distortion_check.toml", 0.08, 55}),
+                         [](const ::testing::TestParamInfo<PunchCase>& param_info) { return std::string(param_info.param.name); });
 
 }  // namespace
 }  // namespace dtwire::dem
