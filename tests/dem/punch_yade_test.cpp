@@ -1,9 +1,13 @@
 // The WirePM punch in our engine and in YADE (the script our exporter writes, run unchanged),
 // with the platter as one sphere in YADE (both codes have the exact hemisphere): the peak force
 // and its travel within 2 %, the force within 2 % of the peak at every travel up to the first of
-// the two peaks (issue 55's goal), and past the peak the same travel of the first broken link
-// (to one output interval, the resolution of both curves) and the force within 5 % of the peak
-// while the links fail in cascades whose order may differ.
+// the two peaks (issue 55's goal) and on past it while no link has broken in either code, and the
+// first broken link in the same output row or the next (the resolution of both curves). After
+// that the links fail in cascades whose order differs between the codes (broken counts at the end
+// are printed, not compared). The force on the platter is not reproducible to better than the
+// chatter of the nodes riding on it: our own run with the platter's start 1 nm lower departs from
+// the first by up to 3 % of the peak in the Bertrand case (peak 23 kN), so each case also runs
+// that perturbed copy and the force bound is the larger of 2 % and that spread.
 // experiments/dem/punch_yade_check.toml: a 1.6 x 1.6 m panel (not the 3 x 3 m of the thesis) so
 // that both codes finish in minutes; punch_yade_distortion_check.toml: the same with the
 // double twist's own curve and the Thoeni et al. 2013 random distortion, run here at
@@ -36,11 +40,11 @@ std::size_t peak_index(const std::vector<double>& f) {
   return peak;
 }
 
-// Travel of the first row with a broken link; the end of the curve if none broke.
-double first_failure(const std::vector<double>& d, const std::vector<double>& broken) {
-  for (std::size_t i = 0; i < d.size(); ++i)
-    if (broken[i] > 0.0) return d[i];
-  return d.back();
+// Index of the first row with a broken link; the row count if none broke.
+std::size_t first_failure(const std::vector<double>& broken) {
+  for (std::size_t i = 0; i < broken.size(); ++i)
+    if (broken[i] > 0.0) return i;
+  return broken.size();
 }
 
 struct PunchCase {
@@ -68,6 +72,11 @@ std::string expect_punch_agrees_with_yade(const PunchCase& c) {
   options.write_frames = false;
   options.threads = 2;
   const RunSummary ours = run_simulation(input, options);
+  RunInput perturbed_input = input;
+  perturbed_input.start_gap += 1e-9;
+  RunOptions perturbed_options = options;
+  perturbed_options.out = dir / "ours_perturbed";
+  const RunSummary perturbed = run_simulation(perturbed_input, perturbed_options);
 
   const auto script = dir / "punch_yade.py";
   std::ofstream(script) << yade_run_script(input);  // a hemisphere: the sphere platter
@@ -87,30 +96,40 @@ std::string expect_punch_agrees_with_yade(const PunchCase& c) {
   const std::vector<double> b_yade = yade.channel("broken_links").values;
   const std::size_t p_ours = peak_index(f_ours), p_yade = peak_index(f_yade);
   const double peak = f_ours[p_ours];
+  const std::vector<double> d_perturbed = perturbed.history.channel("tool_displacement").values;
+  const std::vector<double> f_perturbed = perturbed.history.channel("tool_force").values;
+  double spread = 0.0;  // ours against ours perturbed, up to our peak
+  for (std::size_t i = 0; i <= p_ours; ++i)
+    spread = std::max(spread, std::abs(interpolate(d_perturbed, f_perturbed, d_ours[i]) - f_ours[i]));
+  const double bound = std::max(0.02 * peak, spread);
   const double first_peak = std::min(d_ours[p_ours], d_yade[p_yade]);
+  const std::size_t failure_ours = first_failure(b_ours), failure_yade = first_failure(b_yade);
+  // Past the peak: up to the last row before the first broken link in either code.
+  const double intact = std::min(failure_ours > 0 ? d_ours[failure_ours - 1] : 0.0, failure_yade > 0 ? d_yade[failure_yade - 1] : 0.0);
   double worst_before = 0.0, worst_after = 0.0, at_before = 0.0;
   for (std::size_t i = 0; i < d_ours.size(); ++i) {
     const double difference = std::abs(interpolate(d_yade, f_yade, d_ours[i]) - f_ours[i]);
     if (d_ours[i] <= first_peak) {
       if (difference > worst_before) at_before = d_ours[i];
       worst_before = std::max(worst_before, difference);
-    } else if (d_ours[i] <= d_yade.back()) {
+    } else if (d_ours[i] <= intact) {
       worst_after = std::max(worst_after, difference);
     }
   }
-  const double interval_mm = 1000.0 * input.speed * input.output_interval;
-  const double failure_ours = first_failure(d_ours, b_ours), failure_yade = first_failure(d_yade, b_yade);
+  auto travel_of = [](const std::vector<double>& d, std::size_t row) { return row < d.size() ? d[row] : d.back(); };
   std::cout << c.name << ": peak ours " << peak << " N at " << d_ours[p_ours] << " mm; YADE " << f_yade[p_yade] << " N at "
             << d_yade[p_yade] << " mm; largest force difference up to the first peak " << worst_before / peak * 100.0
-            << " % of the peak (at " << at_before << " mm), past it " << worst_after / peak * 100.0
-            << " %; first broken link at " << failure_ours << " mm (ours), " << failure_yade << " mm (YADE); broken at the end "
+            << " % of the peak (at " << at_before << " mm), past it while intact " << worst_after / peak * 100.0
+            << " %; first broken link at " << travel_of(d_ours, failure_ours) << " mm (ours), " << travel_of(d_yade, failure_yade)
+            << " mm (YADE); broken at the end "
             << b_ours.back() << " (ours), " << b_yade.back() << " (YADE); sag ours " << 1000.0 * ours.sag << " mm, YADE "
-            << yade.metadata("sag_after_settling_mm") << " mm\n";
-  EXPECT_NEAR(f_yade[p_yade] / peak, 1.0, 0.02);
+            << yade.metadata("sag_after_settling_mm") << " mm; our own spread (start 1 nm lower) " << spread / peak * 100.0
+            << " % of the peak, perturbed peak " << f_perturbed[peak_index(f_perturbed)] << " N\n";
+  EXPECT_LE(std::abs(f_yade[p_yade] - peak), bound);
   EXPECT_NEAR(d_yade[p_yade] / d_ours[p_ours], 1.0, 0.02);
-  EXPECT_LT(worst_before, 0.02 * peak);
-  EXPECT_LE(std::abs(failure_yade - failure_ours), interval_mm + 1e-6);
-  EXPECT_LT(worst_after, 0.05 * peak);
+  EXPECT_LE(worst_before, bound);
+  EXPECT_LE(worst_after, bound);
+  EXPECT_LE(std::max(failure_ours, failure_yade) - std::min(failure_ours, failure_yade), 1u);
   return log;
 }
 
