@@ -1,22 +1,57 @@
 // Timed run (not a test): the campaign's 3 x 3 m macro-element punch with the thesis sets in the
 // set-up the study settled on (slack state: settled 40 s onto a wall 0.1 m below; platter kn 1e8,
-// ks 1e7; docs/dem_engine.md "Speed"), on 1 and 2 threads: wall time, steps, time per step, the
-// speed-up, and the peak and onset (the curve must not depend on the thread count: the engine's
-// sums run in a fixed order). Issue 35's goal: under 2 minutes on 2 cores.
-//   build/bench/bench_dem_punch_macro [THREADS...]   (default: 1 2)
+// ks 1e7; docs/dem_engine.md "Speed"), on 1 and 2 threads: wall and CPU time, steps, CPU per step,
+// the speed-up, and the peak and onset (the curve must not depend on the thread count: the
+// engine's sums run in a fixed order). With --reference F (the summary.json of the same punch by
+// another build, e.g. `dtwire dem run` of the campaign's `dem_punch_thesis` command) it reports
+// the ratios of steps and wall time to it and the differences of the peak, its displacement and
+// the onset. Issue 52's goal: under 60 s on 2 idle cores; on a machine shared with other jobs
+// compare CPU seconds (a thread waiting at a barrier is not charged while descheduled).
+//   build/bench/bench_dem_punch_macro [--reference SUMMARY.json] [THREADS...]   (default: 1 2)
+#include <ctime>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "dtwire/dem/run.hpp"
 
 using namespace dtwire::dem;
 
+namespace {
+
+// A number of a flat summary.json ("key": value), or -1 when it is not there.
+double summary_number(const std::string& text, const std::string& key) {
+  const auto at = text.find("\"" + key + "\"");
+  if (at == std::string::npos) return -1.0;
+  const auto colon = text.find(':', at);
+  return std::strtod(text.c_str() + colon + 1, nullptr);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   std::vector<int> thread_counts;
-  for (int i = 1; i < argc; ++i) thread_counts.push_back(std::atoi(argv[i]));
+  std::string reference;
+  for (int i = 1; i < argc; ++i) {
+    if (std::string(argv[i]) == "--reference" && i + 1 < argc) reference = argv[++i];
+    else thread_counts.push_back(std::atoi(argv[i]));
+  }
   if (thread_counts.empty()) thread_counts = {1, 2};
+  std::string reference_text;
+  if (!reference.empty()) {
+    std::ifstream in(reference);
+    if (!in) {
+      std::cerr << "bench_dem_punch_macro: cannot read " << reference << "\n";
+      return 2;
+    }
+    std::stringstream buffer;
+    buffer << in.rdbuf();
+    reference_text = buffer.str();
+  }
   const std::filesystem::path file = std::string(DTWIRE_SOURCE_DIR) + "/experiments/dem/punch_macro.toml";
   const RunInput input = read_run_input(file, {"boundary.pretension_strain=0.0", "boundary.wall_below_m=0.1",
                                                "dynamics.settle_s=40.0", "tool.kn_N_per_m=1e8", "tool.ks_N_per_m=1e7"});
@@ -28,13 +63,25 @@ int main(int argc, char** argv) {
     options.quiet = true;
     options.write_frames = false;
     options.threads = threads;
+    const std::clock_t start = std::clock();
     const RunSummary run = run_simulation(input, options);
+    const double cpu = static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
     if (threads == 1) one_thread_seconds = run.wall_seconds;
-    std::cout << threads << " thread(s): " << run.wall_seconds << " s wall, " << run.steps << " steps, "
-              << 1e3 * run.wall_seconds / static_cast<double>(run.steps) << " ms per step";
+    std::cout << threads << " thread(s): " << run.wall_seconds << " s wall, " << cpu << " s CPU, " << run.steps
+              << " steps (settling " << run.settle_time_step << " s, push " << run.time_step << " s), "
+              << 1e3 * cpu / static_cast<double>(run.steps) << " ms CPU per step";
     if (one_thread_seconds > 0.0 && threads != 1) std::cout << ", speed-up " << one_thread_seconds / run.wall_seconds;
     std::cout << "; peak " << run.peak_force / 1000.0 << " kN at " << 1000.0 * run.displacement_at_peak << " mm, onset "
               << 1000.0 * run.onset << " mm\n";
+    if (!reference_text.empty()) {
+      const double steps = summary_number(reference_text, "steps"), wall = summary_number(reference_text, "wall_seconds");
+      const double peak = summary_number(reference_text, "peak_force_N");
+      const double at = summary_number(reference_text, "displacement_at_peak_mm");
+      const double onset = summary_number(reference_text, "onset_displacement_mm");
+      std::cout << "  against the reference: steps x " << static_cast<double>(run.steps) / steps << ", wall x "
+                << run.wall_seconds / wall << "; peak " << 100.0 * (run.peak_force / peak - 1.0) << " %, at "
+                << 1000.0 * run.displacement_at_peak - at << " mm, onset " << 1000.0 * run.onset - onset << " mm\n";
+    }
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -19,8 +20,8 @@ namespace dtwire::app {
 namespace {
 
 const std::vector<std::string> kTopFields = {"name", "title", "include", "variables", "step"};
-const std::vector<std::string> kStepFields = {"name",   "description", "command", "inputs",
-                                              "outputs", "report",     "summary", "threads"};
+const std::vector<std::string> kStepFields = {"name",   "description", "command", "inputs",          "outputs",
+                                              "report", "summary",     "threads", "expected_seconds"};
 const std::vector<std::string> kBuiltInPlaceholders = {"out", "campaign"};
 
 [[noreturn]] void fail(const std::string& file, const toml::node* node, const std::string& message) {
@@ -236,6 +237,13 @@ Campaign read_campaign_file(const std::filesystem::path& file, std::vector<std::
       if (!threads->is_integer() || !count || *count < 1 || *count > 4096)
         fail(source, threads, "'threads' must be an integer from 1 to 4096 (the cores the step uses)");
       step.threads = static_cast<int>(*count);
+    }
+    if (const toml::node* expected = table.get("expected_seconds")) {
+      const auto seconds = expected->value<double>();
+      if (!(expected->is_integer() || expected->is_floating_point()) || !seconds || !std::isfinite(*seconds) ||
+          *seconds <= 0.0)
+        fail(source, expected, "'expected_seconds' must be a number of seconds > 0 (the step's wall time as measured)");
+      step.expected_seconds = *seconds;
     }
     campaign.steps.push_back(std::move(step));
   }

@@ -11,6 +11,7 @@
 //   report = ["{out}/meshes/sw_check.md", "{out}/figures/sw.png"]  # embedded in the report
 //   summary = ["{out}/fit/parameters.json"]  # read by the report's summary (optional)
 //   threads = 4                           # cores the step uses (its threads or MPI ranks); 1 if absent
+//   expected_seconds = 150                # optional: its wall time as measured, for the start order
 //   [variables]                           # optional: {name} in any step string, value a string
 //   as_made = "false"                     # default; `dtwire campaign --var as_made=true` overrides
 //   include = ["../default/campaign.toml"]  # optional, before the tables: another campaign's
@@ -23,6 +24,7 @@
 // that no earlier step writes are errors naming file:line.
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,7 @@ struct CampaignStep {
   std::vector<std::string> report;
   std::vector<std::string> summary;
   int threads = 1;  // cores it occupies while it runs (campaign --jobs, Snakemake threads:)
+  std::optional<double> expected_seconds;  // its wall time as measured: the start order's guess in a fresh folder
   std::filesystem::path file;         // the campaign file that declares it (an included one for its steps)
   int line = 0;                       // of the step's [[step]] table
   std::map<std::string, int> field_lines;  // field name -> line of its value

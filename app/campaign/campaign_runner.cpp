@@ -130,11 +130,12 @@ class Runner {
   std::vector<std::optional<double>> earlier_seconds() const {
     std::vector<std::optional<double>> earlier;
     for (const CampaignStep& step : campaign_.steps) {
+      // This folder's earlier run of the step, else the time its campaign file states.
       const json& previous = state_.value(step.name, json::object());
       earlier.push_back(previous.value("status", "") == "done" && previous.contains("seconds") &&
                                 previous["seconds"].is_number()
                             ? std::optional<double>(previous["seconds"].get<double>())
-                            : std::nullopt);
+                            : step.expected_seconds);
     }
     return earlier;
   }

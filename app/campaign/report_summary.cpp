@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "campaign_graph.hpp"
+#include "report_band.hpp"
 #include "report_mesh_scale.hpp"
 #include "report_recommendation.hpp"
 #include "step_process.hpp"
@@ -27,13 +28,14 @@ using nlohmann::json;
 // law cannot follow the curve whatever its parameters (docs/calibrate.md).
 constexpr double kModelFormNrmse = 0.10;
 
-enum class Kind { Fit, Gap, Validation, Other };
+enum class Kind { Fit, Gap, Validation, Band, Other };
 
 Kind kind_of(const CampaignStep& step) {
   const auto& c = step.command;
   if (c.front() == "fit") return Kind::Fit;
   if (c.front() == "gap") return c.size() > 1 && c[1] == "selfcheck" ? Kind::Other : Kind::Gap;
   if (c.front() == "dem" && c.size() > 1 && (c[1] == "run" || c[1] == "plot-punch")) return Kind::Validation;
+  if (c.front() == "dem" && c.size() > 1 && c[1] == "propagate") return Kind::Band;
   return Kind::Other;
 }
 
@@ -492,6 +494,26 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   const Recommendation recommendation = recommend_set(sets);
   std::ostringstream summary;
   summary << "## Summary\n\n" << recommendation_markdown(recommendation, sets);
+  if (recommendation.chosen >= 0) {
+    // The chosen set's bands (dem propagate steps with its label), beside the thesis sets' runs.
+    std::vector<BandEvidence> bands;
+    for (const StepFiles& s : by_kind[Kind::Band]) {
+      BandEvidence b{s.step->name, label_of_command(s.step->command), status_name(s.outcome->status), json(), {}};
+      for (const auto& output : s.step->outputs) {
+        const std::filesystem::path file = expand(output, out, campaign_dir);
+        if (file.filename() == "summary.json" && std::filesystem::is_regular_file(file)) b.summary = read_json(file);
+        if (file.filename() == "sensitivity.csv") b.sensitivity = read_sensitivity_rows(file.string());
+      }
+      bands.push_back(b);
+    }
+    json thesis_strip, thesis_punch;
+    for (const SetEvidence& e : sets)
+      if (e.label == "thesis published") thesis_strip = e.strip, thesis_punch = e.punch;
+    summary << band_markdown(sets[recommendation.chosen].label, bands, thesis_strip, thesis_punch);
+    for (const StepFiles& s : by_kind[Kind::Band])
+      if (label_of_command(s.step->command) == sets[recommendation.chosen].label)
+        for (const auto& file : s.figures) figure(summary, file, out);
+  }
   if (!sets.empty()) summary << "### At a glance\n\n";
   for (const auto& line : glance) summary << "- " << line << "\n";
   summary << "\n" << md.str();

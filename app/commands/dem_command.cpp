@@ -8,6 +8,7 @@
 #include "../commands.hpp"
 #include "../data_path.hpp"
 #include "dem_plot_command.hpp"
+#include "dem_propagate_command.hpp"
 #include "dem_run_command.hpp"
 #include "dem_surface_command.hpp"
 #include "dtwire/core/error.hpp"
@@ -112,6 +113,7 @@ void add_dem_command(CLI::App& root, CommandSet& commands) {
   add_dem_run_command(*dem, commands);
   add_dem_plot_command(*dem, commands);
   add_dem_surface_command(*dem, commands);
+  add_dem_propagate_command(*dem, commands);
 
   auto options = std::make_shared<DriverOptions>();
   CLI::App* driver = dem->add_subcommand(

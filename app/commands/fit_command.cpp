@@ -157,7 +157,10 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
       throw;
     }
     restore_signals();
-    if (!result.completed) {
+    // A stop that arrives during the last iteration lets the solve finish, but the results are
+    // still not written: a step whose runner died never writes after it (the checkpoint holds
+    // the finished starts, so the resume writes them without new runs).
+    if (!result.completed || stop_requested) {
       std::cerr << "fit interrupted; continue with: " << resume_command << "\n";
       return kExitFailure;
     }

@@ -201,6 +201,30 @@ LossKind loss_kind(const Table& t) {
   t.fail(t.get("loss"), "loss", "expected squared, huber or cauchy, found '" + loss + "'");
 }
 
+// [fit] screening_iterations = [k1, k2, ...] and screening_cost_ratio = [r1, r2, ...]: the
+// multi-start's screening stages (fitter.hpp), one ratio per iteration count.
+void read_screening(const Table& fit, FitOptions& options) {
+  if (!fit.has("screening_iterations") && !fit.has("screening_cost_ratio")) return;
+  if (!fit.has("screening_iterations") || !fit.has("screening_cost_ratio"))
+    fit.fail(fit.get(fit.has("screening_iterations") ? "screening_iterations" : "screening_cost_ratio"),
+             fit.has("screening_iterations") ? "screening_iterations" : "screening_cost_ratio",
+             "give screening_iterations and screening_cost_ratio together (one ratio per stage)");
+  const std::vector<double> iterations = fit.numbers("screening_iterations");
+  const std::vector<double> ratios = fit.numbers("screening_cost_ratio");
+  if (iterations.empty() || iterations.size() != ratios.size())
+    fit.fail(fit.get("screening_cost_ratio"), "screening_cost_ratio",
+             "expected one ratio per entry of screening_iterations (" + std::to_string(iterations.size()) + ")");
+  for (std::size_t k = 0; k < iterations.size(); ++k) {
+    const double i = iterations[k];
+    if (!(i >= 1 && i == std::floor(i)) || (k > 0 && !(i > iterations[k - 1])))
+      fit.fail(fit.get("screening_iterations"), "screening_iterations",
+               "expected increasing whole numbers of iterations >= 1");
+    if (!(ratios[k] > 1.0))
+      fit.fail(fit.get("screening_cost_ratio"), "screening_cost_ratio", "expected cost ratios > 1");
+    options.screening.push_back({static_cast<int>(i), ratios[k]});
+  }
+}
+
 }  // namespace
 
 FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOptions& options) {
@@ -300,7 +324,8 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     const Table fit(table_at(root, "fit", name), "fit", name);
     fit.only({"loss", "loss_scale", "starts", "log_parameters", "seed", "max_iterations", "relative_step",
               "central_differences", "threads", "function_tolerance", "parameter_tolerance",
-              "gradient_tolerance", "disk_cache", "identification_tolerance"});
+              "gradient_tolerance", "disk_cache", "identification_tolerance", "screening_iterations",
+              "screening_cost_ratio"});
     def.disk_cache = fit.boolean("disk_cache", false);
     def.fit.loss = loss_kind(fit);
     def.fit.loss_scale = fit.number("loss_scale", 1.0);
@@ -320,6 +345,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
       fit.fail(fit.get("relative_step"), "relative_step", "expected a number in (0, 1)");
     def.evaluation.central_differences = fit.boolean("central_differences", false);
     def.evaluation.threads = static_cast<unsigned>(fit.integer("threads", 0, 0));
+    read_screening(fit, def.fit);
   }
 
   const toml::node* parameters = root.get("parameter");

@@ -99,7 +99,9 @@ void write_all_outputs(const FitDefinition& definition, const FitResult& result,
     const auto& p = result.parameters[i];
     json entry = {{"name", p.name}, {"value", result.values[i]}, {"unit", p.unit},
                   {"sigma", result.sigma.empty() ? json(nullptr) : finite_or_null(result.sigma[i])},
-                  {"lower", lower[i]}, {"upper", upper[i]}, {"initial", initial[i]}, {"fitted", true}};
+                  {"lower", lower[i]}, {"upper", upper[i]}, {"initial", initial[i]}, {"fitted", true},
+                  // the optimiser's coordinate (value / scale or its log): `dem propagate` samples in it
+                  {"coordinate", p.logarithmic ? "log" : "linear"}};
     if (i < result.secant_sigma.size()) entry["secant_sigma"] = finite_or_null(result.secant_sigma[i]);
     if (i < result.identification.size()) {
       entry["identified"] = result.identification[i].identified;

@@ -57,6 +57,7 @@ lsq::Options engine_options(const FitOptions& options) {
   o.jacobi_scaling = false;
   o.initial_trust_region_radius = 1e4;
   o.parallel_starts = options.parallel_starts;
+  for (const StartScreening& stage : options.screening) o.screening.push_back({stage.iterations, stage.cost_ratio});
   return o;
 }
 
@@ -72,7 +73,7 @@ std::string join(const std::vector<double>& v) {
 nlohmann::json to_json(const lsq::Start& s) {
   return {{"start_z", s.start}, {"z", s.x},         {"radius", s.radius},
           {"iterations", s.iterations}, {"cost", s.cost}, {"state", lsq::to_string(s.state)},
-          {"message", s.message}};
+          {"message", s.message}, {"screened", s.screened}};
 }
 
 lsq::Start from_json(const nlohmann::json& j) {
@@ -84,6 +85,7 @@ lsq::Start from_json(const nlohmann::json& j) {
   s.cost = j.at("cost").get<double>();
   s.state = lsq::start_state_from_string(j.at("state").get<std::string>());
   s.message = j.at("message").get<std::string>();
+  s.screened = j.value("screened", 0);  // checkpoints written before the screening: none passed
   return s;
 }
 
@@ -153,6 +155,9 @@ std::string fit_identity(const ProblemEvaluator& evaluator, const FitOptions& op
        << options.loss_scale << " " << options.starts << " " << options.seed << " "
        << options.function_tolerance << " " << options.parameter_tolerance << " "
        << options.gradient_tolerance << "\n";
+  // Only a screened fit's identity names its stages: checkpoints of unscreened fits stay valid.
+  for (const StartScreening& stage : options.screening)
+    text << "screening " << stage.iterations << " " << stage.cost_ratio << "\n";
   return sha256_text(text.str());
 }
 

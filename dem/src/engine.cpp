@@ -99,7 +99,8 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
     s.node_links[link.a].emplace_back(static_cast<int>(l), true);
     s.node_links[link.b].emplace_back(static_cast<int>(l), false);
   }
-  set_time_step(options_.time_step > 0.0 ? options_.time_step : options_.safety * critical_time_step());
+  if (options_.time_step > 0.0) check_and_set_step(options_.time_step);
+  else dt_ = automatic_time_step();
 }
 
 Engine::~Engine() = default;
@@ -131,8 +132,9 @@ int Engine::add_tool(std::unique_ptr<Tool> tool, bool parked) {
 }
 
 void Engine::update_time_step_for_new_contact() {
-  if (options_.time_step > 0.0) set_time_step(options_.time_step);
-  else dt_ = std::min(dt_, options_.safety * critical_time_step());
+  if (options_.time_step > 0.0) check_and_set_step(options_.time_step);
+  else if (supports_changed_ && !caller_step_) refresh_automatic_step();
+  else dt_ = std::min(dt_, automatic_time_step());
 }
 
 int Engine::add_roller(const Roller& roller, std::vector<double> link_radius) {
@@ -183,22 +185,38 @@ void Engine::impose_positions(const std::vector<Vector3>& positions) {
   s_->imposed_pending = true;
 }
 
-double Engine::critical_time_step() const { return stability_bound(false); }
+double Engine::critical_time_step() const { return stability_bound(false, false); }
 
-double Engine::stability_bound(bool with_parked_tools) const {
+double Engine::automatic_time_step() const { return options_.safety * stability_bound(false, false); }
+
+void Engine::refresh_automatic_step() {
+  supports_changed_ = false;
+  dt_ = automatic_time_step();
+}
+
+double Engine::stability_bound(bool with_parked_tools, bool held_as_free) const {
   const State& s = *s_;
   const std::size_t n = s.nodes.size();
+  // The inverse masses of the degrees of freedom that move: a slider node with all three
+  // translations (its rotation) held has no translational (rotational) mode, so its springs bound
+  // nothing there (the support takes them). held_as_free: every slider component as if released.
+  std::vector<double> im(n), ii(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const NetNode& node = s.nodes[i];
+    const bool translations_held = node.held_translation[0] && node.held_translation[1] && node.held_translation[2];
+    im[i] = held_as_free || !translations_held ? s.inverse_mass[i] : 0.0;
+    ii[i] = held_as_free || !node.held_rotation ? s.inverse_inertia[i] : 0.0;
+  }
   // Upper bound of the largest eigenvalue of M^-1 K: the largest, over nodes, of the sum of the
   // element bounds of the links and tool contacts at that node (docs/dem_engine.md).
   std::vector<double> bound(n, 0.0);
   for (std::size_t l = 0; l < s.links.size(); ++l) {
     const NetLink& link = s.links[l].link;
     const Vector6 k = probe_stiffness(*s.links[l].law);
-    const double im = s.inverse_mass[link.a] + s.inverse_mass[link.b];
-    const double ii = s.inverse_inertia[link.a] + s.inverse_inertia[link.b];
+    const double m = im[link.a] + im[link.b];
+    const double i = ii[link.a] + ii[link.b];
     const double half = 0.5 * s.link_state[l].length;
-    const double element = k[0] * im + std::max(k[1], k[2]) * (im + half * half * ii) +
-                           std::max({k[3], k[4], k[5]}) * ii;
+    const double element = k[0] * m + std::max(k[1], k[2]) * (m + half * half * i) + std::max({k[3], k[4], k[5]}) * i;
     bound[link.a] += element;
     bound[link.b] += element;
   }
@@ -206,8 +224,7 @@ double Engine::stability_bound(bool with_parked_tools) const {
     if (t.parked && !with_parked_tools) continue;
     for (std::size_t i = 0; i < n; ++i) {
       const double r = s.nodes[i].radius;
-      bound[i] += t.tool->contact.normal_stiffness * s.inverse_mass[i] +
-                  t.tool->contact.shear_stiffness * (s.inverse_mass[i] + r * r * s.inverse_inertia[i]);
+      bound[i] += t.tool->contact.normal_stiffness * im[i] + t.tool->contact.shear_stiffness * (im[i] + r * r * ii[i]);
     }
   }
   // A roller-link contact at s is the spring kn w w^T with w = ((1 - s), s) (x) normal; its row
@@ -216,16 +233,22 @@ double Engine::stability_bound(bool with_parked_tools) const {
     for (std::size_t l = 0; l < s.links.size(); ++l) {
       if (!(r.link_radius[l] > 0.0)) continue;
       const double k = r.roller.contact.normal_stiffness + r.roller.contact.shear_stiffness;
-      for (int end : {s.links[l].link.a, s.links[l].link.b}) bound[end] += k * s.inverse_mass[end];
+      for (int end : {s.links[l].link.a, s.links[l].link.b}) bound[end] += k * im[end];
     }
   const double largest = n == 0 ? 0.0 : *std::max_element(bound.begin(), bound.end());
   return largest > 0.0 ? 2.0 / std::sqrt(largest) : 1.0;
 }
 
 void Engine::set_time_step(double dt) {
+  check_and_set_step(dt);
+  caller_step_ = true;
+}
+
+void Engine::check_and_set_step(double dt) {
   if (!(dt > 0.0)) throw std::invalid_argument("time step must be positive");
-  // A step must stay stable once the parked tools are placed too: refused now, not later.
-  const double critical = stability_bound(true);
+  // A step must stay stable once the parked tools are placed and the slider supports released
+  // too: refused now, not later.
+  const double critical = stability_bound(true, true);
   if (dt > critical && !options_.allow_above_critical)
     throw std::invalid_argument("time step " + std::to_string(dt) + " s is above the critical step " +
                                 std::to_string(critical) + " s");
@@ -259,6 +282,7 @@ void Engine::set_support(std::size_t i, const std::array<bool, 3>& held_translat
   }
   node.held_translation = held_translation;
   node.held_rotation = held_rotation;
+  supports_changed_ = true;  // the automatic step follows at the next step (the bound is a sweep)
 }
 
 std::size_t Engine::node_count() const { return s_->nodes.size(); }

@@ -2,6 +2,8 @@
 // (docs/dem_engine.md: the energy bookkeeping).
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "dtwire/dem/engine.hpp"
 #include "engine_state.hpp"
@@ -46,6 +48,7 @@ using engine_detail::ToolState;
 
 void Engine::step() {
   State& s = *s_;
+  if (supports_changed_ && options_.time_step <= 0.0 && !caller_step_) refresh_automatic_step();
   // Variable-step central differences: the last move x_{n-1} -> x_n took `moved` (the link and
   // contact increments are over it), the next takes dt, and the velocity update spans their mean
   // (v_{n+1/2} = v_{n-1/2} + (moved + dt)/2 a_n); with a constant step all three are dt.
@@ -60,6 +63,10 @@ void Engine::step() {
   // a law update is an opaque call, and between two of them the square roots and divisions of
   // one link's frame cannot overlap another's (the kinematics loop runs about twice as fast on
   // its own). The two loops give each thread the same links (static schedule), so no barrier.
+  // A law that gives up (an exception) must not leave the parallel region, where it would
+  // terminate the process: the first one is kept with its link and thrown after the region.
+  std::string law_failure;
+  std::size_t failed_link = links;
 #pragma omp parallel num_threads(threads) if (links >= options_.parallel_threshold)
   {
 #pragma omp for schedule(static) nowait
@@ -87,7 +94,18 @@ void Engine::step() {
     for (std::size_t l = 0; l < links; ++l) {
       LinkState& state = s.link_state[l];
       ContactLaw& law = *s.links[l].law;
-      if (!state.broken) law.update(state.increment);
+      if (!state.broken) {
+        try {
+          law.update(state.increment);
+        } catch (const std::exception& e) {
+#pragma omp critical(dtwire_dem_law_failure)
+          if (l < failed_link) {
+            failed_link = l;
+            law_failure = e.what();
+          }
+          continue;
+        }
+      }
       state.broken = law.broken();
       const Vector6 q = state.broken ? Vector6::Zero() : law.forces();
       const Vector3& axis = state.axis;
@@ -103,6 +121,11 @@ void Engine::step() {
       load.moment_on_b = -couple + lever;
     }
   }
+  if (failed_link < links)
+    throw std::runtime_error("link " + std::to_string(failed_link) + " (nodes " +
+                             std::to_string(s.links[failed_link].link.a) + "-" +
+                             std::to_string(s.links[failed_link].link.b) + ") at step " +
+                             std::to_string(steps_) + ": " + law_failure);
 
   // 2. Tools: every node against every tool (each node writes its own slot).
   for (ToolState& t : s.tools) {
@@ -114,19 +137,24 @@ void Engine::step() {
     for (std::size_t i = 0; i < n; ++i) {
       const double r = s.radius[i];
       SurfacePoint surface;
-      t.force_on_node[i].setZero();
-      t.moment_on_node[i].setZero();
-      t.contact_energy[i] = 0.0;
-      t.friction_increment[i] = 0.0;
       // Most nodes are far from the tool: its bounding sphere rejects them before the surface search.
       const double reach = bounding + r;
       if ((s.x[i] - tool.position).squaredNorm() > reach * reach || !tool.nearest(s.x[i], r, surface) ||
           surface.distance >= r) {
-        t.shear[i].setZero();
-        t.touching[i] = 0;
+        // A node's contact slots are zero while it is apart: written only when a contact ends
+        // (most nodes touch no tool, and the step is bound by memory traffic).
+        if (t.touching[i]) {
+          t.force_on_node[i].setZero();
+          t.moment_on_node[i].setZero();
+          t.contact_energy[i] = 0.0;
+          t.friction_increment[i] = 0.0;
+          t.shear[i].setZero();
+          t.touching[i] = 0;
+        }
         continue;
       }
       t.touching[i] = 1;
+      t.friction_increment[i] = 0.0;
       const double penetration = r - surface.distance;
       const Vector3& normal = surface.normal;
       const Vector3 arm = -(r - 0.5 * penetration) * normal;  // node centre -> contact point
@@ -224,6 +252,7 @@ void Engine::step() {
       m += is_a ? load.moment_on_a : load.moment_on_b;
     }
     for (const ToolState& t : s.tools) {
+      if (!t.touching[i]) continue;  // its slots are zero
       f += t.force_on_node[i];
       m += t.moment_on_node[i];
     }

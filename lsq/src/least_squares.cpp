@@ -6,7 +6,9 @@
 #include <atomic>
 #include <cstring>
 #include <exception>
+#include <limits>
 #include <mutex>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -98,14 +100,18 @@ void check(const Problem& problem) {
     throw std::invalid_argument("least squares: bounds must have one entry per parameter");
 }
 
-// Runs (or resumes) one start; returns false when the user's callback stopped it.
-bool solve_start(const Problem& problem, const Options& options, std::size_t index, std::vector<Start>& states,
-                 std::mutex& states_mutex, std::atomic<bool>& stop) {
+// Runs (or resumes) one start up to `cap` iterations (< max_iterations: a screening stage's;
+// the start then stays Running at its last accepted iterate, as a checkpoint would hold it, and
+// resumes from there to the same end); returns false when the user's callback stopped it.
+bool solve_start(const Problem& problem, const Options& options, int cap, std::size_t index,
+                 std::vector<Start>& states, std::mutex& states_mutex, std::atomic<bool>& stop) {
   Start& state = states[index];
   std::unique_lock<std::mutex> lock(states_mutex);
   const bool continuing = state.state == StartState::Running;
   std::vector<double> x = clamped(problem, continuing ? state.x : state.start);
   const int done_before = continuing ? state.iterations : 0;
+  const bool capped = cap < options.max_iterations;
+  if (capped && continuing && done_before >= cap) return true;
   state.state = StartState::Running;
   if (done_before >= options.max_iterations) {
     state.state = StartState::Done;
@@ -116,7 +122,7 @@ bool solve_start(const Problem& problem, const Options& options, std::size_t ind
   lock.unlock();
   CeresProblem ceres_problem(problem, options, x);
   ceres::Solver::Options solver = solver_options(options);
-  solver.max_num_iterations = options.max_iterations - done_before;
+  solver.max_num_iterations = (capped ? cap : options.max_iterations) - done_before;
   solver.initial_trust_region_radius = radius;
   IterationReporter reporter(x, states, index, done_before, options, ceres_problem.shared, states_mutex, stop);
   solver.callbacks.push_back(&reporter);
@@ -125,6 +131,9 @@ bool solve_start(const Problem& problem, const Options& options, std::size_t ind
   ceres_problem.shared.rethrow_fatal_error();
   if (reporter.stopped) return false;
   lock.lock();
+  // NO_CONVERGENCE is the iteration limit (no time limit is set): at a stage's cap the start
+  // keeps the callback's record of its last accepted iterate.
+  if (capped && summary.termination_type == ceres::NO_CONVERGENCE) return true;
   if (summary.termination_type == ceres::CONVERGENCE ||
       summary.termination_type == ceres::NO_CONVERGENCE) {
     state.state = StartState::Done;
@@ -170,33 +179,75 @@ Summary solve(const Problem& problem, const Options& options, std::vector<Start>
     if (state.state != StartState::Done && state.state != StartState::Failed &&
         state.start.size() != problem.parameter_count)
       throw std::invalid_argument("least squares: a start has the wrong number of parameters");
+  for (std::size_t k = 0; k < options.screening.size(); ++k) {
+    const ScreeningStage& stage = options.screening[k];
+    if (stage.iterations < 1 || (k > 0 && stage.iterations <= options.screening[k - 1].iterations))
+      throw std::invalid_argument("least squares: screening stages need increasing iteration counts >= 1");
+    if (!(stage.cost_ratio > 1.0)) throw std::invalid_argument("least squares: a screening cost ratio must be > 1");
+  }
+  const auto open = [](const Start& s) { return s.state != StartState::Done && s.state != StartState::Failed; };
   Summary summary;
   std::mutex states_mutex;
   std::atomic<bool> stop{false};
-  std::atomic<std::size_t> next{0};
   std::exception_ptr error;
-  // Each worker takes the next open start; a start's path does not depend on the others.
-  const auto work = [&] {
-    for (std::size_t s = next++; s < starts.size() && !stop; s = next++) {
-      if (starts[s].state == StartState::Done || starts[s].state == StartState::Failed) continue;
-      try {
-        if (!solve_start(problem, options, s, starts, states_mutex, stop)) return;
-        const std::lock_guard<std::mutex> lock(states_mutex);
-        if (options.after_start) options.after_start(s, starts);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(states_mutex);
-        if (!error) error = std::current_exception();
-        stop = true;
+  // One pass over the open starts that have passed `stage` screenings, each up to `cap`
+  // iterations; each worker takes the next, and a start's path does not depend on the others.
+  const auto pass = [&](int stage, int cap) {
+    std::atomic<std::size_t> next{0};
+    const auto work = [&] {
+      for (std::size_t s = next++; s < starts.size() && !stop; s = next++) {
+        if (!open(starts[s]) || starts[s].screened != stage) continue;
+        try {
+          if (!solve_start(problem, options, cap, s, starts, states_mutex, stop)) return;
+          const std::lock_guard<std::mutex> lock(states_mutex);
+          if (!open(starts[s]) && options.after_start) options.after_start(s, starts);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(states_mutex);
+          if (!error) error = std::current_exception();
+          stop = true;
+        }
       }
+    };
+    const std::size_t workers = std::max<std::size_t>(1, std::min<std::size_t>(options.parallel_starts, starts.size()));
+    if (workers == 1) {
+      work();
+    } else {
+      std::vector<std::thread> pool;
+      for (std::size_t w = 0; w < workers; ++w) pool.emplace_back(work);
+      for (auto& t : pool) t.join();
     }
   };
-  const std::size_t workers = std::max<std::size_t>(1, std::min<std::size_t>(options.parallel_starts, starts.size()));
-  if (workers == 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    for (std::size_t w = 0; w < workers; ++w) pool.emplace_back(work);
-    for (auto& t : pool) t.join();
+  const int stages = static_cast<int>(options.screening.size());
+  for (int k = 0; k < stages && !stop && !error; ++k) {
+    const ScreeningStage& stage = options.screening[static_cast<std::size_t>(k)];
+    if (stage.iterations >= options.max_iterations) break;
+    pass(k, stage.iterations);
+    if (stop || error) break;
+    // Every start has now run its stage's iterations or ended (a resumed solve finds the stages
+    // already passed in `screened`).
+    double lowest = std::numeric_limits<double>::infinity();
+    for (const Start& s : starts)
+      if (s.state == StartState::Done || (open(s) && s.screened == k)) lowest = std::min(lowest, s.cost);
+    for (std::size_t s = 0; s < starts.size(); ++s) {
+      Start& state = starts[s];
+      if (!open(state) || state.screened != k) continue;
+      if (state.state == StartState::Running && state.cost > stage.cost_ratio * lowest) {
+        state.state = StartState::Done;
+        std::ostringstream message;
+        message << "screened out after " << stage.iterations << " iterations: cost " << state.cost << " > "
+                << stage.cost_ratio << " x the lowest of all starts, " << lowest;
+        state.message = message.str();
+        if (options.after_start) options.after_start(s, starts);
+      } else {
+        state.screened = k + 1;
+      }
+    }
+  }
+  if (!stop && !error) {
+    int passed = 0;  // the stages every open start has passed (all, or those below max_iterations)
+    for (const ScreeningStage& stage : options.screening)
+      if (stage.iterations < options.max_iterations) ++passed;
+    pass(passed, options.max_iterations);
   }
   if (error) std::rethrow_exception(error);
   summary.completed = !stop;

@@ -112,11 +112,13 @@ TEST(CampaignSplit, TheStudyRunsEveryDefaultStepAsTheDefaultDoes) {
   const auto has = [&](const Campaign& c, const std::string& name) {
     return std::any_of(c.steps.begin(), c.steps.end(), [&](const CampaignStep& s) { return s.name == name; });
   };
-  for (const char* step : {"segment_fit_nm", "dt_specimen_fit", "export_nm", "dem_punch_nm", "dem_strip_nm", "gap_punch",
-                           "gap_sw_backbone", "gap_sw_compression"})
+  for (const char* step : {"segment_fit_nm", "dt_specimen_fit", "export_nm", "dem_punch_nm", "dem_strip_nm", "gap_strip",
+                           "gap_sw_backbone", "gap_sw_compression", "dem_strip_nm_band"})
     EXPECT_TRUE(has(main, step)) << step;
-  for (const char* step : {"macro_fit", "dt_link_fit", "dem_punch_wirepm", "gap_selfcheck", "dt_twisting"})
+  for (const char* step : {"macro_fit", "dt_link_fit", "dem_punch_wirepm", "gap_selfcheck", "dt_twisting", "gap_punch",
+                           "segment_fit", "export_as_made", "dem_strip_nm_sampled", "dem_punch_nm_band"})
     EXPECT_FALSE(has(main, step)) << step << " belongs to the study";
+  for (const char* step : {"dem_strip_nm_sampled", "dem_punch_nm_band"}) EXPECT_TRUE(has(study, step)) << step;
 }
 
 // `dtwire campaign --study` takes the study's file (written here as a workflow: nothing runs);

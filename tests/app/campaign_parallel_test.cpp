@@ -128,6 +128,29 @@ TEST(CampaignGraph, ThreadsFieldIsReadAndChecked) {
   }
 }
 
+// expected_seconds: a step's wall time as measured, which the start order uses in a fresh folder.
+TEST(CampaignGraph, ExpectedSecondsIsReadAndChecked) {
+  const auto good = write_temp("dtwire_expected.toml",
+                               "name = \"t\"\n" + step("a", "command = [\"campaign\", \"--help\"]\nexpected_seconds = 150\n") +
+                                   step("b", "command = [\"campaign\", \"--help\"]\nexpected_seconds = 2.5\n") +
+                                   step("c", "command = [\"campaign\", \"--help\"]\n"));
+  const Campaign c = read_campaign(good);
+  EXPECT_EQ(c.steps[0].expected_seconds, 150.0);
+  EXPECT_EQ(c.steps[1].expected_seconds, 2.5);
+  EXPECT_FALSE(c.steps[2].expected_seconds);
+  for (const char* bad : {"0", "-3", "\"60\"", "nan", "inf"}) {
+    const auto file = write_temp("dtwire_expected_bad.toml", "name = \"t\"\n" +
+                                     step("a", "command = [\"campaign\", \"--help\"]\nexpected_seconds = " + std::string(bad) + "\n"));
+    try {
+      read_campaign(file);
+      FAIL() << "accepted expected_seconds = " << bad;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), 5) << e.what();
+      EXPECT_NE(std::string(e.what()).find("'expected_seconds'"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(CampaignJobs, BadJobsAndSnakefilePathsAreRefused) {
   const auto out = std::filesystem::temp_directory_path() / "dtwire_campaign_jobs_bad";
   std::filesystem::remove_all(out);

@@ -21,7 +21,7 @@ Cases (each prints one line; the kill times are drawn from SEED, default 53, and
   full-disk       `fit` and `dem run` into a 1 MiB tmpfs (needs root; reported as skipped
                   otherwise): exit 1 with "No space left on device"
 Comparison: the normalisation of campaign_parallel_test.py (run ids, ISO times, wall times
-masked; HDF5 files by size), besides which the steps' console logs and command.txt (a resumed
+masked; HDF5 files by their h5dump text), besides which the steps' console logs and command.txt (a resumed
 step's differ by design), steps/<step>/fingerprint (it hashes the command, which names the
 output folder), the fit's simulation counters (a resumed fit runs fewer simulations; the
 parameters, costs and curves are compared) and a step's "up to date" for "done" in the report

@@ -104,6 +104,29 @@ TEST_F(FitFileTest, WrongTypeNamesLine) {
   EXPECT_NE(std::string(e.what()).find("expected an integer"), std::string::npos) << e.what();
 }
 
+// Screening stages (issue 52): read in order; bad stages name their line and field.
+TEST_F(FitFileTest, ScreeningStagesReadAndBadOnesNameTheirField) {
+  const std::string stages = "starts = 2\nscreening_iterations = [10, 20]\nscreening_cost_ratio = [2.0, 1.5]";
+  const FitDefinition def = read_fit_file(write(replace_line(kValid, 6, stages)));
+  ASSERT_EQ(def.fit.screening.size(), 2u);
+  EXPECT_EQ(def.fit.screening[1].iterations, 20);
+  EXPECT_EQ(def.fit.screening[1].cost_ratio, 1.5);
+  const struct {
+    std::string lines, field, what;
+  } bad[] = {
+      {"screening_iterations = [20, 10]\nscreening_cost_ratio = [2.0, 1.5]", "fit.screening_iterations", "increasing"},
+      {"screening_iterations = [10]\nscreening_cost_ratio = [1.0]", "fit.screening_cost_ratio", "ratios > 1"},
+      {"screening_iterations = [10, 20]\nscreening_cost_ratio = [2.0]", "fit.screening_cost_ratio", "one ratio per entry"},
+      {"screening_iterations = [10]", "fit.screening_iterations", "together"},
+  };
+  for (const auto& b : bad) {
+    const InputError e = error_of(replace_line(kValid, 6, "starts = 2\n" + b.lines));
+    EXPECT_NE(std::string(e.what()).find(b.field), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(b.what), std::string::npos) << e.what();
+    EXPECT_GE(e.line(), 7) << e.what();
+  }
+}
+
 TEST_F(FitFileTest, MissingChannelInTargetNamesLine) {
   const InputError e = error_of(replace_line(kValid, 17, "channels = [\"force\"]"));
   EXPECT_EQ(e.line(), 17);

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <iostream>
+#include <stdexcept>
+#include <string>
 
 #include "net_node_support.hpp"
 #include "dtwire/dem/engine.hpp"
@@ -417,6 +419,100 @@ TEST(DemEngine, HoldingAMovingNodeBooksItsKineticEnergy) {
   EXPECT_LT(engine.energy().boundary_work, 0.0);
   EXPECT_LT(std::abs(engine.energy().balance_error()), 1e-3 * engine.energy().gravity_work);
   EXPECT_THROW(engine.set_support(0, {true, true, true}, true), std::invalid_argument);  // pinned
+}
+
+// A slider node with every component held has no mode of its own: its springs (a light node's
+// link, a wall's contact) leave the automatic step alone, which follows set_support both ways:
+// up when the light node m is held (Gershgorin at the free node M: its two links, k / M each,
+// and the wall's k_n / M), back down when it is released (the larger of k (2/M + 1/m) + k_n / M
+// and k (1/M + 1/m) + k_n / m). A fixed step is checked as if every slider were free.
+TEST(DemEngine, HeldSliderComponentsLeaveTheAutomaticStepAndReleasingThemBringsItBack) {
+  const double heavy = 0.004, light = 0.0004, length = 0.05, kn = 1e6;
+  auto make = [&](double fixed_step) {
+    std::vector<NetNode> nodes{make_node(Vector3::Zero(), heavy, NodeFixity::Pinned),
+                               make_node(Vector3(length, 0, 0), heavy), make_node(Vector3(2 * length, 0, 0), light)};
+    nodes[2].held_translation = {true, true, true};
+    nodes[2].held_rotation = true;
+    std::vector<EngineLink> links;
+    links.push_back({{0, 1, LinkTag::SingleWire}, string_link(length)});
+    links.push_back({{1, 2, LinkTag::SingleWire}, string_link(length)});
+    EngineOptions options;
+    options.gravity = Vector3::Zero();
+    options.time_step = fixed_step;
+    return Engine(nodes, std::move(links), options);
+  };
+  const double ks = string_stiffness(length);
+  Engine engine = make(0.0);
+  auto wall = std::make_unique<PlaneWall>(Vector3::UnitZ());
+  wall->position = Vector3(0.0, 0.0, -1.0);  // far below: touches nothing, counts in the bound
+  wall->contact.normal_stiffness = kn;
+  wall->contact.shear_stiffness = 0.0;
+  engine.add_tool(std::move(wall));
+  // Held: the free node's two links, each k / M (the held end adds no 1/m), and the wall's kn / M.
+  const double held_bound = 2.0 / std::sqrt(2.0 * ks / heavy + kn / heavy);
+  EXPECT_NEAR(engine.critical_time_step() / held_bound, 1.0, 1e-9);
+  EXPECT_NEAR(engine.time_step() / (0.5 * held_bound), 1.0, 1e-9);
+  engine.set_support(2, {false, false, false}, false);
+  engine.step();  // the step follows the release before it moves anything
+  const double free_bound = 2.0 / std::sqrt(std::max(ks * (2.0 / heavy + 1.0 / light) + kn / heavy,
+                                                      ks * (1.0 / heavy + 1.0 / light) + kn / light));
+  EXPECT_NEAR(engine.critical_time_step() / free_bound, 1.0, 1e-9);
+  EXPECT_NEAR(engine.time_step() / (0.5 * free_bound), 1.0, 1e-9);
+  engine.set_support(2, {true, true, true}, true);
+  engine.step();
+  EXPECT_NEAR(engine.time_step() / (0.5 * held_bound), 1.0, 1e-9);
+  // A fixed step above the bound with the slider released is refused, though held it is stable.
+  Engine fixed = make(0.0);
+  const double released = 2.0 / std::sqrt(ks * (2.0 / heavy + 1.0 / light));  // no wall here
+  ASSERT_LT(1.1 * released, 2.0 / std::sqrt(2.0 * ks / heavy));
+  EXPECT_THROW(fixed.set_time_step(1.1 * released), std::invalid_argument);
+  EXPECT_NO_THROW(fixed.set_time_step(0.9 * released));
+  EXPECT_THROW(make(1.1 * released), std::invalid_argument);
+}
+
+// A law that gives up inside the threaded link loop (the macro-element's "too many plastic
+// substeps") ends the step with an exception that names the link, never a terminate (SIGABRT):
+// `dem run` turns it into exit 1 with the message, `dem propagate` into a failed set.
+class GivesUpAfterStretch final : public ContactLaw {
+ public:
+  void update(const Vector6& increment) override {
+    stretch_ += increment[0];
+    if (stretch_ > 1e-4) throw std::runtime_error("too many plastic substeps in one increment");
+  }
+  Vector6 forces() const override { return Vector6::Zero(); }
+  EnergyAccount energy() const override { return {}; }
+  bool broken() const override { return false; }
+  std::string_view name() const override { return "gives_up"; }
+  std::unique_ptr<ContactLaw> clone() const override { return std::make_unique<GivesUpAfterStretch>(*this); }
+
+ private:
+  double stretch_ = 0.0;
+};
+
+TEST(DemEngine, ALawThatGivesUpInTheThreadedLoopEndsTheStepWithItsLinkNamed) {
+  for (const int threads : {1, 2}) {
+    std::vector<NetNode> nodes;
+    std::vector<EngineLink> links;
+    for (int i = 0; i < 8; ++i) nodes.push_back(make_node(Vector3(0.05 * i, 0, 0), 0.0043, i == 0 ? NodeFixity::Pinned : NodeFixity::Free));
+    for (std::size_t i = 0; i + 1 < nodes.size(); ++i) links.push_back({{i, i + 1, LinkTag::SingleWire}, std::make_unique<GivesUpAfterStretch>()});
+    EngineOptions options;
+    options.gravity = Vector3::Zero();
+    options.time_step = 1e-6;
+    options.allow_above_critical = true;
+    options.threads = threads;
+    options.parallel_threshold = 1;
+    Engine engine(nodes, std::move(links), options);
+    std::vector<Vector3> stretched;
+    for (int i = 0; i < 8; ++i) stretched.push_back(Vector3(0.05 * i + (i == 7 ? 1e-3 : 0.0), 0, 0));
+    engine.impose_positions(stretched);
+    try {
+      engine.step();
+      ADD_FAILURE() << "no exception with " << threads << " thread(s)";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("link 6 (nodes 6-7)"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("too many plastic substeps"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

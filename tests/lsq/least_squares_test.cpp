@@ -172,6 +172,53 @@ TEST(LeastSquares, MultiStartPicksTheGlobalMinimum) {
   EXPECT_GT(s.starts[0].cost, 0.3);
 }
 
+// Screening (issue 52): after 2 iterations the starts in the local minimum near x = 2 (cost
+// above 0.45 there) are far above the start heading for the global one (cost 0 at x = -1), so
+// a ratio of 1.5 stops them; the survivor ends where it ends without the screening, bit for
+// bit, whether the starts run one after the other or side by side, and after a resume.
+TEST(LeastSquares, ScreeningStopsStartsFarAboveTheLowestAndKeepsTheSurvivorsEnds) {
+  const auto starts = starts_at({{3.0}, {-3.0}, {2.5}});
+  Options plain;
+  plain.jacobi_scaling = false;
+  const Summary whole = solve(two_minima(), plain, starts);
+  Options screened = plain;
+  screened.screening = {{2, 1.5}};
+  for (unsigned side_by_side : {1u, 3u}) {
+    screened.parallel_starts = side_by_side;
+    const Summary s = solve(two_minima(), screened, starts);
+    ASSERT_TRUE(s.completed && s.best);
+    EXPECT_EQ(*s.best, 1u);
+    EXPECT_EQ(s.x, whole.x);  // bit for bit
+    EXPECT_EQ(s.starts[1].iterations, whole.starts[1].iterations);
+    EXPECT_EQ(s.starts[1].screened, 1);
+    for (std::size_t k : {0u, 2u}) {
+      EXPECT_EQ(s.starts[k].state, StartState::Done) << k;
+      EXPECT_NE(s.starts[k].message.find("screened out after 2 iterations"), std::string::npos) << s.starts[k].message;
+      EXPECT_LE(s.starts[k].iterations, 2) << k;
+      EXPECT_GT(s.starts[k].cost, 1.5 * s.starts[1].cost) << k;
+      EXPECT_LT(s.starts[k].iterations, whole.starts[k].iterations) << k;  // the screening saved iterations
+    }
+  }
+  // Stopped after every iteration and resumed: the same ends.
+  Options stopping = screened;
+  stopping.parallel_starts = 1;
+  int seen = 0;
+  stopping.after_iteration = [&](const Iteration&, const std::vector<Start>&) { return ++seen < 2; };
+  Summary part = solve(two_minima(), stopping, starts);
+  for (int resumes = 0; !part.completed && resumes < 200; ++resumes) {
+    seen = 0;
+    part = solve(two_minima(), stopping, part.starts);
+  }
+  ASSERT_TRUE(part.completed && part.best);
+  EXPECT_EQ(part.x, whole.x);
+  for (std::size_t k : {0u, 2u}) EXPECT_NE(part.starts[k].message.find("screened out"), std::string::npos);
+  Options bad = plain;
+  bad.screening = {{3, 2.0}, {3, 2.0}};
+  EXPECT_THROW(solve(two_minima(), bad, starts), std::invalid_argument);
+  bad.screening = {{3, 1.0}};
+  EXPECT_THROW(solve(two_minima(), bad, starts), std::invalid_argument);
+}
+
 TEST(LeastSquares, ResumedSolveEndsWhereTheUninterruptedOneEnds) {
   std::vector<double> t, y;
   const Problem p = decay_problem(t, y);

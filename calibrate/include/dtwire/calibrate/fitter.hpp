@@ -20,6 +20,14 @@ namespace dtwire::calibrate {
 
 enum class LossKind { Squared, Huber, Cauchy };
 
+// A screening stage of the multi-start (the lsq engine's ScreeningStage): once every start has
+// run `iterations` iterations or ended, a start whose cost exceeds cost_ratio x the lowest cost
+// of all starts is stopped; the others go on to the end they would reach without it.
+struct StartScreening {
+  int iterations = 0;
+  double cost_ratio = 0.0;
+};
+
 struct FitOptions {
   int max_iterations = 50;
   LossKind loss = LossKind::Squared;
@@ -39,6 +47,7 @@ struct FitOptions {
   // Starts solved side by side (fit --jobs); their simulator runs share the evaluator's
   // threads. Each start ends where it would alone, so the result does not depend on it.
   unsigned parallel_starts = 1;
+  std::vector<StartScreening> screening;  // in order; empty: every start runs to its end
   const std::atomic<bool>* stop_requested = nullptr;  // e.g. set by a SIGINT handler
   std::ostream* progress = nullptr;
 };

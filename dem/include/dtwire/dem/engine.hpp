@@ -100,10 +100,13 @@ class Engine {
   void impose_positions(const std::vector<Vector3>& positions);
 
   // Stability bound of the undamped system (element eigenvalue bound, docs/dem_engine.md) [s],
-  // with the tools in the run (parked ones left out).
+  // with the tools in the run (parked ones left out) and the degrees of freedom that move (a
+  // slider node with all its translations or its rotation held adds nothing there).
   double critical_time_step() const;
   double time_step() const { return dt_; }
-  void set_time_step(double dt);  // throws if above critical with every tool placed (unless allowed)
+  // A step of the caller's, kept from then on; throws if above the bound with every tool placed
+  // and every slider component released (unless allowed).
+  void set_time_step(double dt);
 
   // Changes the prescribed velocity of guided node i from the next step on (e.g. grips moved
   // by a load increment, then held while the net relaxes); for a free node on a slider support
@@ -113,7 +116,8 @@ class Engine {
   void set_guided_velocity(std::size_t i, const Vector3& velocity);
 
   // Changes the slider support of free node i: components newly held stop (their kinetic energy
-  // is taken out by the support, booked as boundary work), released ones move freely.
+  // is taken out by the support, booked as boundary work), released ones move freely. The
+  // automatic step (no time_step given) follows the new bound from the next step on.
   void set_support(std::size_t i, const std::array<bool, 3>& held_translation, bool held_rotation);
 
   void step();
@@ -159,7 +163,10 @@ class Engine {
  private:
   // After a tool or roller is added: the fixed step if one was given, else the stable step.
   void update_time_step_for_new_contact();
-  double stability_bound(bool with_parked_tools) const;
+  double automatic_time_step() const;  // safety x the bound of the run as it stands
+  void check_and_set_step(double dt);   // a given step, checked as set_time_step says
+  void refresh_automatic_step();        // after set_support: the automatic step of the new bound
+  double stability_bound(bool with_parked_tools, bool held_as_free) const;
 
   struct State;
   std::unique_ptr<State> s_;
@@ -167,6 +174,8 @@ class Engine {
   double dt_ = 0.0, time_ = 0.0;
   double last_move_ = 0.0;  // the step of the last position update
   long steps_ = 0;
+  bool caller_step_ = false;       // set_time_step was called: the step is no longer automatic
+  bool supports_changed_ = false;  // set_support since the last step: the automatic step follows
   mutable EnergySplit energy_;
   mutable bool energy_stale_ = true;
 };

@@ -60,6 +60,17 @@ struct Start {
   double cost = 0.0;
   StartState state = StartState::Pending;
   std::string message;
+  int screened = 0;  // screening stages passed (Options::screening)
+};
+
+// A screening stage of a multi-start solve: once every start has run `iterations` iterations
+// (or ended), a start still running whose cost exceeds cost_ratio x the lowest cost of all starts
+// at that point is stopped (Done, the message says so). The decision waits for every start, so
+// it does not depend on the order or the number of starts run side by side; a start that passes
+// goes on from its last accepted iterate and ends where it would without the stage.
+struct ScreeningStage {
+  int iterations = 0;       // > 0, increasing from stage to stage
+  double cost_ratio = 0.0;  // > 1
 };
 
 struct Options {
@@ -84,6 +95,8 @@ struct Options {
   // Starts solved side by side, on threads (the problem's residuals must then be thread safe);
   // each start ends where it would alone. The callbacks are called one at a time.
   unsigned parallel_starts = 1;
+  // Applied in order (empty: every start runs to its end).
+  std::vector<ScreeningStage> screening;
 };
 
 std::vector<Start> starts_at(const std::vector<std::vector<double>>& points);

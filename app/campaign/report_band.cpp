@@ -1,0 +1,124 @@
+#include "report_band.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+namespace dtwire::app {
+namespace {
+
+using nlohmann::json;
+
+std::string number(double value, int digits = 3) {
+  if (!std::isfinite(value)) return "n/a";
+  std::ostringstream s;
+  s << std::setprecision(digits) << value;
+  return s.str();
+}
+
+bool has_number(const json& o, const char* key) { return o.is_object() && o.contains(key) && o[key].is_number(); }
+
+// The standard's figure for a strip figure key (report_recommendation.hpp names the sources).
+std::string standard_of(const std::string& key) {
+  if (key == "strength_per_width_kN_per_m") return "50 kN/m";
+  if (key == "secant_EA_10_50_kN_per_m") return "about 500 kN/m";
+  return "-";
+}
+
+// The thesis sets' run's value of a figure, in the figure's unit.
+std::string thesis_value(const std::string& key, const std::string& tool, const json& strip, const json& punch) {
+  const json& run = tool == "strip_tension" ? strip : punch;
+  if (!has_number(run, key.c_str())) return "-";
+  const double factor = key == "peak_force_N" ? 1e-3 : 1.0;
+  return number(run[key].get<double>() * factor);
+}
+
+}  // namespace
+
+std::vector<std::vector<std::string>> read_sensitivity_rows(const std::string& file) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) continue;
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.emplace_back();
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+std::string band_markdown(const std::string& label, const std::vector<BandEvidence>& bands, const json& thesis_strip,
+                          const json& thesis_punch) {
+  std::ostringstream md;
+  bool any = false;
+  for (const BandEvidence& b : bands) any = any || b.label == label;
+  if (!any) return {};
+  md << "#### The recommended set's mesh figures with their band\n\n"
+     << "The fits' uncertainty carried to the mesh by `dtwire dem propagate` (docs/dem_engine.md, \"Propagating a "
+        "fit's uncertainty\"): identified parameters drawn from the fit's covariance, NOT IDENTIFIED ones uniform over "
+        "their range. Sampled bands are the 5-95 % quantiles of the runs; linearised ones the fitted set's value -+ "
+        "1.645 sqrt(J C J^T).\n\n"
+     << "| figure | fitted set | 5-95 % band | how | standard | thesis's published sets |\n|---|---|---|---|---|---|\n";
+  for (const BandEvidence& b : bands) {
+    if (b.label != label) continue;
+    if (!b.summary.is_object()) {
+      md << "| `" << b.step << "` | (no result: " << b.status << ") | | | | |\n";
+      continue;
+    }
+    const std::string tool = b.summary.value("tool", "");
+    const json& samples = b.summary.value("samples", json::object());
+    for (const json& f : b.summary.value("figures", json::array())) {
+      const std::string key = f.value("key", ""), unit = f.value("unit", "");
+      md << "| " << f.value("label", key) << " (" << unit << ") | " << (has_number(f, "fitted_set") ? number(f["fitted_set"].get<double>()) : "n/a")
+         << " | ";
+      if (f.contains("sampled") && f["sampled"].value("count", 0) > 0) {
+        const json& s = f["sampled"];
+        md << number(s.value("q05", NAN)) << " - " << number(s.value("q95", NAN)) << " | sampled, " << s.value("count", 0)
+           << " runs of " << samples.value("drawn", 0) << " drawn, " << (f.value("converged", false) ? "converged" : "**not converged**");
+        if (f.contains("linearised"))
+          md << "; linearised " << number(f["linearised"].value("q05", NAN)) << " - " << number(f["linearised"].value("q95", NAN));
+      } else if (f.contains("linearised")) {
+        md << number(f["linearised"].value("q05", NAN)) << " - " << number(f["linearised"].value("q95", NAN))
+           << " | linearised (J C J^T)";
+      } else {
+        md << "n/a | ";
+      }
+      md << " (`" << b.step << "`) | " << standard_of(key) << " | " << thesis_value(key, tool, thesis_strip, thesis_punch) << " |\n";
+    }
+  }
+  // Which parameter each figure hangs on: the largest linearised shares (or first-order indices).
+  md << "\n| step | figure | parameter (identified?) | derivative (figure unit / parameter unit) | share of the linearised variance | first-order index from the samples |\n"
+        "|---|---|---|---|---|---|\n";
+  for (const BandEvidence& b : bands) {
+    if (b.label != label || b.sensitivity.size() < 2) continue;
+    std::map<std::string, std::size_t> column;
+    for (std::size_t k = 0; k < b.sensitivity.front().size(); ++k) column[b.sensitivity.front()[k]] = k;
+    const auto cell = [&](const std::vector<std::string>& row, const char* name) {
+      const auto c = column.find(name);
+      return c == column.end() || c->second >= row.size() ? std::string() : row[c->second];
+    };
+    for (std::size_t r = 1; r < b.sensitivity.size(); ++r) {
+      const auto& row = b.sensitivity[r];
+      const std::string share = cell(row, "linearised_share_1"), index = cell(row, "first_order_index_1");
+      // Rows that carry at least 5 % of a figure's variance (either measure): the table is for reading.
+      const double weight = std::max(share.empty() ? 0.0 : std::atof(share.c_str()), index.empty() ? 0.0 : std::atof(index.c_str()) -
+                                                                                           std::atof(cell(row, "first_order_index_floor_1").c_str()));
+      if (weight < 0.05) continue;
+      md << "| `" << b.step << "` | " << cell(row, "figure") << " | " << cell(row, "parameter") << " ("
+         << cell(row, "identified") << ") | " << cell(row, "derivative_figure_unit_per_parameter_unit") << " " << cell(row, "figure_unit")
+         << "/" << cell(row, "parameter_unit") << " | " << (share.empty() ? "-" : number(100.0 * std::atof(share.c_str())) + " %")
+         << " | " << (index.empty() ? "-" : index + " (floor " + cell(row, "first_order_index_floor_1") + ")") << " |\n";
+    }
+  }
+  md << "\nRows: the parameters that carry at least 5 % of a figure's variance by either measure; every row is in "
+        "each step's sensitivity.csv.\n\n";
+  return md.str();
+}
+
+}  // namespace dtwire::app

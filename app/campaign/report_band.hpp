@@ -1,0 +1,31 @@
+#pragma once
+// The campaign summary's bands (issue 54): for the recommended set, each mesh-scale figure as
+// its value with the 5-95 % band that `dtwire dem propagate` steps carried from the fits'
+// uncertainty (sampled where a step sampled, else linearised), beside the standard's figures
+// (50 kN/m, about 500 kN/m) and the thesis's published sets' run, then which fitted parameter
+// each figure hangs on (the propagation's sensitivity table).
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace dtwire::app {
+
+struct BandEvidence {
+  std::string step;          // the `dem propagate` step
+  std::string label;         // its --label (the set)
+  std::string status;        // the step's status
+  nlohmann::json summary;    // its summary.json; null when absent
+  std::vector<std::vector<std::string>> sensitivity;  // sensitivity.csv rows (header first); empty when absent
+};
+
+// Reads sensitivity.csv as rows of cells (no quoted commas in it); empty if absent.
+std::vector<std::vector<std::string>> read_sensitivity_rows(const std::string& file);
+
+// "#### Mesh-scale figures with their band" for `label`: one row per figure of every band step
+// of the set, its references, then the sensitivities; `reference_runs` are the summaries of the
+// thesis's published sets' strip and punch (null when absent). Empty when no step bands the set.
+std::string band_markdown(const std::string& label, const std::vector<BandEvidence>& bands,
+                          const nlohmann::json& thesis_strip, const nlohmann::json& thesis_punch);
+
+}  // namespace dtwire::app
