@@ -239,7 +239,17 @@ SelfcheckResult run_selfcheck(const SelfcheckOptions& options) {
     result.trials.push_back(run_trial(next_base(), {names[0], names[1]}, ++trial_seed));
   }
 
+  score_trials(result);
+  result.family = options.family;
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+void score_trials(SelfcheckResult& result) {
   std::size_t spurious_pairs = 0;
+  result.singles_below_floor = result.singles_below_floor_none = 0;
+  std::size_t visible = 0, visible_hits = 0;
   std::size_t singles = 0, single_hits = 0, nones = 0, none_hits = 0, pairs = 0, pair_hits = 0,
               pair_partial = 0;
   double shrink_sum = 0.0;
@@ -251,6 +261,13 @@ SelfcheckResult run_selfcheck(const SelfcheckOptions& options) {
     } else if (t.truth.find('+') == std::string::npos) {
       ++singles;
       single_hits += t.predicted == t.truth;
+      if (t.gap_before > t.noise_floor) {
+        ++visible;
+        visible_hits += t.predicted == t.truth;
+      } else {
+        ++result.singles_below_floor;
+        result.singles_below_floor_none += t.predicted == "none";
+      }
       spurious_pairs += t.predicted.find('+') != std::string::npos;
       shrink_sum += t.shrink;
       if (t.parameter_error >= 0) errors.push_back(t.parameter_error);
@@ -270,6 +287,7 @@ SelfcheckResult run_selfcheck(const SelfcheckOptions& options) {
     }
   }
   result.single_top1 = fraction(single_hits, singles);
+  result.single_top1_visible = fraction(visible_hits, visible);
   result.single_mean_shrink = singles ? shrink_sum / static_cast<double>(singles) : 0.0;
   result.none_rate = fraction(none_hits, nones);
   result.spurious_pair_rate = fraction(spurious_pairs, singles);
@@ -288,14 +306,11 @@ SelfcheckResult run_selfcheck(const SelfcheckOptions& options) {
     for (const std::string& name : {t.truth, t.predicted})
       if (std::find(labels.begin(), labels.end(), name) == labels.end()) labels.push_back(name);
   result.labels = labels;
-  result.goals_met = (singles == 0 || result.single_top1 >= kGoalTop1) &&
+  // The top-1 goal is judged on the trials whose effect is visible above the noise floor.
+  result.goals_met = (visible == 0 || result.single_top1_visible >= kGoalTop1) &&
                      (singles == 0 || result.single_mean_shrink >= kGoalShrink) &&
                      (nones == 0 || result.none_rate >= kGoalNone) &&
                      (singles == 0 || result.spurious_pair_rate <= kGoalSpuriousPairs);
-  result.family = options.family;
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
 }
 
 nlohmann::json selfcheck_json(const SelfcheckResult& r) {
@@ -313,6 +328,9 @@ nlohmann::json selfcheck_json(const SelfcheckResult& r) {
   nlohmann::json confusion = nlohmann::json::object();
   for (const auto& [truth, row] : matrix) confusion[truth] = row;
   return {{"single_top1", r.single_top1},
+          {"single_top1_visible", r.single_top1_visible},
+          {"singles_below_floor", r.singles_below_floor},
+          {"singles_below_floor_read_none", r.singles_below_floor_none},
           {"single_mean_shrink", r.single_mean_shrink},
           {"none_rate", r.none_rate},
           {"spurious_pair_rate", r.spurious_pair_rate},
@@ -365,7 +383,11 @@ std::string selfcheck_markdown(const SelfcheckResult& r) {
     << r.trials.size() << " trials of synthetic laboratory curves (effect withheld from the simulation), "
     << r.seconds << " s.\n\n"
     << "| figure | value | goal |\n|---|---|---|\n"
-    << "| top-1 cause correct, single effects | " << cell(r.single_top1, singles) << " | >= " << kGoalTop1 << " |\n"
+    << "| top-1 cause correct, single effects whose gap stands above the noise floor | "
+    << cell(r.single_top1_visible, singles - r.singles_below_floor) << " | >= " << kGoalTop1 << " |\n"
+    << "| top-1 cause correct, every single effect | " << cell(r.single_top1, singles) << " | - |\n"
+    << "| single effects below the noise floor (`none` is right there): read as `none` | "
+    << r.singles_below_floor_none << " of " << r.singles_below_floor << " | - |\n"
     << "| mean gap shrink, single effects | " << cell(r.single_mean_shrink, singles) << " | >= " << kGoalShrink << " |\n"
     << "| `none` on effect-free curves | " << cell(r.none_rate, nones) << " | >= " << kGoalNone << " |\n"
     << "| pairs diagnosed on single-effect curves | " << cell(r.spurious_pair_rate, singles) << " | <= "

@@ -116,9 +116,12 @@ TEST(CampaignSplit, TheStudyRunsEveryDefaultStepAsTheDefaultDoes) {
                            "gap_sw_backbone", "gap_sw_compression", "dem_strip_nm_band"})
     EXPECT_TRUE(has(main, step)) << step;
   for (const char* step : {"macro_fit", "dt_link_fit", "dem_punch_wirepm", "gap_selfcheck", "dt_twisting", "gap_punch",
-                           "segment_fit", "export_as_made", "dem_strip_nm_sampled", "dem_punch_nm_band"})
+                           "segment_fit", "export_as_made", "dem_strip_nm_sampled", "dem_punch_nm_band", "sw_bending",
+                           "sw_fit_pull_spin_20deg", "sw_fit_pull_spin_unspin", "dt_pair_mesh"})
     EXPECT_FALSE(has(main, step)) << step << " belongs to the study";
-  for (const char* step : {"dem_strip_nm_sampled", "dem_punch_nm_band"}) EXPECT_TRUE(has(study, step)) << step;
+  for (const char* step : {"dem_strip_nm_sampled", "dem_punch_nm_band", "sw_bending", "sw_fit_pull_spin_20deg",
+                           "sw_fit_pull_spin_unspin", "dt_pair_mesh"})
+    EXPECT_TRUE(has(study, step)) << step;
 }
 
 // `dtwire campaign --study` takes the study's file (written here as a workflow: nothing runs);

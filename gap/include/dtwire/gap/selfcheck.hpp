@@ -36,7 +36,13 @@ struct SelfcheckTrial {
 struct SelfcheckResult {
   std::vector<SelfcheckTrial> trials;
   std::vector<std::string> labels;  // confusion-matrix rows and columns
-  double single_top1 = 0.0;
+  double single_top1 = 0.0;          // over every single-effect trial
+  // Single-effect trials whose gap stands above the noise floor (the laboratory's own scatter):
+  // the effect is visible in the record, so a diagnosis can be asked to find it. Below the floor
+  // no method can tell the effect from the scatter, and `none` is the right answer there.
+  double single_top1_visible = 0.0;
+  std::size_t singles_below_floor = 0;
+  std::size_t singles_below_floor_none = 0;  // of those, read as `none`
   double single_mean_shrink = 0.0;
   double none_rate = 0.0;
   double spurious_pair_rate = 0.0;  // single-effect trials diagnosed as a pair
@@ -55,6 +61,9 @@ inline constexpr double kGoalNone = 0.95;  // issue 17 (0.9 before)
 inline constexpr double kGoalSpuriousPairs = 0.05;  // issue 17 (at most)
 
 SelfcheckResult run_selfcheck(const SelfcheckOptions& options);
+
+// The figures of a set of trials (rates, shrink, confusion labels, goals); run_selfcheck calls it.
+void score_trials(SelfcheckResult& result);
 
 nlohmann::json selfcheck_json(const SelfcheckResult& result);
 std::string selfcheck_markdown(const SelfcheckResult& result);
