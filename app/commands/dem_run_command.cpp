@@ -22,6 +22,7 @@ struct RunCommandOptions {
   std::string file;
   std::string out;
   std::string yade_script;
+  std::string yade_platter = "auto";
   bool export_only = false;
   bool quiet = false;
   bool no_frames = false;
@@ -72,7 +73,11 @@ int run_dem_run(const RunCommandOptions& o) {
   const std::filesystem::path out = o.out.empty() ? std::filesystem::path("dem-out") / input.file.stem() : std::filesystem::path(o.out);
   check_resources(o, input, out);
   if (!o.yade_script.empty()) {
-    const std::string script = dem::yade_run_script(input);
+    dem::YadeScriptOptions yade;
+    yade.platter = o.yade_platter == "sphere"   ? dem::YadePlatter::Sphere
+                   : o.yade_platter == "facets" ? dem::YadePlatter::Facets
+                                                : dem::YadePlatter::Automatic;
+    const std::string script = dem::yade_run_script(input, yade);
     write_file_atomically(o.yade_script, [&](std::ostream& os) { os << script; });
     std::cout << "YADE script: " << o.yade_script << " (run: yade -n -x " << o.yade_script << " OUT.csv)\n";
     if (o.export_only) return 0;
@@ -150,6 +155,10 @@ void add_dem_run_command(CLI::App& dem, CommandSet& commands) {
   run->add_option("--threads", o->threads, "Threads for the link and node updates (default: the input's)")
       ->check(CLI::Range(1, 256));
   run->add_option("--yade-script", o->yade_script, "Also write the run as a YADE script (WirePM punch only)");
+  run->add_option("--yade-platter", o->yade_platter,
+                  "The platter in the YADE script: sphere (exact, a hemisphere platter only), facets (64 x 16 inscribed "
+                  "triangles, any height) or auto (sphere for a hemisphere; default)")
+      ->check(CLI::IsMember({"auto", "sphere", "facets"}));
   run->add_flag("--export-only", o->export_only, "Write the YADE script and stop");
   run->add_flag("--no-frames", o->no_frames, "No VTU frames");
   run->add_option("--set", o->set_entries,

@@ -33,10 +33,16 @@ std::vector<std::pair<double, double>> backbone_points(const ParameterMap& p) {
 
 }  // namespace
 
-std::string yade_run_script(const RunInput& in, int platter_segments, int platter_rings) {
-  // Rows hold the platter force averaged over 25 samples per output interval (ours: every step).
+std::string yade_run_script(const RunInput& in, const YadeScriptOptions& export_options) {
   const std::string file = in.file.string();
   if (in.tool != "platter") throw InputError(file, "tool.kind: the YADE export covers the platter punch only");
+  const bool hemisphere = std::abs(in.platter_height - in.platter_base_radius) <= 1e-12 * in.platter_base_radius;
+  if (export_options.platter == YadePlatter::Sphere && !hemisphere)
+    throw InputError(file, "tool.height_m: the sphere platter in YADE needs a hemisphere (height_m = base_radius_m = " +
+                               format_number(in.platter_base_radius) + "); found " + format_number(in.platter_height));
+  // The exact surface whenever YADE has it: the facets' reaction departs from it near the peak.
+  const bool sphere = export_options.platter == YadePlatter::Sphere ||
+                      (export_options.platter == YadePlatter::Automatic && hemisphere);
   if (!in.force_levels.empty()) throw InputError(file, "tool.force_levels_N: the YADE export covers the monotonic punch only");
   // YADE's WirePM links carry axial force only, so a middle node would be a hinge there, and its
   // net material finds double twists by consecutive ids, which a split twist no longer has.
@@ -92,6 +98,15 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
   const double young = 3.0 * kn / (4.0 * r);
   const double beta = ks / (r * young);
   const double facet_poisson = nu * beta / (2.0 * (2.0 * nu - beta));
+  // The sphere platter (radius1 = R, radius2 = r), same Ip2: E_p R = 3 kn / 2 gives kn with the
+  // nodes' E r = 3 kn / 4, and its Poisson ratio gives ks with the nodes' nu.
+  const double R = in.platter_base_radius;
+  const double sphere_young = 1.5 * kn / R;
+  const double node_shear = 0.75 * kn * nu;  // E r nu of the nodes
+  if (sphere && !(2.0 * node_shear > ks))
+    throw InputError(file, "tool.ks_N_per_m: the YADE sphere platter reaches ks < 1.5 nu kn = " +
+                               format_number(2.0 * node_shear) + " N/m only");
+  const double sphere_poisson = sphere ? ks * node_shear / (2.0 * node_shear - ks) / (sphere_young * R) : 0.0;
   const double links_expected = static_cast<double>(built.mesh.net.links.size());
   const double detection = 0.5 * (0.05 + 0.08);  // between the longest link and the nearest unlinked pair
   const double settle_steps = std::round(in.settle_time / dt_step);
@@ -153,10 +168,18 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
     s << ",\n    lambdau=" << format_number(sw.distortion.lambda_u)
       << ", seed=" << (sw.distortion.mode == DistortionMode::Random ? sw.distortion.seed : -1)
       << ", lambdaF=" << format_number(value_or(sw.parameters, "lambda_F", 1.0));
-  s << "))\n"
-    << "plate = O.materials.append(FrictMat(young=" << format_number(young) << ", poisson=" << format_number(facet_poisson)
-    << ", frictionAngle=math.atan(" << format_number(in.contact.friction) << "), density=7850.0))\n"
-    << "# Facet-sphere: kn = " << format_number(kn) << " N/m, ks = " << format_number(ks) << " N/m\n\n"
+  s << "))\n";
+  if (sphere)
+    s << "# The platter: one sphere, the exact hemisphere (node-sphere kn = " << format_number(kn) << " N/m, ks = "
+      << format_number(ks) << " N/m).\n"
+      << "plate = O.materials.append(FrictMat(young=" << format_number(sphere_young) << ", poisson="
+      << format_number(sphere_poisson);
+  else
+    s << "# The platter: " << export_options.facet_segments << " x " << export_options.facet_rings
+      << " facets inscribed in the semi-spheroid (node-facet kn = " << format_number(kn) << " N/m, ks = " << format_number(ks)
+      << " N/m); near the peak their reaction departs from the exact platter's by several percent.\n"
+      << "plate = O.materials.append(FrictMat(young=" << format_number(young) << ", poisson=" << format_number(facet_poisson);
+  s << ", frictionAngle=math.atan(" << format_number(in.contact.friction) << "), density=7850.0))\n\n"
     << "ids = O.bodies.append([sphere((n[0], n[1], n[2]), radius, material=wire, fixed=bool(n[8])) for n in nodes])\n"
        "for i, n in zip(ids, nodes):\n"
        "    O.bodies[i].state.mass = n[5]\n"
@@ -165,7 +188,10 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
        "O.engines = [\n"
        "    ForceResetter(),\n"
        "    InsertionSortCollider([Bo1_Sphere_Aabb(aabbEnlargeFactor=reach, label='aabb'), Bo1_Facet_Aabb()]),\n"
-       "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=reach, label='ig2'), Ig2_Facet_Sphere_ScGeom()],\n"
+       "    # avoidGranularRatcheting=False: the shear increment from the velocities at the contact point\n"
+       "    # (Cundall and Strack 1979), as dtwire; YADE's default levers the spins by the full radii.\n"
+       "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(interactionDetectionFactor=reach, avoidGranularRatcheting=False, label='ig2'),\n"
+       "                     Ig2_Facet_Sphere_ScGeom()],\n"
        "                    [Ip2_WireMat_WireMat_WirePhys(linkThresholdIteration=1), Ip2_FrictMat_FrictMat_FrictPhys()],\n"
        "                    [Law2_ScGeom_WirePhys_WirePM(), Law2_ScGeom_FrictPhys_CundallStrack()]),\n"
        "    NewtonIntegrator(damping=damping, gravity=(0, 0, 0), label='newton'),\n"
@@ -190,38 +216,51 @@ std::string yade_run_script(const RunInput& in, int platter_segments, int platte
        "O.run(settle_steps, True)\n"
        "lowest = min(O.bodies[i].state.pos[2] for i in ids)\n"
        "sag = -lowest\n"
-       "xs = [O.bodies[i].state.pos[0] for i in ids]; ys = [O.bodies[i].state.pos[1] for i in ids]\n"
        "cx = 0.5 * (min(n[0] for n in nodes) + max(n[0] for n in nodes)); cy = 0.5 * (min(n[1] for n in nodes) + max(n[1] for n in nodes))\n"
-       "base_z = lowest - radius - gap - height\n"
-    << "segments, rings = " << platter_segments << ", " << platter_rings << "\n"
-    << "def dome(k, j):\n"
-       "    theta = 0.5 * math.pi * k / rings; phi = 2.0 * math.pi * j / segments\n"
-       "    return Vector3(cx + base_radius * math.sin(theta) * math.cos(phi), cy + base_radius * math.sin(theta) * math.sin(phi),\n"
-       "                   base_z + height * math.cos(theta))\n"
-       "facets = []\n"
-       "for k in range(rings):\n"
-       "    for j in range(segments):\n"
-       "        a, b = dome(k, j), dome(k, j + 1); c, d = dome(k + 1, j), dome(k + 1, j + 1)\n"
-       "        if k > 0: facets.append(facet([a, d, b], material=plate, fixed=True))\n"
-       "        facets.append(facet([a, c, d], material=plate, fixed=True))\n"
-       "platter = O.bodies.append(facets)\n"
-       "for i in platter:\n"
+       "base_z = lowest - radius - gap - height\n";
+  if (sphere)
+    s << "platter = [O.bodies.append(sphere((cx, cy, base_z), base_radius, material=plate, fixed=True))]\n";
+  else
+    s << "segments, rings = " << export_options.facet_segments << ", " << export_options.facet_rings << "\n"
+      << "def dome(k, j):\n"
+         "    theta = 0.5 * math.pi * k / rings; phi = 2.0 * math.pi * j / segments\n"
+         "    return Vector3(cx + base_radius * math.sin(theta) * math.cos(phi), cy + base_radius * math.sin(theta) * math.sin(phi),\n"
+         "                   base_z + height * math.cos(theta))\n"
+         "facets = []\n"
+         "for k in range(rings):\n"
+         "    for j in range(segments):\n"
+         "        a, b = dome(k, j), dome(k, j + 1); c, d = dome(k + 1, j), dome(k + 1, j + 1)\n"
+         "        if k > 0: facets.append(facet([a, d, b], material=plate, fixed=True))\n"
+         "        facets.append(facet([a, c, d], material=plate, fixed=True))\n"
+         "platter = O.bodies.append(facets)\n";
+  s << "for i in platter:\n"
        "    O.bodies[i].state.blockedDOFs = 'xyzXYZ'\n"
        "    O.bodies[i].state.vel = Vector3(0, 0, speed)\n"
        "start = O.bodies[platter[0]].state.pos[2]\n"
        "chunk = max(1, int(round(output_interval / time_step)))\n"
-       "samples = 25\nsub = max(1, chunk // samples)\n"
        "def platter_force():\n"
        "    f = Vector3(0, 0, 0)\n"
        "    for i in platter: f += O.forces.f(i)\n"
-       "    return -f if all(math.isfinite(c) for c in f) else Vector3(0, 0, 0)\n"
-       "rows = [(0.0, 0.0, 0.0, 0.0, 0)]\n"
+       "    return -f if all(math.isfinite(c) for c in f) else Vector3(0, 0, 0)\n";
+  if (sphere)  // the mean over every step of the interval, as ours: one body, so it costs little
+    s << "def interval_mean():\n"
+         "    mean = Vector3(0, 0, 0)\n"
+         "    for k in range(chunk):\n"
+         "        O.step()\n"
+         "        mean += platter_force() / chunk\n"
+         "    return mean\n";
+  else  // summing thousands of facets every step would cost more than the run: 25 samples
+    s << "samples = 25\nsub = max(1, chunk // samples)\n"
+         "def interval_mean():\n"
+         "    mean = Vector3(0, 0, 0)\n"
+         "    for k in range(samples):\n"
+         "        O.run(sub, True)\n"
+         "        mean += platter_force() / samples\n"
+         "    return mean\n";
+  s << "rows = [(0.0, 0.0, 0.0, 0.0, 0)]\n"
        "t0 = O.time\n"
        "while True:\n"
-       "    mean = Vector3(0, 0, 0)\n"
-       "    for k in range(samples):\n"
-       "        O.run(sub, True)\n"
-       "        mean += platter_force() / samples\n"
+       "    mean = interval_mean()\n"
        "    d = O.bodies[platter[0]].state.pos[2] - start\n"
        "    linked = sum(1 for i in O.interactions if i.isReal and hasattr(i.phys, 'isLinked') and i.phys.isLinked)\n"
        "    rows.append((O.time - t0, d * 1000.0, mean.norm(), mean[2], links - linked))\n"

@@ -301,5 +301,42 @@ TEST(DemRun, YadeScriptOfThePunchNamesTheSameNet) {
   EXPECT_THROW(yade_run_script(read_run_input(write_input("macro.toml", macro))), InputError);
 }
 
+// young= and poisson= of the material appended as `name = O.materials.append(...)`.
+std::pair<double, double> script_material(const std::string& script, const std::string& name) {
+  const auto at = script.find(name + " = O.materials.append(");
+  if (at == std::string::npos) throw std::logic_error("no material " + name);
+  const auto young = script.find("young=", at), poisson = script.find("poisson=", at);
+  return {std::stod(script.substr(young + 6)), std::stod(script.substr(poisson + 8))};
+}
+
+// A hemisphere goes to YADE as one sphere whose material gives, through YADE's
+// Ip2_FrictMat_FrictMat_FrictPhys (kn = 2 Ea Ra Eb Rb / (Ea Ra + Eb Rb), ks the same with E V),
+// the input's node-platter stiffnesses; any other height as facets; a sphere asked for a
+// semi-spheroid is refused naming tool.height_m.
+TEST(DemRun, YadeScriptPlatterIsTheExactSphereForAHemisphere) {
+  const RunInput flat = read_run_input(write_input("platter_flat.toml", small_punch()));
+  EXPECT_NE(yade_run_script(flat).find("facet(["), std::string::npos);
+  YadeScriptOptions sphere;
+  sphere.platter = YadePlatter::Sphere;
+  try {
+    yade_run_script(flat, sphere);
+    ADD_FAILURE() << "a sphere platter was exported for a semi-spheroid";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("tool.height_m"), std::string::npos) << e.what();
+  }
+  const RunInput round = read_run_input(write_input("platter_round.toml", small_punch("height_m = 0.05", "height_m = 0.12")));
+  const std::string script = yade_run_script(round);
+  EXPECT_EQ(script.find("facet(["), std::string::npos);
+  EXPECT_NE(script.find("sphere((cx, cy, base_z), base_radius, material=plate"), std::string::npos);
+  EXPECT_NE(yade_run_script(round, YadeScriptOptions{YadePlatter::Facets}).find("facet(["), std::string::npos);
+  const auto [node_young, node_poisson] = script_material(script, "wire");
+  const auto [plate_young, plate_poisson] = script_material(script, "plate");
+  const double a = plate_young * round.platter_base_radius, b = node_young * round.mesh.node_radius;
+  const double kn = 2.0 * a * b / (a + b);
+  const double ks = 2.0 * a * plate_poisson * b * node_poisson / (a * plate_poisson + b * node_poisson);
+  EXPECT_NEAR(kn / round.contact.normal_stiffness, 1.0, 1e-9);
+  EXPECT_NEAR(ks / round.contact.shear_stiffness, 1.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace dtwire::dem

@@ -126,9 +126,23 @@ struct RunSummary {
 // `failed` set.
 RunSummary run_simulation(const RunInput& input, const RunOptions& options);
 
+// How the platter goes to YADE. Sphere: one sphere body, the exact surface (the platter must be
+// a hemisphere, tool.height_m = tool.base_radius_m), the force averaged over every step as ours.
+// Facets: the semi-spheroid inscribed as segments x rings triangles, the force averaged over 25
+// samples per output interval; its reaction departs from the exact platter's by several percent
+// near the peak while the net agrees link by link (docs/dem_engine.md, "The YADE export").
+// Automatic: sphere for a hemisphere, facets otherwise.
+enum class YadePlatter { Automatic, Sphere, Facets };
+
+struct YadeScriptOptions {
+  YadePlatter platter = YadePlatter::Automatic;
+  int facet_segments = 64, facet_rings = 16;
+};
+
 // Python source for `yade -n -x SCRIPT OUT.csv`: the same mesh, WirePM links, boundary,
-// pre-tension, gravity, damping, mass scale, time step and platter (facets) as the run.
-// Throws InputError if the run cannot be expressed in YADE (non-WirePM laws, selvedge, ...).
-std::string yade_run_script(const RunInput& input, int platter_segments = 64, int platter_rings = 16);
+// pre-tension, gravity, damping, mass scale, time step and platter as the run.
+// Throws InputError if the run cannot be expressed in YADE (non-WirePM laws, selvedge, a
+// sphere platter that is not a hemisphere, ...).
+std::string yade_run_script(const RunInput& input, const YadeScriptOptions& options = {});
 
 }  // namespace dtwire::dem
