@@ -39,6 +39,25 @@ std::string thesis_value(const std::string& key, const std::string& tool, const 
 
 }  // namespace
 
+std::optional<FigureBand> figure_band(const std::vector<BandEvidence>& bands, const std::string& label,
+                                      const std::string& tool, const std::string& key) {
+  std::optional<FigureBand> found;
+  for (const BandEvidence& b : bands) {
+    if (b.label != label || !b.summary.is_object() || b.summary.value("tool", "") != tool) continue;
+    for (const json& f : b.summary.value("figures", json::array())) {
+      if (f.value("key", "") != key) continue;
+      const json sampled = f.value("sampled", json::object());
+      const json linearised = f.value("linearised", json::object());
+      if (sampled.value("count", 0) > 0 && has_number(sampled, "q05") && has_number(sampled, "q95")) {
+        if (!found || !found->sampled) found = FigureBand{sampled["q05"].get<double>(), sampled["q95"].get<double>(), true, b.step};
+      } else if (!found && has_number(linearised, "q05") && has_number(linearised, "q95")) {
+        found = FigureBand{linearised["q05"].get<double>(), linearised["q95"].get<double>(), false, b.step};
+      }
+    }
+  }
+  return found;
+}
+
 std::vector<std::vector<std::string>> read_sensitivity_rows(const std::string& file) {
   std::vector<std::vector<std::string>> rows;
   std::ifstream in(file);

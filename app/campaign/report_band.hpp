@@ -4,6 +4,7 @@
 // uncertainty (sampled where a step sampled, else linearised), beside the standard's figures
 // (50 kN/m, about 500 kN/m) and the thesis's published sets' run, then which fitted parameter
 // each figure hangs on (the propagation's sensitivity table).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,20 @@ struct BandEvidence {
   nlohmann::json summary;    // its summary.json; null when absent
   std::vector<std::vector<std::string>> sensitivity;  // sensitivity.csv rows (header first); empty when absent
 };
+
+// One figure's 5-95 % band as a propagation step reported it, in the figure's unit (kN, mm, kN/m).
+struct FigureBand {
+  double q05 = 0.0, q95 = 0.0;
+  bool sampled = false;  // the sampled quantiles; false: the linearised value -+ 1.645 sd
+  std::string step;      // the `dem propagate` step that gave it
+};
+
+// The band of `key` (a headline figure of propagation_runs.hpp, e.g. "peak_force_N") for set
+// `label` from the band steps whose run is `tool` ("platter" or "strip_tension": both report a
+// displacement_at_peak_mm): a sampled band before a linearised one (it carries the response's
+// curvature); nullopt when no step bands the figure.
+std::optional<FigureBand> figure_band(const std::vector<BandEvidence>& bands, const std::string& label,
+                                      const std::string& tool, const std::string& key);
 
 // Reads sensitivity.csv as rows of cells (no quoted commas in it); empty if absent.
 std::vector<std::vector<std::string>> read_sensitivity_rows(const std::string& file);

@@ -43,6 +43,18 @@ std::string rim_cell(const json& summary) {
   return s.str();
 }
 
+// " [5-95 %: 45.1 - 60.2]": the band of a figure, `scale` from the band's unit to the table's;
+// "" when no step bands it.
+std::string band_suffix(const std::vector<BandEvidence>& bands, const std::string& label, const std::string& tool,
+                        const std::string& key, double scale, int decimals) {
+  const std::optional<FigureBand> band = figure_band(bands, label, tool, key);
+  if (!band) return {};
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(decimals) << " [5-95 %: " << band->q05 * scale << " - " << band->q95 * scale
+    << (band->sampled ? "" : ", linearised") << "]";
+  return s.str();
+}
+
 std::string step_link(const MeshScaleRun& run) { return "[" + run.step + "](#" + heading_anchor(run.step) + ")"; }
 
 }  // namespace
@@ -57,7 +69,7 @@ std::string label_of_command(const std::vector<std::string>& command) {
   return at != command.end() && at + 1 != command.end() ? *(at + 1) : std::string();
 }
 
-std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs) {
+std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs, const std::vector<BandEvidence>& bands) {
   if (runs.empty()) return {};
   std::vector<std::string> labels = expected_mesh_scale_sets();
   for (const MeshScaleRun& run : runs)
@@ -69,7 +81,9 @@ std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs) {
         "platter at the peak (membrane_at_peak.csv): the mean radial tension per metre of circumference, "
         "that of the most loaded eighth, and the net's slope there; the peak is 2 pi r x mean x "
         "tan(slope), so a set's peak moves with its strength (against the strip's) and with how far "
-        "the net is pushed before it fails (the slope).\n\n"
+        "the net is pushed before it fails (the slope). Where a `dem propagate` step carries the set's fits' "
+        "uncertainty to a figure, its 5-95 % band follows in square brackets (sampled where the step sampled, "
+        "else linearised; counts and convergence in the band section of the summary).\n\n"
      << "| set | punch onset (m) | punch peak (kN) | displacement at peak (m) | sag settled (mm) | "
         "rim at peak: tension mean / largest eighth (kN/m), slope (deg) | "
         "strip strength (kN/m) | strip secant stiffness, 10-50 % of peak (kN/m) | steps |\n"
@@ -96,9 +110,12 @@ std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs) {
       md << "not applicable: " << punch->not_applicable << " | | | | | ";
     } else if (punch) {
       const json& s = punch->summary;
-      md << cell(s, "onset_displacement_mm", 1e-3, kThesisOnsetM, 3, "no onset") << " | "
-         << cell(s, "peak_force_N", 1e-3, kThesisPeakKN, 1) << " | " << cell(s, "displacement_at_peak_mm", 1e-3, kThesisPeakM, 3)
-         << " | " << (s.contains("sag_after_settling_mm") && s["sag_after_settling_mm"].is_number()
+      // The band's units (propagation_runs.hpp): kN and mm; the table's: kN and m.
+      md << cell(s, "onset_displacement_mm", 1e-3, kThesisOnsetM, 3, "no onset")
+         << band_suffix(bands, label, "platter", "onset_displacement_mm", 1e-3, 3) << " | " << cell(s, "peak_force_N", 1e-3, kThesisPeakKN, 1)
+         << band_suffix(bands, label, "platter", "peak_force_N", 1.0, 1) << " | "
+         << cell(s, "displacement_at_peak_mm", 1e-3, kThesisPeakM, 3)
+         << band_suffix(bands, label, "platter", "displacement_at_peak_mm", 1e-3, 3) << " | " << (s.contains("sag_after_settling_mm") && s["sag_after_settling_mm"].is_number()
                           ? std::to_string(static_cast<long>(std::lround(s["sag_after_settling_mm"].get<double>())))
                           : std::string("n/a"))
          << " | " << rim_cell(s) << " | ";
@@ -106,8 +123,10 @@ std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs) {
       md << "not run | | | | | ";
     }
     if (strip) {
-      md << cell(strip->summary, "strength_per_width_kN_per_m", 1.0, kMeshStrengthKNPerM, 1) << " | "
-         << cell(strip->summary, "secant_EA_10_50_kN_per_m", 1.0, kMeshStiffnessKNPerM, 0, "undefined") << " | ";
+      md << cell(strip->summary, "strength_per_width_kN_per_m", 1.0, kMeshStrengthKNPerM, 1)
+         << band_suffix(bands, label, "strip_tension", "strength_per_width_kN_per_m", 1.0, 1) << " | "
+         << cell(strip->summary, "secant_EA_10_50_kN_per_m", 1.0, kMeshStiffnessKNPerM, 0, "undefined")
+         << band_suffix(bands, label, "strip_tension", "secant_EA_10_50_kN_per_m", 1.0, 0) << " | ";
     } else {
       md << "not run | | ";
     }

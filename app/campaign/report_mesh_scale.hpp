@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "report_band.hpp"
+
 namespace dtwire::app {
 
 struct MeshScaleRun {
@@ -28,7 +30,9 @@ const std::vector<std::string>& expected_mesh_scale_sets();
 // The label a `dem run` command gives its runs (--label VALUE), empty if none.
 std::string label_of_command(const std::vector<std::string>& command);
 
-// Markdown table (with its reference rows), then a blank line; empty if `runs` is empty.
-std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs);
+// Markdown table (with its reference rows), then a blank line; empty if `runs` is empty. A
+// figure that a `dem propagate` step of the same set bands (`bands`, report_band.hpp) is followed
+// by its 5-95 % band.
+std::string mesh_scale_table(const std::vector<MeshScaleRun>& runs, const std::vector<BandEvidence>& bands = {});
 
 }  // namespace dtwire::app

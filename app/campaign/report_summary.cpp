@@ -431,7 +431,19 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
       run.not_applicable = punch_applicability(s).value_or("");
     labelled.push_back(run);
   }
-  md << mesh_scale_table(labelled);
+  // The dem propagate steps' bands: beside each set's figures here, and as their own section in
+  // the summary for the recommended set.
+  std::vector<BandEvidence> bands;
+  for (const StepFiles& s : by_kind[Kind::Band]) {
+    BandEvidence b{s.step->name, label_of_command(s.step->command), status_name(s.outcome->status), json(), {}};
+    for (const auto& output : s.step->outputs) {
+      const std::filesystem::path file = expand(output, out, campaign_dir);
+      if (file.filename() == "summary.json" && std::filesystem::is_regular_file(file)) b.summary = read_json(file);
+      if (file.filename() == "sensitivity.csv") b.sensitivity = read_sensitivity_rows(file.string());
+    }
+    bands.push_back(b);
+  }
+  md << mesh_scale_table(labelled, bands);
   if (by_kind[Kind::Validation].empty())
     glance.push_back("**Mesh-scale validation**: no DEM mesh step yet ([validation](#mesh-scale-validation)).");
   else
@@ -496,16 +508,6 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   summary << "## Summary\n\n" << recommendation_markdown(recommendation, sets);
   if (recommendation.chosen >= 0) {
     // The chosen set's bands (dem propagate steps with its label), beside the thesis sets' runs.
-    std::vector<BandEvidence> bands;
-    for (const StepFiles& s : by_kind[Kind::Band]) {
-      BandEvidence b{s.step->name, label_of_command(s.step->command), status_name(s.outcome->status), json(), {}};
-      for (const auto& output : s.step->outputs) {
-        const std::filesystem::path file = expand(output, out, campaign_dir);
-        if (file.filename() == "summary.json" && std::filesystem::is_regular_file(file)) b.summary = read_json(file);
-        if (file.filename() == "sensitivity.csv") b.sensitivity = read_sensitivity_rows(file.string());
-      }
-      bands.push_back(b);
-    }
     json thesis_strip, thesis_punch;
     for (const SetEvidence& e : sets)
       if (e.label == "thesis published") thesis_strip = e.strip, thesis_punch = e.punch;

@@ -276,7 +276,8 @@ int run_propagate(const PropagateOptions& o) {
   for (std::size_t i = 0; i < n; ++i) base[i] = r.parameters[i].value;
   std::cout << "dem propagate: " << n << " parameters from " << fits.size() << " fit(s); the fitted set first\n" << std::flush;
   const RunOutcome base_run = runner.run(files_for(fits, base), "fitted set");
-  if (!base_run.ok) throw ComputationError("the fitted set's run stopped by its checks (" + base_run.status + "), see " + base_run.folder.string());
+  if (!base_run.ok)
+    throw ComputationError("the fitted set's run gives no figures to band (" + base_run.status + "), see " + base_run.folder.string());
   r.base_figures = base_run.figures;
   r.base_curve = base_run.curve;
   if (o.linearised) {

@@ -273,7 +273,8 @@ void write_report(const PropagationResult& r, const std::filesystem::path& out, 
   md << "\nDraws, summed over the fits (one per fit and set): " << r.accepted << " accepted, " << r.refused
      << " refused (outside a bound or an offset's order, or refused by the contact law: the truncated distribution by "
      << "rejection). " << failed << " of " << r.sample_status.size()
-     << " sets failed in their run (stopped by its checks, or the law gave up; reasons in samples.csv), left out of the "
+     << " sets failed in their run (stopped by its checks, the law gave up, or a punch that does not load the net to "
+        "failure within the travel; reasons in samples.csv), left out of the "
      << "band. DEM runs: " << r.runs_done << " ("
      << r.cache_hits << " from the cache), " << fixed(r.wall_seconds, 4) << " s.\n";
   for (const std::string& note : r.notes) md << "\n- " << note;

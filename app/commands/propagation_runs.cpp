@@ -12,6 +12,7 @@
 #include <limits>
 #include <thread>
 
+#include "../campaign/report_recommendation.hpp"
 #include "../campaign/step_process.hpp"
 #include "dtwire/calibrate/command_simulator.hpp"
 #include "dtwire/core/atomic_file.hpp"
@@ -106,6 +107,16 @@ RunOutcome PropagationRunner::run(const std::map<std::string, std::string>& para
                                                                            : std::numeric_limits<double>::quiet_NaN());
   }
   outcome.curve = read_csv(run / "out" / "curve.csv");
+  // A punch that never carries the onset force, or whose force still rises when the platter's
+  // travel ends, has not loaded the net to failure: its "peak" is no figure of the test, and the
+  // campaign report never shows it as one (report_recommendation.hpp). It is a set whose figures
+  // the test does not measure, named and left out of the band like one its checks stop.
+  if (outcome.ok && summary.value("tool", "") == "platter" && outcome.curve.has("tool_displacement") &&
+      outcome.curve.has("tool_force"))
+    if (const auto why = punch_not_applicable(outcome.curve.si("tool_displacement"), outcome.curve.si("tool_force"))) {
+      outcome.ok = false;
+      outcome.status = "not applicable: " + *why;
+    }
   return outcome;
 }
 

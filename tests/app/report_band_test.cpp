@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "campaign/report_band.hpp"
+#include "campaign/report_mesh_scale.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -54,6 +55,50 @@ TEST(ReportBand, TheRecommendedSetsFiguresWithTheirBandAndReferences) {
   // A band step that has not run is named.
   const std::string missing = band_markdown("section + N-M fit", {{"dem_strip_nm_band", "section + N-M fit", "blocked", json(), {}}}, json(), json());
   EXPECT_NE(missing.find("(no result: blocked)"), std::string::npos) << missing;
+}
+
+// The mesh-scale table's punch cells of a set carry the band of its punch propagation (sampled
+// before linearised), in the table's units (kN, m); a strip band's displacement_at_peak_mm (the
+// same key) does not reach the punch's column, and another set's figures stay bare.
+TEST(ReportBand, TheMeshScaleTableCarriesThePunchBand) {
+  const json punch_summary = {{"label", "section + N-M fit"}, {"tool", "platter"}, {"onset_displacement_mm", 234.4},
+                              {"peak_force_N", 56809.7}, {"displacement_at_peak_mm", 615.0}, {"sag_after_settling_mm", 96.6}};
+  const json punch_band = {
+      {"tool", "platter"},
+      {"samples", {{"drawn", 40}}},
+      {"figures",
+       json::array({json{{"key", "peak_force_N"}, {"unit", "kN"}, {"fitted_set", 56.81},
+                         {"linearised", {{"sd", 1.0}, {"q05", 55.2}, {"q95", 58.4}}},
+                         {"sampled", {{"count", 38}, {"q05", 41.73}, {"q95", 60.21}}}},
+                    json{{"key", "displacement_at_peak_mm"}, {"unit", "mm"}, {"fitted_set", 615.0},
+                         {"linearised", {{"sd", 10.0}, {"q05", 598.6}, {"q95", 631.4}}}}})}};
+  const json strip_band = {
+      {"tool", "strip_tension"},
+      {"figures", json::array({json{{"key", "displacement_at_peak_mm"}, {"unit", "mm"}, {"fitted_set", 50.0},
+                                    {"linearised", {{"sd", 1.0}, {"q05", 48.4}, {"q95", 51.6}}}},
+                               json{{"key", "strength_per_width_kN_per_m"}, {"unit", "kN/m"}, {"fitted_set", 71.4},
+                                    {"linearised", {{"sd", 2.0}, {"q05", 68.1}, {"q95", 74.7}}}}})}};
+  const std::vector<BandEvidence> bands = {{"dem_punch_nm_band", "section + N-M fit", "done", punch_band, {}},
+                                           {"dem_strip_nm_band", "section + N-M fit", "done", strip_band, {}}};
+  const std::vector<MeshScaleRun> runs = {{"section + N-M fit", "dem_punch_nm", "done", punch_summary},
+                                          {"thesis published", "dem_punch_thesis", "done", punch_summary}};
+  const std::string md = mesh_scale_table(runs, bands);
+  EXPECT_NE(md.find("| section + N-M fit | 0.234 (+17 %) | 56.8 (+127 %) [5-95 %: 41.7 - 60.2] | "
+                    "0.615 (+16 %) [5-95 %: 0.599 - 0.631, linearised] | 97 |"),
+            std::string::npos) << md;
+  EXPECT_NE(md.find("| thesis published | 0.234 (+17 %) | 56.8 (+127 %) | 0.615 (+16 %) | 97 |"), std::string::npos) << md;
+
+  const auto peak = figure_band(bands, "section + N-M fit", "platter", "peak_force_N");
+  ASSERT_TRUE(peak.has_value());
+  EXPECT_TRUE(peak->sampled);
+  EXPECT_EQ(peak->step, "dem_punch_nm_band");
+  const auto elongation = figure_band(bands, "section + N-M fit", "strip_tension", "displacement_at_peak_mm");
+  ASSERT_TRUE(elongation.has_value());
+  EXPECT_DOUBLE_EQ(elongation->q05, 48.4);
+  EXPECT_FALSE(figure_band(bands, "section + N-M fit", "platter", "onset_displacement_mm").has_value());
+  // A step without a result bands nothing.
+  EXPECT_FALSE(figure_band({{"dem_punch_nm_band", "section + N-M fit", "blocked", json(), {}}}, "section + N-M fit", "platter",
+                           "peak_force_N").has_value());
 }
 
 TEST(ReportBand, ReadsTheSensitivityCsv) {
