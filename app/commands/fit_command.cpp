@@ -110,6 +110,7 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
     }
     calibrate::FitReadOptions read;
     read.targets_directory = options->targets;
+    read.only_experiments = options->experiments;
     auto def = calibrate::read_fit_file(options->file, read);
     if (!options->experiments.empty()) keep_only_experiments(def, options->experiments);
     if (!options->initial.empty()) {

@@ -391,6 +391,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     throw InputError(name, experiments ? static_cast<int>(experiments->source().begin.line) : 0, 0,
                      "field 'experiment': expected at least one [[experiment]] table");
   index = 0;
+  std::vector<std::string> names_in_file;
   for (const toml::node& node : *experiments->as_array()) {
     const toml::table& raw = *node.as_table();
     const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
@@ -402,8 +403,11 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
       if (x.has(key) && def.simulator != "dem_specimen") x.fail(x.get(key), key, "only for kind = \"dem_specimen\"");
     Experiment e;
     e.name = x.text("name");
-    for (const auto& other : def.experiments)
-      if (other.name == e.name) x.fail(x.get("name"), "name", "experiment '" + e.name + "' defined twice");
+    if (std::find(names_in_file.begin(), names_in_file.end(), e.name) != names_in_file.end())
+      x.fail(x.get("name"), "name", "experiment '" + e.name + "' defined twice");
+    names_in_file.push_back(e.name);
+    const auto& only = options.only_experiments;
+    if (!only.empty() && std::find(only.begin(), only.end(), e.name) == only.end()) continue;
     const auto [target, synthesized_name] = target_path(x, folder, options);
     std::vector<const toml::node*> mapping_nodes;
     const std::vector<ColumnMapping> mapping = column_mapping(x, name, mapping_nodes);
@@ -553,6 +557,12 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     }
     def.experiments.push_back(std::move(e));
   }
+  for (const std::string& wanted : options.only_experiments)
+    if (std::find(names_in_file.begin(), names_in_file.end(), wanted) == names_in_file.end()) {
+      std::string held;
+      for (const std::string& n : names_in_file) held += (held.empty() ? "" : ", ") + n;
+      throw InputError(name, "--experiments: no experiment '" + wanted + "' in the file (it has: " + held + ")");
+    }
   check_parameters_are_read(def, parameter_tables);
   return def;
 }

@@ -149,6 +149,29 @@ TEST_F(FitFileTest, MissingTargetFileIsAnInputError) {
   EXPECT_NE(std::string(e.what()).find("absent.csv"), std::string::npos) << e.what();
 }
 
+// `fit --experiments`: a fit of part of a file reads only those experiments, so the others'
+// target files need not exist (the default campaign fits the SW segment set without the study's
+// pull-spin curves); a name the file lacks is an InputError listing the file's experiments.
+TEST_F(FitFileTest, OnlyTheChosenExperimentsAreRead) {
+  const std::string text = kValid +
+                           "[[experiment]]\n"
+                           "name = \"elsewhere\"\n"
+                           "target = \"absent.csv\"\n"
+                           "abscissa = \"strain\"\n"
+                           "channels = [\"stress\"]\n"
+                           "path_strain_1 = [0, 0.01]\n";
+  FitReadOptions only_mono;
+  only_mono.only_experiments = {"mono"};
+  const FitDefinition def = read_fit_file(write(text), only_mono);
+  ASSERT_EQ(def.experiments.size(), 1u);
+  EXPECT_EQ(def.experiments[0].name, "mono");
+  EXPECT_NE(std::string(error_of(text).what()).find("absent.csv"), std::string::npos);
+  FitReadOptions unknown;
+  unknown.only_experiments = {"mono", "monotonic"};
+  const std::string message = error_of(text, unknown).what();
+  EXPECT_NE(message.find("no experiment 'monotonic' in the file (it has: mono, elsewhere)"), std::string::npos) << message;
+}
+
 TEST_F(FitFileTest, BadTargetCsvNamesItsOwnLine) {
   std::ofstream(dir_ / "target.csv") << "strain_1,stress_MPa\n0,0\n0.001,abc\n0.01,320\n";
   const InputError e = error_of(kValid);

@@ -40,6 +40,10 @@ struct FitReadOptions {
   // Replaces the placeholder {targets} at the start of `target` paths (e.g. the folder where a
   // campaign wrote its FE curves); empty: not given.
   std::filesystem::path targets_directory;
+  // Non-empty: only these experiments are read (their targets too); the others are skipped, so
+  // a fit of part of a file (`fit --experiments`) does not need the rest's target files. A name
+  // the file does not have is an InputError listing the file's experiments.
+  std::vector<std::string> only_experiments;
 };
 
 // Throws InputError (file:line:column, field, what was expected) for any bad entry and for
