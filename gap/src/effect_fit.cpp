@@ -82,24 +82,16 @@ std::vector<double> solve_continuous(const FlatObjective& objective, const std::
   return summary.best ? continuous.flat_of(summary.x) : starts.front();
 }
 
-// Each grid value of each grid parameter in turn, the continuous parameters refitted for it from
-// the best answer so far and from every start of the multi-start: with a grid value set the
-// effect can be piecewise constant in the continuous parameters (stick-slip steps), so a
-// derivative-based refit keeps its start's staircase phase and only more starts find another.
-std::vector<double> search_grid(const FlatObjective& objective, std::vector<double> flat,
-                                const std::vector<std::vector<double>>& starts) {
+// Each grid value of each grid parameter in turn, the continuous parameters refitted for it.
+std::vector<double> search_grid(const FlatObjective& objective, std::vector<double> flat) {
   for (std::size_t j = 0; j < objective.specs.size(); ++j) {
     if (objective.specs[j].grid.empty()) continue;
     double best = objective.sse(flat);
     std::vector<double> best_flat = flat;
     for (double v : objective.specs[j].grid) {
-      std::vector<std::vector<double>> from = {flat};
-      for (const auto& start : starts)
-        if (start.size() == flat.size()) from.push_back(start);
-      for (auto& start : from)
-        for (std::size_t k = 0; k < start.size(); ++k)
-          if (!objective.specs[k].grid.empty()) start[k] = k == j ? v : flat[k];
-      std::vector<double> trial = solve_continuous(objective, from);
+      std::vector<double> trial = flat;
+      trial[j] = v;
+      trial = solve_continuous(objective, {trial});
       const double sse = objective.sse(trial);
       if (sse < best) {
         best = sse;
@@ -162,7 +154,7 @@ std::vector<double> minimise(const FlatObjective& objective, std::vector<std::ve
       best = flat;
     }
   }
-  return search_grid(objective, best, starts);
+  return search_grid(objective, best);
 }
 
 std::vector<double> weighted(const FitProblem& problem, const EffectFit& fit) {
