@@ -122,7 +122,7 @@ int run_dem_run(const RunCommandOptions& o) {
             << s.settle_time_step << " s), " << s.wall_seconds << " s wall\n"
             << "sag after settling " << 1000.0 * s.sag << " mm; peak force " << s.peak_force / 1000.0 << " kN at "
             << 1000.0 * s.displacement_at_peak << " mm; broken links " << s.broken_links
-            << "; largest energy balance error " << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"
+            << (s.stopped_at_failure ? " (stopped at the net's failure)" : "") << "; largest energy balance error " << 100.0 * s.largest_balance_error << " % of the work on the mesh\n"
             << "-> " << (out / "curve.csv").string() << ", " << (out / "results.h5").string() << "\n";
   if (s.failed) {
     // The partial results stay, marked failed (summary.json "status", curve.csv, results.h5).

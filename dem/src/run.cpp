@@ -241,6 +241,7 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   // (exponential moving average): the instantaneous node-platter force chatters far above its mean.
   double smoothed_force = 0.0;
   double next_output = t0, next_frame = t0;
+  double recorded_peak = 0.0;  // the largest recorded (interval-mean) force, as the summary's peak
   Vector3 impulse = Vector3::Zero();  // sum over the steps of the interval of the tool's force on the net
   long steps_in_interval = 0;
   const double frame_interval = in.frames > 0 ? expected / in.frames : 0.0;
@@ -269,12 +270,18 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
       steps_in_interval = 0;
       next_output += in.output_interval;
       if (summary.failed) break;
+      // The net has failed: links broke and the recorded force fell below the stated fraction
+      // of its peak; the rest of the travel would only push the platter through the hole.
+      recorded_peak = std::max(recorded_peak, mean.norm());
+      if (in.stop_below_peak_fraction > 0.0 && engine->broken_links() > 0 &&
+          mean.norm() < in.stop_below_peak_fraction * recorded_peak)
+        summary.stopped_at_failure = true;
     }
-    if (options.write_frames && frame_interval > 0.0 && (engine->time() >= next_frame || done)) {
+    if (options.write_frames && frame_interval > 0.0 && (engine->time() >= next_frame || done || summary.stopped_at_failure)) {
       recorder.frame(*engine, elapsed);
       next_frame += frame_interval;
     }
-    if (done) break;
+    if (done || summary.stopped_at_failure) break;
     // Cyclic punch: reverse at each force level, reload near zero force.
     if (in.tool == "platter" && !in.force_levels.empty()) {
       smoothed_force += std::min(1.0, engine->time_step() / in.output_interval) * (force - smoothed_force);

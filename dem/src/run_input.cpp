@@ -379,7 +379,8 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
   if (!tool) r.fail(nullptr, "tool", "missing table");
   r.check_keys(*tool, "tool.", {"kind", "base_radius_m", "height_m", "gap_m", "speed_m_per_s", "travel_m",
                                 "force_levels_N", "unload_force_N", "side_m", "corner_plane_m", "mass_kg",
-                                "duration_s", "kn_N_per_m", "ks_N_per_m", "friction", "direction", "clamp_depth_m"});
+                                "duration_s", "kn_N_per_m", "ks_N_per_m", "friction", "direction", "clamp_depth_m",
+                                "stop_below_peak_fraction"});
   in.tool = r.text(*tool, "tool.", "kind", "platter");
   if (in.tool == "strip_tension") read_strip_tension(r, root, *tool, in);
   else if (in.tool != "platter" && in.tool != "boulder" && in.tool != "none")
@@ -403,6 +404,11 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
     }
   }
   in.unload_force = r.number(*tool, "tool.", "unload_force_N", in.unload_force, true);
+  in.stop_below_peak_fraction =
+      r.ranged(*tool, "tool.", "stop_below_peak_fraction", 0.0, 0.0, 0.99, "a fraction of the peak force in [0, 0.99] (0: the whole travel)");
+  if (in.stop_below_peak_fraction > 0.0 && (in.tool != "platter" || !in.force_levels.empty()))
+    r.fail(tool->get("stop_below_peak_fraction"), "tool.stop_below_peak_fraction",
+           "only for a monotonic punch (kind = \"platter\" without force_levels_N)");
   if (!in.force_levels.empty() && in.unload_force >= *std::min_element(in.force_levels.begin(), in.force_levels.end()))
     r.fail(tool->get("unload_force_N") ? tool->get("unload_force_N") : tool->get("force_levels_N"), "tool.unload_force_N",
            "expected a force below the smallest of force_levels_N (the platter reloads below it)");

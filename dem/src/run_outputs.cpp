@@ -359,6 +359,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
     headline["onset_displacement_mm"] = summary.onset < 0.0 ? nlohmann::json() : nlohmann::json(1000.0 * summary.onset);
     headline["onset_force_N"] = 1000.0;
     headline["force_at_420mm_N"] = summary.force_at_420mm;
+    headline["stopped_at_failure"] = summary.stopped_at_failure;
   }
   if (!at_peak_.sections.empty()) {
     // The innermost section, just outside the platter's base: F = 2 pi r T tan(slope).

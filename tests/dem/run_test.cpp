@@ -338,5 +338,50 @@ TEST(DemRun, YadeScriptPlatterIsTheExactSphereForAHemisphere) {
   EXPECT_NEAR(ks / round.contact.shear_stiffness, 1.0, 1e-9);
 }
 
+
+// tool.stop_below_peak_fraction: the push ends at the first recorded row where a link has broken
+// and the force is below the fraction of the largest recorded force; every row up to it is the
+// full push's, bit for bit (the small punch breaks 3 links and drops to 3.4 kN from 10.4 kN).
+TEST(DemRun, PunchStopsAtTheNetsFailureWithTheCurveUpToItUnchanged) {
+  RunOptions options;
+  options.quiet = true;
+  options.write_frames = false;
+  options.threads = 1;
+  const auto full_path = write_input("stop_full.toml", small_punch());
+  options.out = full_path.parent_path() / "out_stop_full";
+  const RunSummary full = run_simulation(read_run_input(full_path), options);
+  const double fraction = 0.5;
+  const auto stop_path = write_input("stop.toml", small_punch("travel_m = 0.2", "travel_m = 0.2\nstop_below_peak_fraction = 0.5"));
+  options.out = full_path.parent_path() / "out_stop";
+  const RunSummary stopped = run_simulation(read_run_input(stop_path), options);
+  EXPECT_FALSE(full.stopped_at_failure);
+  EXPECT_TRUE(stopped.stopped_at_failure);
+  // The row the criterion picks in the full run's curve.
+  const std::vector<double> force = full.history.channel("tool_force").values;
+  const std::vector<double> broken = full.history.channel("broken_links").values;
+  std::size_t stop_row = force.size();
+  double peak = 0.0;
+  for (std::size_t r = 0; r < force.size() && stop_row == force.size(); ++r) {
+    peak = std::max(peak, force[r]);
+    if (broken[r] > 0.0 && force[r] < fraction * peak) stop_row = r;
+  }
+  ASSERT_LT(stop_row + 1, force.size()) << "the full push must go on past the failure";
+  ASSERT_EQ(stopped.history.size(), stop_row + 1);
+  for (const Channel& column : full.history.channels()) {
+    const std::vector<double>& b = stopped.history.channel(column.quantity).values;
+    for (std::size_t r = 0; r <= stop_row; ++r) ASSERT_EQ(column.values[r], b[r]) << column.quantity << " row " << r;
+  }
+  EXPECT_EQ(stopped.peak_force, full.peak_force);
+  EXPECT_EQ(stopped.displacement_at_peak, full.displacement_at_peak);
+  EXPECT_EQ(stopped.onset, full.onset);
+  EXPECT_LT(stopped.steps, full.steps);
+  // Only for a monotonic punch, a fraction in [0, 0.99].
+  expect_bad_input("stop_range.toml", small_punch("travel_m = 0.2", "travel_m = 0.2\nstop_below_peak_fraction = 1.5"),
+                   "tool.stop_below_peak_fraction");
+  expect_bad_input("stop_cyclic.toml",
+                   small_punch("travel_m = 0.2", "travel_m = 0.2\nstop_below_peak_fraction = 0.5\nforce_levels_N = [500.0]"),
+                   "tool.stop_below_peak_fraction");
+}
+
 }  // namespace
 }  // namespace dtwire::dem

@@ -61,6 +61,9 @@ struct RunInput {
   double travel = 0.7;       // platter travel [m]
   std::vector<double> force_levels;  // cyclic punch: reverse at each force [N]
   double unload_force = 100.0;       // cyclic punch: reload below this force [N]
+  // Monotonic punch: the push ends once the net has failed, i.e. a link has broken and the
+  // recorded force has fallen below this fraction of its peak (0: the whole travel).
+  double stop_below_peak_fraction = 0.0;
   double boulder_side = 0.30, boulder_corner_plane = 0.1875, boulder_mass = 44.5;
   double duration = 0.0;  // [s] after settling (impact); 0: until the platter travel is done
   double output_interval = 0.05;  // [s]
@@ -115,6 +118,7 @@ struct RunSummary {
   double settle_time_step = 0.0;  // the settling's (the tool parked: a longer step)
   std::size_t nodes = 0, links = 0, broken_links = 0;
   long steps = 0;
+  bool stopped_at_failure = false;  // the push ended by tool.stop_below_peak_fraction
   double wall_seconds = 0.0;
   StripFigures strip;  // kind = "strip_tension" only
   std::optional<FailedCheck> failed;  // the check that stopped the run (its results are partial)
