@@ -338,7 +338,6 @@ TEST(DemRun, YadeScriptPlatterIsTheExactSphereForAHemisphere) {
   EXPECT_NEAR(ks / round.contact.shear_stiffness, 1.0, 1e-9);
 }
 
-
 // tool.stop_below_peak_fraction: the push ends at the first recorded row where a link has broken
 // and the force is below the fraction of the largest recorded force; every row up to it is the
 // full push's, bit for bit (the small punch breaks 3 links and drops to 3.4 kN from 10.4 kN).
