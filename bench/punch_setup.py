@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Timed run (not a test): the default campaign's slack-state macro-element punch (steps
-dem_punch_thesis and dem_punch_nm: experiments/dem/punch_macro.toml, no pre-tension, wall 0.1 m
-below, 40 s of settling, platter kn 1e8, ks 1e7) by two builds, one after the other on one
+"""Timed run (not a test): the slack-state macro-element punch of the stop's comparison (issue 52:
+experiments/dem/punch_macro.toml, no pre-tension, wall 0.1 m below, 40 s of settling as the
+campaign had it before it settled to rest, platter kn 1e8, ks 1e7) by two builds, one after the other on one
 thread: "before" (e.g. main's dtwire, the whole 0.75 m of travel) and "after" (this branch's, with
 the campaign's tool.stop_below_peak_fraction), with the thesis's published sets and, if given,
 the recommended sets of a campaign's export folder. Reports per run the CPU seconds (user + sys

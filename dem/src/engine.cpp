@@ -285,6 +285,13 @@ void Engine::set_support(std::size_t i, const std::array<bool, 3>& held_translat
   supports_changed_ = true;  // the automatic step follows at the next step (the bound is a sweep)
 }
 
+void Engine::arrest() { arrest_pending_ = true; }
+
+void Engine::set_local_damping(double alpha) {
+  if (!(alpha >= 0.0 && alpha < 1.0)) throw std::invalid_argument("local damping " + std::to_string(alpha) + ": expected a value in [0, 1)");
+  options_.local_damping = alpha;
+}
+
 std::size_t Engine::node_count() const { return s_->nodes.size(); }
 std::size_t Engine::link_count() const { return s_->links.size(); }
 const NetNode& Engine::node(std::size_t i) const { return s_->nodes.at(i); }

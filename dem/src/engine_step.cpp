@@ -2,6 +2,7 @@
 // (docs/dem_engine.md: the energy bookkeeping).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -252,6 +253,8 @@ void Engine::step() {
   // 3. Nodes: gather in a fixed order, damp, integrate.
   const Vector3 gravity = options_.gravity;
   const double alpha = options_.local_damping;
+  const bool arrest = arrest_pending_;
+  arrest_pending_ = false;
   const auto node_loop = [&] {
 #pragma omp for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -298,6 +301,14 @@ void Engine::step() {
     hold(node, s.v[i], s.w[i]);
     s.node_kinetic[i] = 0.5 * free_components(node, v_old).dot(s.v[i]) / s.inverse_mass[i] +
                         0.5 * w_old.dot(s.w[i]) / s.inverse_inertia[i];
+    if (arrest) {
+      // Kinetic damping: the node stops where this step leaves it. The kinetic energy the step
+      // would have given it (the synchronised form, so the balance stays exact) is dissipated.
+      s.node_damping_work[i] += s.node_kinetic[i];
+      s.node_kinetic[i] = 0.0;
+      s.v[i] -= free_components(node, s.v[i]);
+      s.w[i].setZero();
+    }
   }
   };
   if (threads > 1 && n >= options_.parallel_threshold) {
@@ -394,6 +405,23 @@ RelaxResult Engine::relax(double tolerance, long max_steps) {
   }
   for (std::size_t j = 0; j < s_->tools.size(); ++j) s_->tools[j].tool->velocity = held[j];
   return result;
+}
+
+double Engine::unbalanced_force_ratio() const {
+  const State& s = *s_;
+  double unbalanced = 0.0, link_force = 0.0;
+  std::size_t free_nodes = 0;
+  for (std::size_t i = 0; i < s.nodes.size(); ++i) {
+    if (s.nodes[i].fixity != NodeFixity::Free) continue;
+    Vector3 f = s.force[i], unused = Vector3::Zero();
+    hold(s.nodes[i], f, unused);  // a held component's force is the support's
+    unbalanced += f.norm();
+    ++free_nodes;
+  }
+  for (const LinkLoad& load : s.link_load) link_force += load.force_on_a.norm();
+  if (free_nodes == 0) return 0.0;
+  if (s.link_load.empty() || !(link_force > 0.0)) return std::numeric_limits<double>::infinity();
+  return (unbalanced / static_cast<double>(free_nodes)) / (link_force / static_cast<double>(s.link_load.size()));
 }
 
 const EnergySplit& Engine::energy() const {

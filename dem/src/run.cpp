@@ -12,6 +12,7 @@
 #include "dtwire/dem/length_rescaling.hpp"
 #include "dtwire/dem/wirepm.hpp"
 #include "run_outputs.hpp"
+#include "settle.hpp"
 #include "supports.hpp"
 
 namespace dtwire::dem {
@@ -126,7 +127,8 @@ double settled_sag(const RunInput& in, const RunOptions& options) {
   const HexMesh mesh = built.mesh;
   Engine engine(built.mesh.net.nodes, std::move(built.links), engine_options);
   if (in.pretension_strain > 0.0) engine.impose_positions(pretensioned_positions(in, mesh));
-  while (engine.time() < in.settle_time) engine.step();
+  WaitingWall no_wall;  // the pre-load and the slack state's wall exclude each other
+  settle(engine, in, no_wall);
   double lowest = 0.0;
   for (std::size_t i = 0; i < engine.node_count(); ++i) lowest = std::min(lowest, engine.position(i).z());
   return -lowest;
@@ -182,6 +184,7 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   const HexMesh mesh_copy = [&] { HexMesh m = built.mesh; return m; }();
   std::unique_ptr<Engine> engine;
   const Vector3 centre = panel_centre(built.mesh);
+  WaitingWall wall;
   try {
     engine = std::make_unique<Engine>(built.mesh.net.nodes, std::move(built.links), engine_options);
     if (in.tool != "none") {
@@ -193,11 +196,13 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
       engine->add_tool(std::move(tool), /*parked=*/true);
     }
     if (in.wall_below > 0.0) {
-      // The slack state's wall (tool 1): its surface wall_below under the nodes' lowest surface.
-      auto wall = std::make_unique<PlaneWall>(Vector3::UnitZ());
-      wall->position = Vector3(centre.x(), centre.y(), -in.mesh.node_radius - in.wall_below);
-      wall->contact = in.contact;
-      engine->add_tool(std::move(wall));
+      // The slack state's wall (tool 1): its surface wall_below under the nodes' lowest surface,
+      // parked until the net comes near it (settle.hpp).
+      const double surface_z = -in.mesh.node_radius - in.wall_below;
+      auto plane = std::make_unique<PlaneWall>(Vector3::UnitZ());
+      plane->position = Vector3(centre.x(), centre.y(), surface_z - 10.0);
+      plane->contact = in.contact;
+      wall = WaitingWall(engine->add_tool(std::move(plane), /*parked=*/true), surface_z);
     }
   } catch (const std::invalid_argument& e) {
     throw InputError(in.file.string(), std::string(in.engine.time_step > 0.0 ? "dynamics.time_step_s: " : "") + e.what());
@@ -210,8 +215,15 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   summary.links = engine->link_count();
   summary.settle_time_step = engine->time_step();
 
-  // Phase 1: settle under gravity (and the pre-tension).
-  while (engine->time() < in.settle_time) engine->step();
+  // Phase 1: settle under gravity (and the pre-tension), to rest if the input asks.
+  const SettleRecord settled = settle(*engine, in, wall);
+  summary.settle_seconds = settled.time;
+  summary.settled_at_rest = settled.at_rest;
+  summary.settle_unbalanced_ratio = settled.unbalanced_ratio;
+  summary.settle_arrests = settled.arrests;
+  if (in.settle_rest_ratio > 0.0 && !settled.at_rest)
+    std::cerr << "[dem run] warning: the net is not at rest after " << settled.time << " s of settling (unbalanced-force ratio "
+              << settled.unbalanced_ratio << ", asked below " << in.settle_rest_ratio << "); the tool starts all the same\n";
   double lowest = std::numeric_limits<double>::max(), highest = -lowest;
   for (std::size_t i = 0; i < node_count; ++i) {
     lowest = std::min(lowest, engine->position(i).z());
@@ -220,6 +232,7 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   summary.sag = -lowest;
   summary.pretension_strain = in.pretension_strain;
   summary.kinetic_after_settling = engine->energy().kinetic;
+  wall.enter(*engine);
   if (in.wall_below > 0.0) hold_supports_in_place(*engine, mesh_copy, in);
 
   // Phase 2: the tool.
@@ -307,6 +320,7 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   }
   if (!options.quiet) std::cerr << "\n";
   summary.steps = engine->steps_taken();
+  summary.wall_entered_at = wall.entered_at();
   summary.broken_links = engine->broken_links();
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   recorder.finish(*engine, summary);

@@ -356,7 +356,8 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
 
   if (const toml::table* dynamics = r.table(root, "dynamics")) {
     r.check_keys(*dynamics, "dynamics.", {"gravity_m_per_s2", "local_damping", "mass_scale", "rotational_inertia_scale",
-                                          "safety", "time_step_s", "threads", "settle_s"});
+                                          "safety", "time_step_s", "threads", "settle_s",
+                                          "settle_rest_ratio"});
     in.engine.gravity = Vector3(0.0, 0.0, -r.ranged(*dynamics, "dynamics.", "gravity_m_per_s2", 9.81, 0.0, kHuge,
                                                     "an acceleration >= 0 (it acts along -z)"));
     in.engine.local_damping = r.number(*dynamics, "dynamics.", "local_damping", 0.0);
@@ -369,6 +370,11 @@ RunInput read_run_input(const std::filesystem::path& file, const std::vector<std
     in.engine.time_step = r.number(*dynamics, "dynamics.", "time_step_s", 0.0, true);
     in.engine.threads = static_cast<int>(r.integer(*dynamics, "dynamics.", "threads", 1, 1, 256));
     in.settle_time = r.ranged(*dynamics, "dynamics.", "settle_s", 0.0, 0.0, kHuge, "a time >= 0 s");
+    in.settle_rest_ratio = r.ranged(*dynamics, "dynamics.", "settle_rest_ratio", 0.0, 0.0, 1.0,
+                                    "an unbalanced-force ratio in [0, 1] (0: settle for settle_s)");
+    if (in.settle_rest_ratio > 0.0 && !(in.settle_time > 0.0))
+      r.fail(dynamics->get("settle_rest_ratio"), "dynamics.settle_rest_ratio",
+             "needs dynamics.settle_s > 0: the longest the net may take to come to rest");
   }
 
   if ((in.presag > 0.0 || in.wall_below > 0.0) && !(in.settle_time > 0.0))

@@ -217,6 +217,10 @@ void add_engine_parameters(Results& results, const RunInput& input, const RunSum
   parameter("time_step_s", summary.time_step, "s");
   parameter("critical_time_step_s", summary.critical_time_step, "s");
   parameter("settle_time_step_s", summary.settle_time_step, "s");
+  parameter("settle_s", summary.settle_seconds, "s");
+  parameter("settle_rest_ratio", input.settle_rest_ratio, "1");
+  if (std::isfinite(summary.settle_unbalanced_ratio))  // infinite while no link carries force
+    parameter("settle_unbalanced_force_ratio", summary.settle_unbalanced_ratio, "1");
   parameter("mass_scale", input.engine.mass_scale, "1");
   parameter("rotational_inertia_scale", input.engine.rotational_inertia_scale, "1");
   parameter("local_damping", input.engine.local_damping, "1");
@@ -351,6 +355,11 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
       {"damping_share_to_peak_percent", 100.0 * damping_share_to_peak},
       {"time_step_s", summary.time_step},
       {"settle_time_step_s", summary.settle_time_step},
+      {"settle_s", summary.settle_seconds},
+      {"settled_at_rest", input_.settle_rest_ratio > 0.0 ? nlohmann::json(summary.settled_at_rest) : nlohmann::json()},
+      {"settle_unbalanced_force_ratio", std::isfinite(summary.settle_unbalanced_ratio) ? nlohmann::json(summary.settle_unbalanced_ratio) : nlohmann::json()},
+      {"settle_kinetic_arrests", summary.settle_arrests},
+      {"wall_entered_at_s", summary.wall_entered_at < 0.0 ? nlohmann::json() : nlohmann::json(summary.wall_entered_at)},
       {"steps", summary.steps},
       {"wall_seconds", summary.wall_seconds},
       {"command", options_.command_line},

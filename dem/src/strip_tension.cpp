@@ -17,6 +17,7 @@
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/dem/run.hpp"
 #include "run_outputs.hpp"
+#include "settle.hpp"
 
 namespace dtwire::dem {
 namespace {
@@ -173,7 +174,12 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
   strip.moving_nodes = g.moving.size();
 
   // Settling (gravity, if any) with both clamps at rest, then the moving clamp starts.
-  while (engine->time() < in.settle_time) engine->step();
+  WaitingWall no_wall;
+  const SettleRecord settled = settle(*engine, in, no_wall);
+  summary.settle_seconds = settled.time;
+  summary.settled_at_rest = settled.at_rest;
+  summary.settle_unbalanced_ratio = settled.unbalanced_ratio;
+  summary.settle_arrests = settled.arrests;
   const std::size_t marker = g.moving.front();
   const double start = engine->position(marker).dot(g.pull);
   for (std::size_t i : g.moving) engine->set_guided_velocity(i, in.speed * g.pull);

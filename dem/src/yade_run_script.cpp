@@ -44,6 +44,8 @@ std::string yade_run_script(const RunInput& in, const YadeScriptOptions& export_
   const bool sphere = export_options.platter == YadePlatter::Sphere ||
                       (export_options.platter == YadePlatter::Automatic && hemisphere);
   if (!in.force_levels.empty()) throw InputError(file, "tool.force_levels_N: the YADE export covers the monotonic punch only");
+  if (in.settle_rest_ratio > 0.0)
+    throw InputError(file, "dynamics.settle_rest_ratio: the YADE export settles for dynamics.settle_s steps; set the ratio to 0");
   // YADE's WirePM links carry axial force only, so a middle node would be a hinge there, and its
   // net material finds double twists by consecutive ids, which a split twist no longer has.
   if (in.mesh.nodes_per_wire != 2)

@@ -3,6 +3,7 @@
 // solutions by dynamic relaxation), energy balance, 1 vs 2 threads.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <stdexcept>
@@ -240,6 +241,68 @@ double chain_balance_error(double safety, EnergySplit* split = nullptr) {
   while (engine.time() < duration) engine.step();
   if (split) *split = engine.energy();
   return std::abs(engine.energy().balance_error()) / engine.energy().external();
+}
+
+// Kinetic damping (Barnes 1999): the undamped one-link oscillator, arrested at its first peak
+// of kinetic energy, stops within a step of the equilibrium (the peak lies there): the amplitude
+// left is at most omega dt of the initial one (one step's travel at the largest speed), against a
+// swing that never decays without it. The kinetic energy the arrest takes out is booked as
+// damping, so the balance of the linear bond (trapezoidal work exact) stays at round-off.
+TEST(DemEngine, KineticDampingStopsTheSwingAtTheEquilibriumAndKeepsTheBalanceExact) {
+  const Oscillator o;
+  const double period = 2.0 * kPi / o.omega(), amplitude = 1e-5, dt = period / 200.0;
+  Engine engine = o.make(dt, amplitude);
+  double previous = 0.0;
+  int arrests = 0;
+  while (engine.time() < 3.0 * period) {
+    engine.step();
+    if (engine.kinetic_energy() < previous) {
+      engine.arrest();
+      ++arrests;
+      previous = 0.0;
+    } else {
+      previous = engine.kinetic_energy();
+    }
+  }
+  ASSERT_GE(arrests, 1);
+  engine.step();
+  EXPECT_LT(std::abs(engine.position(1).x() - o.length), o.omega() * dt * amplitude);
+  const EnergySplit& e = engine.energy();
+  EXPECT_GT(e.damping, 0.99 * e.external() - e.link_elastic);  // what the arrests took out
+  EXPECT_LT(std::abs(e.balance_error()), 1e-9 * e.external());
+
+  Engine free_swing = o.make(dt, amplitude);  // without the arrests: the amplitude stays
+  double largest = 0.0;
+  while (free_swing.time() < 3.0 * period) {
+    free_swing.step();
+    if (free_swing.time() > 2.0 * period) largest = std::max(largest, std::abs(free_swing.position(1).x() - o.length));
+  }
+  EXPECT_GT(largest, 0.99 * amplitude);
+}
+
+// YADE's unbalanced-force ratio on one hanging link at a known position: the link pulls k u up,
+// gravity m g down; the ratio is |k u - m g| / (k u), and 0 for the chain relaxed.
+TEST(DemEngine, UnbalancedForceRatioIsYadesMeanRatio) {
+  const double mass = 0.004, length = 0.05, g = 9.81, k = elastic_bond_stiffness(length), u = 2e-7;
+  std::vector<NetNode> nodes{make_node(Vector3::Zero(), mass, NodeFixity::Pinned), make_node(Vector3(0, 0, -length), mass)};
+  std::vector<EngineLink> links;
+  links.push_back({{0, 1, LinkTag::SingleWire}, elastic_bond(length)});
+  EngineOptions options;
+  options.time_step = 1e-7;
+  Engine engine(nodes, std::move(links), options);
+  EXPECT_TRUE(std::isinf(engine.unbalanced_force_ratio()));  // no link force yet
+  engine.impose_positions({Vector3::Zero(), Vector3(0, 0, -length - u)});
+  engine.step();
+  EXPECT_NEAR(engine.unbalanced_force_ratio(), std::abs(k * u - mass * g) / (k * u), 1e-6);
+  EXPECT_GT(engine.unbalanced_force_ratio(), 0.1);
+  options.time_step = 0.0;
+  options.local_damping = 0.7;
+  std::vector<EngineLink> relaxed_links;
+  relaxed_links.push_back({{0, 1, LinkTag::SingleWire}, elastic_bond(length)});
+  Engine relaxed(nodes, std::move(relaxed_links), options);
+  ASSERT_TRUE(relaxed.relax(1e-7, 2000000).converged);
+  EXPECT_LT(relaxed.unbalanced_force_ratio(), 1e-7);
+  EXPECT_THROW(relaxed.set_local_damping(1.0), std::invalid_argument);
 }
 
 TEST(DemEngine, EnergyBalanceClosesWithGravityDampingAndPlasticity) {

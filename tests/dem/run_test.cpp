@@ -79,6 +79,9 @@ TEST(DemRun, BadInputsExitTwoNamingTheField) {
     text.replace(text.find("settle_s = 0.05"), 15, "settle_s = 0.0");
     expect_bad_input("nosettle.toml", text, "dynamics.settle_s");
   }
+  expect_bad_input("rest.toml", small_punch("settle_s = 0.05", "settle_s = 0.05\nsettle_rest_ratio = -1e-5"), "dynamics.settle_rest_ratio");
+  expect_bad_input("restnan.toml", small_punch("settle_s = 0.05", "settle_s = 0.05\nsettle_rest_ratio = nan"), "dynamics.settle_rest_ratio");
+  expect_bad_input("resttime.toml", small_punch("settle_s = 0.05", "settle_s = 0.0\nsettle_rest_ratio = 1e-5"), "dynamics.settle_rest_ratio");
   // Per-link-set options: the length mode, parameter overrides checked against the law's names.
   expect_bad_input("length.toml", small_punch("[links.dt]\n", "[links.dt]\nlength = \"link\"\n"), "links.dt.length");
   expect_bad_input("override.toml", small_punch("[links.dt]\n", "[links.dt]\nparameters = { slideb = 1.0 }\n"),

@@ -51,7 +51,7 @@ struct EnergySplit {
   double link_elastic = 0.0, link_plastic = 0.0, link_damage = 0.0;
   double contact_elastic = 0.0;  // node-tool and roller-link springs
   double friction = 0.0;         // node-tool and roller-link slip
-  double damping = 0.0;          // local damping (dissipated, >= 0)
+  double damping = 0.0;          // local and kinetic damping (dissipated, >= 0)
   double gravity_work = 0.0, tool_work = 0.0, boundary_work = 0.0;
   double external() const { return gravity_work + tool_work + boundary_work; }
   double stored_and_dissipated() const {
@@ -121,11 +121,27 @@ class Engine {
   void set_support(std::size_t i, const std::array<bool, 3>& held_translation, bool held_rotation);
 
   void step();
+  // Kinetic damping (Barnes 1999, Int. J. Space Struct. 14(2) 89-104): the next step ends with
+  // every free node at rest (velocities and spins zero; a slider's held components keep the
+  // support's motion). The kinetic energy that step would have left is booked as damping, so the
+  // energy balance stays exact. Called at a peak of the kinetic energy, where the forces are
+  // nearly in balance, it stops a slow swing at its middle instead of damping it over periods.
+  void arrest();
+  // The local damping coefficient from the next step on, in [0, 1) (e.g. off while kinetic
+  // damping settles a net: the two together reach rest later than kinetic damping alone).
+  void set_local_damping(double alpha);
+  double local_damping() const { return options_.local_damping; }
+  // YADE's unbalancedForce (utils.unbalancedForce): the mean unbalanced force on the free nodes
+  // in the last step (gravity included, held components the support's) over the mean link
+  // force magnitude; infinite while no link carries force. Tends to 0 at static equilibrium.
+  double unbalanced_force_ratio() const;
   // Dynamic relaxation: steps with kinematic tools held until the largest unbalanced force on a
   // free node is below `tolerance` x the mean link force magnitude (at most max_steps).
   RelaxResult relax(double tolerance, long max_steps);
 
   double time() const { return time_; }
+  // The kinetic energy of the last step [J] (energy().kinetic without summing the stored parts).
+  double kinetic_energy() const { return energy_.kinetic; }
   long steps_taken() const { return steps_; }
   // The energy split; the stored parts (link and contact energies) are summed on reading.
   const EnergySplit& energy() const;
@@ -176,6 +192,7 @@ class Engine {
   long steps_ = 0;
   bool caller_step_ = false;       // set_time_step was called: the step is no longer automatic
   bool supports_changed_ = false;  // set_support since the last step: the automatic step follows
+  bool arrest_pending_ = false;    // arrest(): the next step stops the free nodes
   mutable EnergySplit energy_;
   mutable bool energy_stale_ = true;
 };

@@ -50,7 +50,10 @@ struct RunInput {
   // on which the net settles with its supported edges free in the plane (0: none) [m].
   double wall_below = 0.0;
   EngineOptions engine;
-  double settle_time = 0.0;  // [s] gravity only, before the tool moves
+  double settle_time = 0.0;  // [s] gravity only, before the tool moves (the longest, with a rest ratio)
+  // > 0: the settle ends at rest, YADE's unbalanced-force ratio below this, with kinetic damping
+  // (settle.hpp); 0: it lasts settle_time.
+  double settle_rest_ratio = 0.0;
   // Tool: "platter", "boulder", "none" or "strip_tension" (strip_tension.hpp).
   std::string tool = "platter";
   StripTensionInput strip;
@@ -116,6 +119,11 @@ struct RunSummary {
   double kinetic_after_settling = 0.0;  // [J], the quasi-static check of the settled state
   double time_step = 0.0, critical_time_step = 0.0;  // of the tool phase
   double settle_time_step = 0.0;  // the settling's (the tool parked: a longer step)
+  double settle_seconds = 0.0;    // how long it settled [s] (settle_time unless it came to rest)
+  bool settled_at_rest = false;   // the rest ratio was reached (settle_rest_ratio > 0)
+  double settle_unbalanced_ratio = 0.0;  // at the settle's end (Engine::unbalanced_force_ratio)
+  long settle_arrests = 0;        // kinetic-damping arrests while settling
+  double wall_entered_at = -1.0;  // the slack state's wall entered the run at this time [s] (-1: never)
   std::size_t nodes = 0, links = 0, broken_links = 0;
   long steps = 0;
   bool stopped_at_failure = false;  // the push ended by tool.stop_below_peak_fraction

@@ -1,0 +1,75 @@
+// The settle under gravity (settle.hpp).
+#include "settle.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "dtwire/core/error.hpp"
+
+namespace dtwire::dem {
+
+bool WaitingWall::enter_if_near(Engine& engine) { return place(engine, false); }
+
+void WaitingWall::enter(Engine& engine) { place(engine, true); }
+
+bool WaitingWall::place(Engine& engine, bool now) {
+  if (!active_ || entered_) return entered_;
+  double lowest = 1e300, radius = 0.0;
+  for (std::size_t i = 0; i < engine.node_count(); ++i) {
+    const double r = engine.node(i).radius;
+    if (engine.position(i).z() - r < lowest) {
+      lowest = engine.position(i).z() - r;
+      radius = r;
+    }
+  }
+  if (!now && lowest - surface_z_ >= radius) return false;
+  if (lowest <= surface_z_)
+    throw ComputationError("dem run: a node's surface reached the slack state's wall (" + std::to_string(lowest - surface_z_) +
+                           " m) before the wall entered the run: a node moved more than its radius in one step");
+  Vector3 position = engine.tool(tool_).position;
+  position.z() = surface_z_;
+  engine.place_tool(tool_, position, Vector3::Zero());
+  entered_ = true;
+  entered_at_ = engine.time();
+  return true;
+}
+
+SettleRecord settle(Engine& engine, const RunInput& in, WaitingWall& wall) {
+  SettleRecord record;
+  const double start = engine.time();
+  if (!(in.settle_rest_ratio > 0.0)) {
+    while (engine.time() - start < in.settle_time) {
+      engine.step();
+      wall.enter_if_near(engine);
+    }
+  } else {
+    // Kinetic damping alone: with the local damping on as well the net reaches rest later
+    // (docs/dem_engine.md, "Settling to rest").
+    const double local_damping = engine.local_damping();
+    engine.set_local_damping(0.0);
+    double previous_kinetic = 0.0;
+    long steps = 0;
+    while (engine.time() - start < in.settle_time) {
+      engine.step();
+      wall.enter_if_near(engine);
+      const double kinetic = engine.kinetic_energy();
+      if (kinetic < previous_kinetic) {  // past a peak: stop the swing there
+        engine.arrest();
+        ++record.arrests;
+        previous_kinetic = 0.0;
+      } else {
+        previous_kinetic = kinetic;
+      }
+      if (++steps % 10 == 0 && engine.unbalanced_force_ratio() < in.settle_rest_ratio) {
+        record.at_rest = true;
+        break;
+      }
+    }
+    engine.set_local_damping(local_damping);
+  }
+  record.time = engine.time() - start;
+  record.unbalanced_ratio = engine.unbalanced_force_ratio();
+  return record;
+}
+
+}  // namespace dtwire::dem
