@@ -128,6 +128,19 @@ std::optional<std::string> punch_not_applicable(const std::vector<double>& displ
   return std::nullopt;
 }
 
+std::optional<std::string> punch_not_at_rest(const nlohmann::json& summary) {
+  const auto rest = summary.find("settled_at_rest");
+  if (rest == summary.end() || !rest->is_boolean() || rest->get<bool>()) return std::nullopt;
+  std::vector<std::string> details;
+  if (summary.contains("settle_s") && summary["settle_s"].is_number())
+    details.push_back("after " + fixed(summary["settle_s"].get<double>(), 1) + " s of settling");
+  if (summary.contains("settle_unbalanced_force_ratio") && summary["settle_unbalanced_force_ratio"].is_number())
+    details.push_back("unbalanced-force ratio " + fixed(summary["settle_unbalanced_force_ratio"].get<double>(), 6));
+  std::string why = "the net was not at rest when the platter started";
+  for (std::size_t i = 0; i < details.size(); ++i) why += (i == 0 ? " (" : ", ") + details[i];
+  return details.empty() ? why : why + ")";
+}
+
 Recommendation recommend_set(const std::vector<SetEvidence>& sets) {
   Recommendation r;
   double peak_ref = kThesisPeakN, position_ref = kThesisPeakMm;

@@ -36,6 +36,12 @@ namespace dtwire::app {
 // docs/dem_engine.md). Returns the reason it does not apply, or nothing.
 std::optional<std::string> punch_not_applicable(const std::vector<double>& displacement_m,
                                                 const std::vector<double>& force_N);
+// Whether a punch started from the state its set-up asks for: a run told to settle to rest
+// (dynamics.settle_rest_ratio) whose net was still moving when the settle's time ran out
+// (summary.json `settled_at_rest` false) measures that motion as much as the net, so its
+// figures are not the test's. Returns the reason, or nothing (also for a run that settled for
+// a fixed time: `settled_at_rest` null).
+std::optional<std::string> punch_not_at_rest(const nlohmann::json& summary);
 
 struct FitEvidence {
   std::string step;           // the fit step

@@ -236,6 +236,14 @@ std::string gap_row(std::ostream& md, const StepFiles& s, const json& gap, const
 // whose curve is unknown is taken as it reports itself).
 std::optional<std::string> punch_applicability(const StepFiles& s) {
   for (const auto& file : s.files) {
+    if (file.filename() != "summary.json") continue;
+    try {
+      std::ifstream in(file);
+      if (const auto why = punch_not_at_rest(nlohmann::json::parse(in))) return why;
+    } catch (const std::exception&) {
+    }
+  }
+  for (const auto& file : s.files) {
     if (file.filename() != "curve.csv") continue;
     try {
       const Curve curve = read_csv(file);

@@ -111,6 +111,11 @@ RunOutcome PropagationRunner::run(const std::map<std::string, std::string>& para
   // travel ends, has not loaded the net to failure: its "peak" is no figure of the test, and the
   // campaign report never shows it as one (report_recommendation.hpp). It is a set whose figures
   // the test does not measure, named and left out of the band like one its checks stop.
+  if (outcome.ok && summary.value("tool", "") == "platter")
+    if (const auto why = punch_not_at_rest(summary)) {
+      outcome.ok = false;
+      outcome.status = "not applicable: " + *why;
+    }
   if (outcome.ok && summary.value("tool", "") == "platter" && outcome.curve.has("tool_displacement") &&
       outcome.curve.has("tool_force"))
     if (const auto why = punch_not_applicable(outcome.curve.si("tool_displacement"), outcome.curve.si("tool_force"))) {

@@ -31,6 +31,17 @@ TEST(PunchApplicability, ARunWithoutAPeakWithinItsTravelDoesNotApply) {
   EXPECT_FALSE(punch_not_applicable({0.0, 0.2, 0.548, 0.6, 0.75}, {0.0, 1000.0, 45000.0, 20000.0, 5000.0}).has_value());
 }
 
+TEST(PunchApplicability, ARunWhoseNetWasNotAtRestDoesNotApply) {
+  const auto moving = punch_not_at_rest({{"settled_at_rest", false}, {"settle_s", 120.0}, {"settle_unbalanced_force_ratio", 0.0031}});
+  ASSERT_TRUE(moving.has_value());
+  EXPECT_NE(moving->find("not at rest"), std::string::npos) << *moving;
+  EXPECT_NE(moving->find("120.0 s"), std::string::npos) << *moving;
+  EXPECT_NE(moving->find("0.003100"), std::string::npos) << *moving;
+  EXPECT_FALSE(punch_not_at_rest({{"settled_at_rest", true}}).has_value());
+  EXPECT_FALSE(punch_not_at_rest({{"settled_at_rest", nullptr}}).has_value());  // a fixed settle
+  EXPECT_FALSE(punch_not_at_rest(json::object()).has_value());
+}
+
 // A fit's parameters.json with `beyond` of its three curves past NRMSE 0.10 and `identified` of
 // its four parameters identified.
 json fit_result(int beyond, int identified) {
