@@ -7,7 +7,7 @@
 
 #include "commands.hpp"
 #include "dtwire/core/error.hpp"
-#include "dtwire/version.hpp"
+#include "dtwire/core/provenance.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -67,7 +67,7 @@ int CommandSet::run_selected() const {
 }
 
 std::string version_string() {
-  return std::string("dtwire ") + kVersion + " (git " + kGitHash + ")";
+  return std::string("dtwire ") + tool_version() + " (git " + git_hash() + ")";
 }
 
 bool command_available(const std::string& name) {

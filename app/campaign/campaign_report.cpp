@@ -15,7 +15,6 @@
 #include "report_summary.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/provenance.hpp"
-#include "dtwire/version.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -120,8 +119,8 @@ std::filesystem::path write_campaign_report(const Campaign& campaign,
   write_file_atomically(out / "report.html",
                         [&](std::ostream& stream) { stream << markdown_to_html(md.str(), campaign.title, out); });
 
-  nlohmann::json provenance = {{"tool_version", kVersion},
-                               {"git_hash", kGitHash},
+  nlohmann::json provenance = {{"tool_version", tool_version()},
+                               {"git_hash", git_hash()},
                                {"created_utc", now},
                                {"campaign_file", campaign.file.string()},
                                {"campaign_sha256", sha256_file(campaign.file)}};

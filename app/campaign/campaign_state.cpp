@@ -6,7 +6,6 @@
 
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/provenance.hpp"
-#include "dtwire/version.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -32,7 +31,7 @@ void save_state(const std::filesystem::path& out, const nlohmann::json& state) {
 }
 
 std::string step_fingerprint(const std::vector<std::string>& command, const std::vector<std::string>& inputs) {
-  std::string text = std::string("dtwire ") + kVersion + "\n";
+  std::string text = std::string("dtwire ") + tool_version() + "\n";
   for (const auto& arg : command) text += arg + '\0';
   for (const auto& input : inputs) text += "\n" + input + " " + sha256_file(input);
   return sha256_text(text);

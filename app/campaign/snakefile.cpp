@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "campaign_graph.hpp"
-#include "dtwire/version.hpp"
+#include "dtwire/core/provenance.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -48,7 +48,7 @@ class Writer {
     std::string run = "dtwire campaign " + campaign_file + " -o " + options_.out.string();
     for (const auto& v : options_.variables) run += " --var " + v;
     text_ << "# The campaign '" << campaign_.name << "' (" << campaign_file << ") as a Snakemake workflow,\n"
-          << "# written by " << "dtwire " << kVersion << ": `snakemake -s THIS_FILE --cores N` writes into\n"
+          << "# written by " << "dtwire " << tool_version() << ": `snakemake -s THIS_FILE --cores N` writes into\n"
           << "# " << options_.out.string() << " what `" << run << "` would.\n"
           << "# Regenerate it (dtwire campaign ... --snakefile) rather than edit it.\n\n";
     text_ << "rule dtwire_all:\n    input: " << python_string(out("report.md")) << "\n\n";

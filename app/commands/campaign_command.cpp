@@ -14,7 +14,6 @@
 #include "../data_path.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
-#include "dtwire/version.hpp"
 
 namespace dtwire::app {
 namespace {

@@ -16,7 +16,6 @@
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/driver.hpp"
 #include "dtwire/dem/export_params.hpp"
-#include "dtwire/version.hpp"
 
 namespace dtwire::app {
 namespace {

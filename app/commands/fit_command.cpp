@@ -17,7 +17,7 @@
 #include "dtwire/calibrate/synthesize.hpp"
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
-#include "dtwire/version.hpp"
+#include "dtwire/core/provenance.hpp"
 
 namespace dtwire::app {
 namespace {

@@ -23,7 +23,6 @@
 #include "dtwire/gap/summary_lab.hpp"
 #include "gap_dem_model.hpp"
 #include "gap_model_runner.hpp"
-#include "dtwire/version.hpp"
 
 namespace dtwire::app {
 namespace {

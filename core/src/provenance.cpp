@@ -82,9 +82,12 @@ std::string new_run_id() {
   return utc_now("%Y%m%dT%H%M%SZ") + "-" + std::to_string(::getpid()) + "-" + random_text;
 }
 
+const char* tool_version() { return kVersion; }
+const char* git_hash() { return kGitHash; }
+
 Provenance make_provenance(const std::string& command,
                            const std::vector<std::filesystem::path>& inputs) {
-  Provenance p{kVersion, kGitHash, utc_now_iso8601(), command, new_run_id(), {}};
+  Provenance p{tool_version(), git_hash(), utc_now_iso8601(), command, new_run_id(), {}};
   for (const auto& input : inputs) p.add_input(input);
   return p;
 }

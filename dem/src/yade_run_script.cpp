@@ -9,7 +9,7 @@
 #include "dtwire/core/error.hpp"
 #include "dtwire/dem/run.hpp"
 #include "dtwire/dem/wirepm.hpp"
-#include "dtwire/version.hpp"
+#include "dtwire/core/provenance.hpp"
 
 namespace dtwire::dem {
 namespace {
@@ -114,7 +114,7 @@ std::string yade_run_script(const RunInput& in, const YadeScriptOptions& export_
   const double settle_steps = std::round(in.settle_time / dt_step);
 
   std::ostringstream s;
-  s << "# Punch test '" << in.title << "' exported by dtwire " << kVersion << " (" << kGitHash << ") from "
+  s << "# Punch test '" << in.title << "' exported by dtwire " << tool_version() << " (" << git_hash() << ") from "
     << in.file.filename().string() << ".\n"
        "# Run headless:  yade -n -x <this file> OUT.csv\n"
        "# The same net (node positions, masses, pinned nodes, WirePM links), pre-tension, gravity, local\n"

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "dtwire/dem/export.hpp"
-#include "dtwire/version.hpp"
+#include "dtwire/core/provenance.hpp"
 
 namespace dtwire::dem {
 namespace {
@@ -68,7 +68,7 @@ bool is_pfc7_macroelement_set(const ParameterSet& set) {
 std::string pfc7_macroelement_commands(const std::vector<ParameterSet>& sets, const Provenance& provenance) {
   std::ostringstream s;
   s << "; Thesis macro-element sets for the PFC7 plugin macroelement-doubletwist-PFC7, written by dtwire "
-    << kVersion << " (" << kGitHash << ") on " << provenance.created_utc << ", run "
+    << tool_version() << " (" << git_hash() << ") on " << provenance.created_utc << ", run "
     << provenance.run_id << "\n"
     << "; from: " << provenance.command << "\n"
     << "; Load with `program call 'this_file'` after the balls exist; SI units, rotations in degrees\n"

@@ -25,7 +25,6 @@
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/core/resources.hpp"
 #include "dtwire/core/results_store.hpp"
-#include "dtwire/version.hpp"
 #include "contact/contact_curve.hpp"  // contact (issue 5)
 #include "failure_place.hpp"
 #include "link_kinematics.hpp"
@@ -347,7 +346,7 @@ RunSummary run_experiment(const RunOptions& options) {
   TeeBuffer tee(root ? log_file.rdbuf() : nullptr, root && options.echo ? std::cout.rdbuf() : nullptr);
   std::ostream log(&tee);
   const std::string run_id = new_run_id();  // in the log, curve.csv and results.h5 alike
-  log << "dtwire " << kVersion << " (" << kGitHash << "): " << options.parameter_file.string() << ", run "
+  log << "dtwire " << tool_version() << " (" << git_hash() << "): " << options.parameter_file.string() << ", run "
       << run_id << "\n";
   log.flush();
   std::optional<InterruptRecord> interrupt;

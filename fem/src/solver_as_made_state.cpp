@@ -16,7 +16,7 @@
 #include <fstream>
 
 #include "dtwire/core/error.hpp"
-#include "dtwire/version.hpp"
+#include "dtwire/core/provenance.hpp"
 #include "forming_history.hpp"
 #include "junction_refinement.hpp"
 #include "plastic_state_pack.hpp"
@@ -129,7 +129,7 @@ void WireSolver::Impl::write_as_made_state(const std::filesystem::path& file) {
       std::ofstream out(temporary, std::ios::binary);
       out.write(kStateMagic, sizeof kStateMagic);
       boost::archive::binary_oarchive archive(out);
-      const std::string version = std::string(kVersion) + " (" + kGitHash + ")";
+      const std::string version = std::string(tool_version()) + " (" + git_hash() + ")";
       const std::string mesh = prm.geometry.mesh_file.filename().string();
       const std::string axis = prm.forming.axis_file.filename().string();
       archive << version << mesh << axis << as_made_header() << material_fingerprint(material, prm)

@@ -19,6 +19,11 @@ struct Provenance {
   void add_input(const std::filesystem::path& path);  // throws InputError if unreadable
 };
 
+// The tool's version and the git commit it was built from, read at build time ("-dirty" with
+// uncommitted changes to tracked files, "unknown" outside a git checkout).
+const char* tool_version();
+const char* git_hash();
+
 Provenance make_provenance(const std::string& command,
                            const std::vector<std::filesystem::path>& inputs = {});
 
