@@ -208,8 +208,12 @@ std::vector<EffectSpec> make_catalogue() {
           return spread * (z * 0.5 * std::erfc(-z / std::sqrt(2.0)) + std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI));
         };
         const double excess = spread > 0 ? mean_excess(std::max(fmax, 0.0)) - mean_excess(0.0) : std::max(0.0, fmax - onset);
+        // The steps centred on the mean slip line (rounded, not floored): onset, rate and spread
+        // mean the same for every step, so the step's grid search refits them from the smooth
+        // fit's values in the right phase (floored, the smooth fit lies half a step off, and a
+        // 0.3 mm staircase read as 0.15 mm).
         const double slip = rate * excess;
-        return step > 0 ? step * std::floor(slip / step) : slip;
+        return step > 0 ? step * std::round(slip / step) : slip;
       });
     };
     c.push_back(e);
