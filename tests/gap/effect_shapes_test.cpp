@@ -9,6 +9,7 @@
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/gap/effects.hpp"
 #include "dtwire/gap/synthetic_curves.hpp"
+#include "../../gap/src/independent/independent_effects.hpp"
 
 namespace dtwire::gap {
 namespace {
@@ -126,6 +127,86 @@ TEST(GapEffectShapes, HertzianComplianceIsFoundWithItsExponent) {
   EXPECT_NEAR(top.fitted[0].params[0], 0.6, 0.06);
   EXPECT_NEAR(top.fitted[0].params[1], 2.0 / 3.0, 0.05);
   EXPECT_LE(top.gap_after, d.noise_floor);
+}
+
+// The grip slip's onset spread over the jaw (issue 51): slip = c E[(F_max - F_s,i)+] with the
+// onset forces F_s,i ~ N(F_s, w^2), counted from the unloaded grip. Checked against the expectation
+// integrated numerically (midpoint rule over +- 8 w), not against the closed form the effect uses.
+TEST(GapEffectShapes, GripSlipOnsetSpreadIsTheMeanSlipOverTheJaw) {
+  const ForceCurve sim = voce_tension_curve();
+  const double onset = 1500.0, rate = 4.0e-6, w = 400.0;  // N, m/N, N
+  const ForceCurve sharp = with(sim, "grip_slip", {onset, 4.0, 0.0});
+  EXPECT_EQ(with(sim, "grip_slip", {onset, 4.0, 0.0, 0.0}).u, sharp.u);  // w = 0: the earlier form
+  const ForceCurve spread = with(sim, "grip_slip", {onset, 4.0, 0.0, w});
+  const auto mean_excess = [&](double f) {
+    const int n = 4000;
+    double sum = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const double x = onset - 8.0 * w + 16.0 * w * (k + 0.5) / n;
+      const double density = std::exp(-0.5 * std::pow((x - onset) / w, 2)) / (w * std::sqrt(2.0 * M_PI));
+      sum += std::max(0.0, f - x) * density * 16.0 * w / n;
+    }
+    return sum;
+  };
+  double fmax = 0.0;
+  for (std::size_t i = 0; i < sim.size(); ++i) {
+    fmax = std::max(fmax, sim.f[i]);
+    if (i % 25 == 0)
+      EXPECT_NEAR(spread.u[i] - sim.u[i], rate * (mean_excess(fmax) - mean_excess(0.0)), 1e-7) << "at F_max " << fmax;
+  }
+  EXPECT_DOUBLE_EQ(spread.u.front(), sim.u.front());  // nothing slips at rest
+}
+
+// A smoothly setting-in slip (onset 1500 N spread by 400 N, 4 mm/kN) with 0.3 % load noise on the
+// Voce wire: the fit from its own starts (the catalogue's) is the cause and recovers the rate and
+// the spread within 5 %.
+TEST(GapEffectShapes, GripSlipWithASpreadOnsetIsRecovered) {
+  const ForceCurve sim = voce_tension_curve();
+  const double peak = curve_scale(sim).peak_force_N;
+  std::mt19937 rng(5);
+  LabSampling sampling;
+  sampling.points = 700;
+  sampling.noise_sigma_N = 0.003 * peak;
+  const ForceCurve lab = sample_lab_curve(with(sim, "grip_slip", {1500.0, 4.0, 0.0, 400.0}), sampling, rng);
+  DiagnosisOptions options;
+  options.try_pairs = false;
+  const Diagnosis d = diagnose({lab}, sim, options);
+  ASSERT_EQ(d.cause, "grip_slip") << d.reason;
+  const RankedEffect& top = d.ranking.front();
+  ASSERT_EQ(top.effect, "grip_slip");
+  EXPECT_NEAR(top.fitted[0].params[1], 4.0, 0.05 * 4.0);
+  EXPECT_NEAR(top.fitted[0].params[3], 400.0, 0.05 * 400.0);
+  EXPECT_LE(top.gap_after, d.noise_floor);
+}
+
+// The independent family's magnitudes stay within the plausible ranges they are drawn over
+// (issue 51): the wedge seating's secant compliance at the visible peak (its log part included)
+// and the drifting extensometer's gauge factor over the whole test, at the edge draws.
+TEST(GapEffectShapes, IndependentSeatingAndDriftStayWithinTheirRanges) {
+  const ForceCurve sim = voce_tension_curve();
+  const CurveScale s = curve_scale(sim);
+  independent::Setting edge;
+  edge.draws = {0.95, 0.0, 0.0, 1.0};  // on the edge; F_b 5 % of the peak; drift 6 % down
+  edge.scatter = 1.3;                   // a specimen beyond the edge, held on it
+  edge.end_m = sim.u.back();
+  edge.visible_peak_N = s.peak_force_N;
+  edge.stiffness_N_per_m = s.initial_stiffness_N_per_m;
+  edge.shape = 0;
+  const ForceCurve seated = independent::machine_compliance(sim, edge);
+  const auto peak_at = std::max_element(sim.f.begin(), sim.f.end()) - sim.f.begin();
+  const double secant_mm_per_kN = (seated.u[peak_at] - sim.u[peak_at]) / sim.f[peak_at] * 1e6;
+  EXPECT_NEAR(secant_mm_per_kN, find_effect("machine_compliance").parameters(s)[0].plausible_upper, 1e-9);
+  for (const double side : {0.0, 1.0}) {  // draws[1] < 0.5: the factor above 1, else below
+    for (const double down : {0.0, 1.0}) {  // draws[2] < 0.5: drifting down, else up
+      edge.draws = {0.95, side, down, 1.0};
+      const ForceCurve drifting = independent::gauge_length(sim, edge);
+      for (std::size_t i = 1; i < sim.size(); ++i) {
+        const double factor = drifting.u[i] / sim.u[i];
+        EXPECT_GE(factor, 0.5 - 1e-12);
+        EXPECT_LE(factor, 1.5 + 1e-12);
+      }
+    }
+  }
 }
 
 }  // namespace
