@@ -216,14 +216,7 @@ RunSummary run_simulation(const RunInput& input, const RunOptions& options) {
   summary.settle_time_step = engine->time_step();
 
   // Phase 1: settle under gravity (and the pre-tension), to rest if the input asks.
-  const SettleRecord settled = settle(*engine, in, wall);
-  summary.settle_seconds = settled.time;
-  summary.settled_at_rest = settled.at_rest;
-  summary.settle_unbalanced_ratio = settled.unbalanced_ratio;
-  summary.settle_arrests = settled.arrests;
-  if (in.settle_rest_ratio > 0.0 && !settled.at_rest)
-    std::cerr << "[dem run] warning: the net is not at rest after " << settled.time << " s of settling (unbalanced-force ratio "
-              << settled.unbalanced_ratio << ", asked below " << in.settle_rest_ratio << "); the tool starts all the same\n";
+  record_settle(settle(*engine, in, wall), summary);
   double lowest = std::numeric_limits<double>::max(), highest = -lowest;
   for (std::size_t i = 0; i < node_count; ++i) {
     lowest = std::min(lowest, engine->position(i).z());

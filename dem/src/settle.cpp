@@ -2,6 +2,7 @@
 #include "settle.hpp"
 
 #include <algorithm>
+#include <iostream>
 #include <string>
 
 #include "dtwire/core/error.hpp"
@@ -69,7 +70,17 @@ SettleRecord settle(Engine& engine, const RunInput& in, WaitingWall& wall) {
   }
   record.time = engine.time() - start;
   record.unbalanced_ratio = engine.unbalanced_force_ratio();
+  if (in.settle_rest_ratio > 0.0 && !record.at_rest)
+    std::cerr << "[dem run] warning: the net is not at rest after " << record.time << " s of settling (unbalanced-force ratio "
+              << record.unbalanced_ratio << ", asked below " << in.settle_rest_ratio << "); the run goes on all the same\n";
   return record;
+}
+
+void record_settle(const SettleRecord& settled, RunSummary& summary) {
+  summary.settle_seconds = settled.time;
+  summary.settled_at_rest = settled.at_rest;
+  summary.settle_unbalanced_ratio = settled.unbalanced_ratio;
+  summary.settle_arrests = settled.arrests;
 }
 
 }  // namespace dtwire::dem

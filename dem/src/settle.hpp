@@ -45,7 +45,11 @@ struct SettleRecord {
 // Settles under gravity: for in.settle_time if in.settle_rest_ratio is 0; otherwise with kinetic
 // damping (the free nodes stopped at each peak of the kinetic energy, Barnes 1999) until YADE's
 // unbalanced-force ratio is below in.settle_rest_ratio (checked every 10 steps), at most
-// in.settle_time. The wall, if any, enters as it says.
+// in.settle_time, with a warning on stderr if the net is not at rest by then. The wall, if any,
+// enters as it says.
 SettleRecord settle(Engine& engine, const RunInput& in, WaitingWall& wall);
+
+// The settle's figures in a run's summary (settle_seconds, settled_at_rest, ...).
+void record_settle(const SettleRecord& settled, RunSummary& summary);
 
 }  // namespace dtwire::dem

@@ -175,11 +175,7 @@ RunSummary run_strip_tension(const RunInput& in, const RunOptions& options) {
 
   // Settling (gravity, if any) with both clamps at rest, then the moving clamp starts.
   WaitingWall no_wall;
-  const SettleRecord settled = settle(*engine, in, no_wall);
-  summary.settle_seconds = settled.time;
-  summary.settled_at_rest = settled.at_rest;
-  summary.settle_unbalanced_ratio = settled.unbalanced_ratio;
-  summary.settle_arrests = settled.arrests;
+  record_settle(settle(*engine, in, no_wall), summary);
   const std::size_t marker = g.moving.front();
   const double start = engine->position(marker).dot(g.pull);
   for (std::size_t i : g.moving) engine->set_guided_velocity(i, in.speed * g.pull);
