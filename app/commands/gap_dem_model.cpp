@@ -124,8 +124,13 @@ std::vector<std::string> dem_effect_entries(const dem::RunInput& base, const std
     } else if (p == 1.0) {
       continue;  // the neutral factor: the same run as the input's (and the same cache entry)
     } else if (name == "dt_weakening") {
+      // The DT's force-elongation curve scaled in force: its yield and ultimate forces, and the
+      // plastic work at damage onset and end (the thesis law's damage runs on plastic work, so a
+      // weaker twist that fails at the same elongation has done p times the work; with W1, W2
+      // kept it would become more ductile as it weakens).
       const dem::LinkSetInput& set = *link_set(base, dem::LinkTag::DoubleTwist);
-      for (const char* value : {"N0_N", "Nult_N"}) entries.push_back(scale_entry(set, dem::LinkTag::DoubleTwist, value, p));
+      for (const char* value : {"N0_N", "Nult_N", "W1_J", "W2_J"})
+        entries.push_back(scale_entry(set, dem::LinkTag::DoubleTwist, value, p));
     } else if (name == "sw_softening") {
       const dem::LinkSetInput& set = *link_set(base, dem::LinkTag::SingleWire);
       entries.push_back(scale_entry(set, dem::LinkTag::SingleWire, "EA_N", p));

@@ -285,7 +285,8 @@ std::vector<EffectSpec> make_catalogue() {
        "pre-tensioned (0: the model's own initial state)",
        {"wall_below_mm", 0.0, 300.0, 50.0, 200.0, {}, {}, {}}, 0.0},
       {"dt_weakening", "weaker double twists (junction unravelling, wire sliding in the twist): the DT links' "
-       "yield and ultimate forces scaled",
+       "force-elongation curve scaled in force (yield and ultimate forces, and the plastic work at damage "
+       "onset and end)",
        {"dt_strength_factor_1", 0.2, 1.0, 0.5, 1.0, {}, {}, {}}, 1.0},
       {"sw_softening", "softer single wires (crimp: each wire bent through its twists and slanted): the SW "
        "links' axial stiffness scaled",

@@ -210,8 +210,16 @@ std::vector<double> superposition_start(const SummaryCandidate& a, const Summary
   return best;
 }
 
+// AICc with known sd (SummaryCandidate::aic).
 double aic_of(const std::vector<SummaryFeature>& lab, double gap, int parameters) {
-  return static_cast<double>(lab.size()) * gap * gap + 2.0 * parameters;
+  const double n = static_cast<double>(lab.size()), k = parameters;
+  const double correction = n - k - 1 > 0 ? 2 * k * (k + 1) / (n - k - 1) : 1e9;
+  return n * gap * gap + 2.0 * k + correction;
+}
+
+// Whether AICc can weigh a candidate of this many parameters on these figures at all.
+bool judgeable(const std::vector<SummaryFeature>& lab, int parameters) {
+  return static_cast<double>(lab.size()) - parameters - 1 > 0;
 }
 
 // Fitted parameters only: shape parameters are held at their basic form here.
@@ -404,8 +412,10 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     d.ranking.push_back(c);
   }
   // Pairs with a model-only effect, when no single effect brings the features within the scatter.
-  // A pair counts as a cause only when its AIC (the extra parameters cost 2 each) is below every
-  // single's and it cuts the best single's gap by 20 %; else its score is divided by 10.
+  // A pair counts as a cause only when its AICc is below every single's and it cuts the best
+  // single's gap by 20 %; else its score is divided by 10. On three figures or fewer the pair's
+  // two parameters leave AICc no figure to judge it by (n <= k + 1): it is searched and ranked,
+  // never the cause (two effects fitted to three numbers reproduce almost any three).
   const std::size_t singles = d.ranking.size();
   double best_gap = INFINITY, best_aic = INFINITY;
   for (const SummaryCandidate& c : d.ranking) {
@@ -452,7 +462,8 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     }
     for (std::size_t i = singles; i < d.ranking.size(); ++i) {
       SummaryCandidate& c = d.ranking[i];
-      const bool beats_singles = c.aic < best_aic && c.gap_after < kPairGapRatio * best_gap;
+      const bool beats_singles =
+          judgeable(d.lab, c.parameters) && c.aic < best_aic && c.gap_after < kPairGapRatio * best_gap;
       c.qualifies = !c.implausible && c.shrink >= kSummaryMinimumShrink && c.plausibility >= 0.5 && beats_singles;
       c.qualifies_but_implausible = c.implausible && c.shrink >= kSummaryMinimumShrink && beats_singles;
       if (!beats_singles) c.score *= 0.1;

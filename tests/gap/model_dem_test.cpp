@@ -57,6 +57,9 @@ TEST_F(GapDemModel, EachEffectIsSwitchedOnThroughTheRunInput) {
   const auto& dt_base = base.link_sets.at(dem::LinkTag::DoubleTwist).parameters;
   EXPECT_NEAR(dt.at("N0_N"), 0.6 * dt_base.at("N0_N"), 1e-9 * dt_base.at("N0_N"));
   EXPECT_NEAR(dt.at("Nult_N"), 0.6 * dt_base.at("Nult_N"), 1e-9 * dt_base.at("Nult_N"));
+  // Scaled in force at the same elongation: the plastic work of damage onset and end as well.
+  EXPECT_NEAR(dt.at("W1_J"), 0.6 * dt_base.at("W1_J"), 1e-9 * dt_base.at("W1_J"));
+  EXPECT_NEAR(dt.at("W2_J"), 0.6 * dt_base.at("W2_J"), 1e-9 * dt_base.at("W2_J"));
   EXPECT_DOUBLE_EQ(dt.at("EA_N"), dt_base.at("EA_N"));
   const auto& sw = edited.link_sets.at(dem::LinkTag::SingleWire).parameters;
   const auto& sw_base = base.link_sets.at(dem::LinkTag::SingleWire).parameters;

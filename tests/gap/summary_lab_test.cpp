@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/gap/gap_report.hpp"
 #include "dtwire/gap/model_search.hpp"
 #include "dtwire/gap/summary_lab.hpp"
 
@@ -233,12 +234,18 @@ ForceCurve stand_in_column_two(const std::vector<AppliedEffect>& effects) {
   return c;
 }
 
-// The laboratory's figures of the column with both effects (s = 3, p = 0.6), scatter 2 %.
-std::vector<SummaryFeature> two_effect_lab() {
+// The laboratory's figures of the column with both effects (s = 3, p = 0.6), scatter 2 %: the
+// peak, the residual force and the force at two points of the falling branch.
+std::vector<SummaryFeature> two_effect_lab(std::size_t figures = 4) {
   const ForceCurve truth =
       stand_in_column_two({{&find_effect("geometry_imperfection"), {3.0}}, {&find_effect("residual_stress"), {0.6}}});
-  const double peak = curve_feature(truth, "peak_force_N"), residual = curve_feature(truth, "residual_force_N");
-  return {{"peak_force_N", peak, 0.02 * peak}, {"residual_force_N", residual, 0.02 * residual}};
+  std::vector<SummaryFeature> lab;
+  for (const char* name : {"peak_force_N", "residual_force_N", "force_at_0.6mm_N", "force_at_1.4mm_N"}) {
+    const double value = curve_feature(truth, name);
+    lab.push_back({name, value, 0.02 * value});
+  }
+  lab.resize(figures);
+  return lab;
 }
 
 TEST(GapSummaryLab, PairOfModelOnlyEffectsIsRankedAboveEitherSingle) {
@@ -260,7 +267,7 @@ TEST(GapSummaryLab, PairOfModelOnlyEffectsIsRankedAboveEitherSingle) {
   for (const SummaryCandidate& c : d.ranking)
     if (c.fitted.size() == 1) {
       EXPECT_GT(pair.score, c.score) << c.effect;
-      EXPECT_LT(pair.aic, c.aic) << c.effect;  // chi^2 + 2 k: the extra parameter pays for itself
+      EXPECT_LT(pair.aic, c.aic) << c.effect;  // AICc: the extra parameter pays for itself
     }
   EXPECT_LT(pair.gap_after, d.noise_floor) << summary_json(d).dump(1);  // within the laboratory scatter
   EXPECT_LE(pair.runs, 8);
@@ -272,6 +279,31 @@ TEST(GapSummaryLab, PairOfModelOnlyEffectsIsRankedAboveEitherSingle) {
 
   options.try_pairs = false;
   EXPECT_EQ(diagnose_summary(stand_in_column_two({}), lab, options).ranking.size(), 2u);
+}
+
+// On three figures or fewer a pair's two parameters leave AICc nothing to judge it by (n <= k + 1):
+// the same two-effect column is searched as a pair, but the pair is never the cause.
+TEST(GapSummaryLab, APairOnThreeFiguresOrFewerIsNeverTheCause) {
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection", "residual_stress"};
+  options.model = stand_in_column_two;
+  options.model_runs = 8;
+  const SummaryDiagnosis four = diagnose_summary(stand_in_column_two({}), two_effect_lab(4), options);
+  ASSERT_EQ(four.cause, "geometry_imperfection+residual_stress") << four.reason;
+  const SummaryDiagnosis three = diagnose_summary(stand_in_column_two({}), two_effect_lab(3), options);
+  EXPECT_EQ(three.cause.find('+'), std::string::npos) << three.cause;
+  bool pair_ranked = false;
+  for (const SummaryCandidate& c : three.ranking)
+    if (c.fitted.size() == 2) {
+      pair_ranked = true;
+      EXPECT_FALSE(c.qualifies);
+      EXPECT_GE(c.aic, 1e9);  // the undefined correction
+    }
+  EXPECT_TRUE(pair_ranked) << summary_json(three).dump(1);
+  EXPECT_NO_THROW(gap::require_finite(summary_json(three)));
+  // Two figures: the singles' correction is undefined too; the pair still cannot win.
+  const SummaryDiagnosis two = diagnose_summary(stand_in_column_two({}), two_effect_lab(2), options);
+  EXPECT_EQ(two.cause.find('+'), std::string::npos) << two.cause;
 }
 
 // --jobs (issue 38): the model-only searches side by side give the serial diagnosis, the runs

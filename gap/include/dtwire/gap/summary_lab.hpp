@@ -62,7 +62,10 @@ struct SummaryCandidate {
   std::vector<double> features;  // of the augmented simulation, in feature order
   ForceCurve curve;              // the augmented simulation
   double gap_after = 0.0, shrink = 0.0, plausibility = 1.0, score = 0.0;
-  // Akaike's criterion with the laboratory sd known: sum of z^2 + 2 x parameters.
+  // Akaike's criterion with the laboratory sd known, corrected for few figures (AICc, Hurvich and
+  // Tsai 1989): sum of z^2 + 2 k + 2 k (k + 1) / (n - k - 1), k parameters, n figures; where
+  // n <= k + 1 the correction is undefined (taken as 1e9, as the curve mode's AICc does): so many
+  // parameters reproduce any n figures, and the candidate cannot be judged against fewer.
   double aic = 0.0;
   int parameters = 0;
   int runs = 0;  // FE runs spent (pairs: search points, each at most one FE run)
