@@ -273,6 +273,7 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
     noise_area += g.curves * std::sqrt(2.0 / M_PI) * d.noise_sigma_N / g.problem.labs.front().f_scale;
     c.compression = c.compression || d.compression;
     c.labs.insert(c.labs.end(), d.labs.begin(), d.labs.end());
+    c.fracture_m.insert(c.fracture_m.end(), d.fracture_m.begin(), d.fracture_m.end());
     sims += (sims.empty() ? "" : ", ") + d.sim.source;
     cb.problems.push_back(g.problem);
     cb.groups.push_back(std::move(g));
