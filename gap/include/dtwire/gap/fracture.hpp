@@ -13,10 +13,10 @@ namespace dtwire::gap {
 
 // A fracture's drop: within the last kFractureWindow of the record's displacement range the
 // force falls below kFractureRemainder of the largest force there, the displacement not going
-// back. A neck does not lose three quarters of its force over 1 % of the travel (its force
-// falls over the neck's length, a diameter or more of the wire), nor does an unloading keep
-// the displacement from going back; a broken specimen carries only the load cell's noise and
-// zero drift (judgment: 25 % leaves room for a remainder a sixth of the force it broke at).
+// back. A neck does not lose three quarters of its force over 1 % of the travel (it thins
+// gradually: the Voce model's neck takes a tenth of its travel to fall to 0.4 of the peak),
+// and an unloading takes the displacement back; a broken specimen carries only the load cell's
+// noise and zero drift (judgment: 25 % leaves room for such a remainder).
 inline constexpr double kFractureWindow = 0.01;
 inline constexpr double kFractureRemainder = 0.25;
 
