@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/gap/fracture.hpp"
 #include "dtwire/gap/model_search.hpp"
 #include "dtwire/gap/noise.hpp"
 #include "evidence.hpp"
@@ -44,9 +45,10 @@ void check_force(const ForceCurve& c) {
   if (!(peak > 0)) throw InputError(c.source, "the force is zero throughout");
 }
 
-// Mean gap over the curves, the specimen scatter profiled out when the problem has it.
-double mean_gap(const ForceCurve& model, const FitProblem& problem) {
-  const auto forces = forces_with_scatter(model, problem.labs, problem.scatter);
+// Mean gap over the curves (`models[k]` against curve k), the specimen scatter profiled out when
+// the problem has it.
+double mean_gap(const std::vector<ForceCurve>& models, const FitProblem& problem) {
+  const auto forces = forces_with_scatter(models, problem.labs, problem.scatter);
   double sum = 0.0;
   for (std::size_t k = 0; k < forces.size(); ++k) sum += normalised_area(forces[k], problem.labs[k]);
   return sum / static_cast<double>(forces.size());
@@ -72,14 +74,14 @@ RankedEffect rank_entry(const Context& ctx, const EffectFit& fit) {
   r.effect = joined_name(fit.effects);
   r.fitted = fit.effects;
   r.parameters = fit.parameter_count;
-  const ForceCurve model = augment(ctx.problem.sim, fit.effects, ctx.problem.scale, ctx.problem.runner);
-  r.gap_after = mean_gap(model, ctx.problem);
+  const std::vector<ForceCurve> models = record_models(ctx.problem, fit.effects);
+  r.gap_after = mean_gap(models, ctx.problem);
   r.shrink = ctx.gap_before > 0 ? 1.0 - r.gap_after / ctx.gap_before : 0.0;
   const Comparison& first = ctx.problem.labs.front();
-  const auto forces = forces_with_scatter(model, ctx.problem.labs, ctx.problem.scatter).front();
+  const auto forces = forces_with_scatter(models, ctx.problem.labs, ctx.problem.scatter).front();
   r.gap_after_by_segment = segment_gaps(ctx.where, first, forces);
-  r.frechet_after = frechet_distance(model, first);
-  r.pcm_after = partial_curve_mapping(model, first);
+  r.frechet_after = frechet_distance(models.front(), first);
+  r.pcm_after = partial_curve_mapping(models.front(), first);
   r.plausibility = 1.0;
   for (const AppliedEffect& a : fit.effects)
     r.plausibility *= plausibility(*a.effect, a.params, ctx.problem.scale);
@@ -251,7 +253,12 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   for (const ForceCurve& lab : labs_in) {
     validate_force_curve(lab);
     bool flipped = false;
-    d.labs.push_back(densified(oriented(lab, &flipped)));
+    // A record that ends in a fracture is compared up to it; where it broke sets its damage
+    // clock (gap/include/dtwire/gap/fracture.hpp).
+    const ForceCurve densified_lab = densified(oriented(lab, &flipped));
+    const RecordEnd end = record_end(densified_lab);
+    d.labs.push_back(intact_part(densified_lab, end));
+    d.fracture_m.push_back(end.fracture ? end.end_m : 0.0);
     d.compression = d.compression || flipped;
     check_force(d.labs.back());
     check_overlap(d.labs.back(), d.sim);
@@ -267,7 +274,11 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
       return oriented(runner(effects));
     };
   }
-  for (const ForceCurve& lab : d.labs) ctx.problem.labs.push_back(make_comparison(lab));
+  for (std::size_t k = 0; k < d.labs.size(); ++k) {
+    ctx.problem.labs.push_back(make_comparison(d.labs[k]));
+    ctx.problem.labs.back().fracture_m = d.fracture_m[k];
+  }
+  set_damage_clocks(ctx.problem.labs);
   const Comparison& first = ctx.problem.labs.front();
 
   // Noise floor: twice the area that noise alone leaves (E|e| = sigma sqrt(2/pi)); with
@@ -303,7 +314,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   ctx.noise_area = std::sqrt(2.0 / M_PI) * d.noise_sigma_N / first.f_scale;
 
   ctx.sim_forces_first = forces_with_scatter(d.sim, ctx.problem.labs, ctx.problem.scatter).front();
-  d.gap_before = mean_gap(d.sim, ctx.problem);
+  d.gap_before = mean_gap(record_models(ctx.problem, {}), ctx.problem);
   if (ctx.problem.scatter.active) {
     double sum = 0.0;
     for (const Comparison& c : ctx.problem.labs) sum += normalised_area(d.sim, c);
@@ -406,8 +417,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   const auto edge_fits = [&](const RankedEffect& r) {
     for (const AppliedEffect& a : r.fitted)
       if (a.effect->needs_model) return false;  // no extra model run for this
-    const ForceCurve at_edge = augment(ctx.problem.sim, magnitudes_at_edge(r.fitted, ctx.problem.scale),
-                                       ctx.problem.scale, ctx.problem.runner);
+    const auto at_edge = record_models(ctx.problem, magnitudes_at_edge(r.fitted, ctx.problem.scale));
     return mean_gap(at_edge, ctx.problem) - r.gap_after <= kMinimumReduction * ctx.noise_area;
   };
   evidence::mark_implausible(ranking, {ctx.problem.scale}, edge_fits);
@@ -419,6 +429,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   for (const RankedEffect& r : d.ranking)
     if (r.effect == d.cause) cause = &r;
   const RankedEffect* shown = cause ? cause : (d.ranking.empty() ? nullptr : &d.ranking.front());
+  // On the law's own clock (a damage as on the record that broke last, or on unbroken ones).
   d.best_model = shown ? augment(d.sim, shown->fitted, ctx.problem.scale, ctx.problem.runner) : d.sim;
 
   // Predictive check: the cause fitted on the first curve, applied to the second.
@@ -432,7 +443,9 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
     std::vector<const EffectSpec*> effects;
     for (const AppliedEffect& a : cause->fitted) effects.push_back(a.effect);
     const EffectFit fit = fit_effects(one, effects, {params_of(*cause)}, 1, rng);
-    const ForceCurve model = augment(d.sim, fit.effects, ctx.problem.scale, ctx.problem.runner);
+    FitProblem other = ctx.problem;
+    other.labs = {ctx.problem.labs[1]};
+    const ForceCurve model = record_models(other, fit.effects).front();  // on the second curve's clock
     d.predictive.done = true;
     d.predictive.effect = cause->effect;
     d.predictive.fitted_on = d.labs[0].source;

@@ -212,11 +212,31 @@ std::vector<std::vector<AppliedEffect>> per_problem(const JointLayout& l,
 
 }  // namespace
 
+std::vector<ForceCurve> record_models(const FitProblem& problem, const std::vector<AppliedEffect>& effects) {
+  const bool clocked = std::any_of(effects.begin(), effects.end(), [](const AppliedEffect& a) { return a.effect->runs_to_fracture; });
+  if (!clocked) return std::vector<ForceCurve>(problem.labs.size(), augment(problem.sim, effects, problem.scale, problem.runner));
+  std::vector<AppliedEffect> model_effects, curve_effects;
+  for (const AppliedEffect& a : effects) (a.effect->needs_model ? model_effects : curve_effects).push_back(a);
+  // The model run once; the curve-mode effects per clock on top of it.
+  const ForceCurve run = model_effects.empty() ? problem.sim : augment(problem.sim, model_effects, problem.scale, problem.runner);
+  std::map<double, ForceCurve> by_clock;
+  std::vector<ForceCurve> out;
+  for (const Comparison& c : problem.labs) {
+    auto it = by_clock.find(c.damage_clock);
+    if (it == by_clock.end()) {
+      CurveScale scale = problem.scale;
+      scale.damage_clock = c.damage_clock;
+      it = by_clock.emplace(c.damage_clock, apply_effects(run, curve_effects, scale)).first;
+    }
+    out.push_back(it->second);
+  }
+  return out;
+}
+
 EffectFit evaluate_fit(const FitProblem& problem, std::vector<AppliedEffect> effects) {
   EffectFit fit;
   for (const AppliedEffect& a : effects) fit.parameter_count += static_cast<int>(a.params.size());
-  const ForceCurve model = augment(problem.sim, effects, problem.scale, problem.runner);
-  const auto forces = forces_with_scatter(model, problem.labs, problem.scatter);
+  const auto forces = forces_with_scatter(record_models(problem, effects), problem.labs, problem.scatter);
   for (std::size_t k = 0; k < problem.labs.size(); ++k) {
     const Comparison& c = problem.labs[k];
     const auto r = normalised_residual(forces[k], c);

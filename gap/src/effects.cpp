@@ -90,10 +90,19 @@ std::vector<EffectSpec> make_catalogue() {
   {
     EffectSpec e;
     e.name = "ductile_damage";
-    e.description = "early softening, f' = f (1 - D), D = D_end ((u - u_d)/(u_end - u_d))^2 "
-                    "after the onset displacement u_d";
+    e.description = "early softening, f' = f (1 - D), D = D_end ((u c - u_d)/(u_end - u_d))^2 "
+                    "after the onset displacement u_d, on each fractured record's clock c (its "
+                    "end at the largest fracture displacement)";
     e.order = 1;
     e.magnitude = 1;
+    // Ductile damage grows with the plastic strain until it reaches a critical value at which
+    // the specimen breaks (Lemaitre 1985, J. Eng. Mater. Technol. 107:83, D = D_c at rupture;
+    // Tvergaard and Needleman 1984, Acta Metall. 32:157, the void volume fraction at
+    // coalescence). Specimens of one wire that break at different elongations reach the same
+    // critical damage, each at its own end: record k's damage is D(u c_k), c_k = u_ref / u_k,
+    // u_k its fracture displacement, u_ref the largest (docs/gap.md). The ends are data, the law's
+    // two parameters stay shared; a record that did not break has c = 1.
+    e.runs_to_fracture = true;
     e.parameters = [](const CurveScale& s) {
       const double end = s.max_displacement_m / kMm;
       return std::vector<ParameterSpec>{{"onset_mm", 0.0, end, 0.0, end, {}, {}, {}},
@@ -115,7 +124,7 @@ std::vector<EffectSpec> make_catalogue() {
       const double span = std::max(s.max_displacement_m - onset, 1e-12);
       double reached = 0.0;
       for (std::size_t i = 0; i < sim.size(); ++i) {
-        reached = std::max(reached, sim.u[i]);
+        reached = std::max(reached, sim.u[i] * s.damage_clock);
         const double x = std::clamp((reached - onset) / span, 0.0, 1.0);
         out.f[i] = sim.f[i] * (1.0 - p[1] * x * x);
       }

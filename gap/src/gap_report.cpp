@@ -172,6 +172,9 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
     out["specimen_scale_bounds"] = {{"force_1", d.specimen_force_bound},
                                     {"displacement_1", d.specimen_length_bound}};
   }
+  // Per laboratory curve (in "lab" order): where it broke, 0 when it ended without a fracture's
+  // drop (its damage on the law's own clock).
+  out["lab_fracture_m"] = d.fracture_m;
   out["verdict"] = d.verdict;
   const auto [runs, seconds] = model_cost(d);
   out["model_runs"] = runs;

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/gap/fracture.hpp"
 #include "dtwire/gap/gap_report.hpp"
 #include "dtwire/gap/loading_mode.hpp"
 #include "dtwire/gap/model_search.hpp"
@@ -65,10 +66,12 @@ Candidate candidate_for(const EffectSpec& e, const std::vector<ModeInput>& input
   return c;
 }
 
-double combined_gap(const Combined& cb, const std::vector<ForceCurve>& models) {
+// `models[g][k]`: the model against curve k of group g (each record at its damage clock).
+double combined_gap(const Combined& cb, const std::vector<std::vector<ForceCurve>>& models) {
   double sum = 0.0;
   for (std::size_t g = 0; g < cb.groups.size(); ++g)
-    for (const Comparison& lab : cb.groups[g].problem.labs) sum += normalised_area(models[g], lab);
+    for (std::size_t k = 0; k < cb.groups[g].problem.labs.size(); ++k)
+      sum += normalised_area(models[g][k], cb.groups[g].problem.labs[k]);
   return sum / cb.curves;
 }
 
@@ -79,10 +82,10 @@ RankedEffect rank_combined(const Combined& cb, const std::vector<JointEffect>& e
   for (const JointEffect& e : effects) names.push_back(e.effect->name);
   r.effect = evidence::joined_name(names);
   r.parameters = fit.parameter_count;
-  std::vector<ForceCurve> models;
+  std::vector<std::vector<ForceCurve>> models;
   for (std::size_t g = 0; g < cb.groups.size(); ++g) {
     const FitProblem& p = cb.groups[g].problem;
-    models.push_back(augment(p.sim, fit.per_problem[g], p.scale, p.runner));
+    models.push_back(record_models(p, fit.per_problem[g]));
     if (!fit.per_problem[g].empty()) {
       r.fitted_by_mode.emplace_back(modes[g], fit.per_problem[g]);
       if (r.fitted.empty()) r.fitted = fit.per_problem[g];
@@ -93,9 +96,9 @@ RankedEffect rank_combined(const Combined& cb, const std::vector<JointEffect>& e
   std::vector<std::vector<double>> forces;
   for (std::size_t g = 0; g < cb.groups.size(); ++g) {
     const Comparison& first = cb.groups[g].problem.labs.front();
-    forces.push_back(model_forces_at_lab(models[g], first));
-    r.frechet_after += cb.groups[g].curves * frechet_distance(models[g], first) / cb.curves;
-    r.pcm_after += cb.groups[g].curves * partial_curve_mapping(models[g], first) / cb.curves;
+    forces.push_back(model_forces_at_lab(models[g].front(), first));
+    r.frechet_after += cb.groups[g].curves * frechet_distance(models[g].front(), first) / cb.curves;
+    r.pcm_after += cb.groups[g].curves * partial_curve_mapping(models[g].front(), first) / cb.curves;
   }
   std::vector<double> change;
   for (std::size_t k = 0; k < cb.where.size(); ++k) {
@@ -253,7 +256,11 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
       g.problem.runner = [runner = inputs[m].model](const std::vector<AppliedEffect>& effects) {
         return oriented(runner(effects));
       };
-    for (const ForceCurve& lab : d.labs) g.problem.labs.push_back(make_comparison(lab));
+    for (std::size_t k = 0; k < d.labs.size(); ++k) {
+      g.problem.labs.push_back(make_comparison(d.labs[k]));
+      g.problem.labs.back().fracture_m = k < d.fracture_m.size() ? d.fracture_m[k] : 0.0;
+    }
+    set_damage_clocks(g.problem.labs);
     g.sim_forces_first = model_forces_at_lab(d.sim, g.problem.labs.front());
     g.curves = static_cast<double>(d.labs.size());
     cb.curves += g.curves;
@@ -266,6 +273,7 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
     noise_area += g.curves * std::sqrt(2.0 / M_PI) * d.noise_sigma_N / g.problem.labs.front().f_scale;
     c.compression = c.compression || d.compression;
     c.labs.insert(c.labs.end(), d.labs.begin(), d.labs.end());
+    c.fracture_m.insert(c.fracture_m.end(), d.fracture_m.begin(), d.fracture_m.end());
     sims += (sims.empty() ? "" : ", ") + d.sim.source;
     cb.problems.push_back(g.problem);
     cb.groups.push_back(std::move(g));

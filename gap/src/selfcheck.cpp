@@ -153,7 +153,8 @@ double initial_stiffness(const ForceCurve& sim) {
 // Independent family: each effect in one of its other physical forms, `repeats` specimens with
 // scatter (base force and displacement each +- 1.5 % sd, effect magnitude +- 10 % sd), each
 // record with irregular sampling, AR(1) load noise with rho 0.5-0.9, load-cell drift and the
-// record cut where the specimen broke. The diagnosis gets the bare base model.
+// record ending where the specimen broke, with the fracture's drop. The diagnosis gets the bare
+// base model.
 SelfcheckTrial run_independent_trial(const Base& base, const std::vector<std::string>& effects,
                                      std::size_t repeats, std::mt19937& rng, unsigned seed) {
   const ForceCurve& sim = base.curve;
@@ -193,6 +194,7 @@ SelfcheckTrial run_independent_trial(const Base& base, const std::vector<std::st
     m.noise_rho = uniform(rng, 0.5, 0.9);
     m.drift_N = uniform(rng, -0.005, 0.005) * peak;
     m.jitter = uniform(rng, 0.0, 0.5);
+    m.fracture = true;
     labs.push_back(independent::measure(truth, m, rng));
     labs.back().source = "specimen_" + std::to_string(r + 1);
   }

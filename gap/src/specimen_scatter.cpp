@@ -61,15 +61,22 @@ ScaleFit fit_specimen_scale(const ForceCurve& model, const Comparison& lab) {
 
 std::vector<std::vector<double>> forces_with_scatter(const ForceCurve& model, const std::vector<Comparison>& labs,
                                                      const SpecimenScatter& scatter) {
+  return forces_with_scatter(std::vector<ForceCurve>(labs.size(), model), labs, scatter);
+}
+
+std::vector<std::vector<double>> forces_with_scatter(const std::vector<ForceCurve>& models,
+                                                     const std::vector<Comparison>& labs,
+                                                     const SpecimenScatter& scatter) {
   std::vector<std::vector<double>> out;
   if (!scatter.active) {
-    for (const Comparison& c : labs) out.push_back(model_forces_at_lab(model, c));
+    for (std::size_t k = 0; k < labs.size(); ++k) out.push_back(model_forces_at_lab(models[k], labs[k]));
     return out;
   }
   std::vector<ScaleFit> fits;
   ScaleFit mean;
-  for (const Comparison& c : labs) {
-    fits.push_back(fit_specimen_scale(model, c));
+  for (std::size_t k = 0; k < labs.size(); ++k) {
+    const Comparison& c = labs[k];
+    fits.push_back(fit_specimen_scale(models[k], c));
     mean.force += fits.back().force / static_cast<double>(labs.size());
     mean.length += fits.back().length / static_cast<double>(labs.size());
   }
@@ -79,7 +86,7 @@ std::vector<std::vector<double>> forces_with_scatter(const ForceCurve& model, co
   for (std::size_t k = 0; k < labs.size(); ++k) {
     fits[k].force += shift_force;
     fits[k].length += shift_length;
-    out.push_back(model_forces_at_lab(scaled(model, fits[k]), labs[k]));
+    out.push_back(model_forces_at_lab(scaled(models[k], fits[k]), labs[k]));
   }
   return out;
 }

@@ -105,6 +105,16 @@ ForceCurve measure(const ForceCurve& truth, const Measurement& m, std::mt19937& 
     e = i == 0 ? normal(rng) : rho * e + std::sqrt(1.0 - rho * rho) * normal(rng);
     lab.f[i] += m.noise_sigma_N * e + m.drift_N * static_cast<double>(i) / static_cast<double>(lab.size() - 1);
   }
+  if (m.fracture) {
+    // The noise carried on at its expectation, rho^k e, with no new draw: the drop leaves every
+    // later draw of the selfcheck as it was without it.
+    const double step = (end - truth.u.front()) / static_cast<double>(lab.size() - 1);
+    for (int k = 1; k <= 2; ++k) {
+      e *= rho;
+      lab.u.push_back(end + 0.5 * k * step);
+      lab.f.push_back(m.noise_sigma_N * e + m.drift_N);
+    }
+  }
   return lab;
 }
 

@@ -64,10 +64,13 @@ struct Measurement {
   double noise_rho = 0.0;       // lag-1 correlation of the load noise (AR(1))
   double drift_N = 0.0;         // load-cell drift reached at the end of the record
   double jitter = 0.0;          // irregular sampling: spacing varies by +- this fraction
+  bool fracture = false;        // the record ends in the specimen's fracture: its drop recorded
 };
 
 // The laboratory record of `truth`: irregular sampling up to end_m (the record stops where the
-// specimen broke), correlated load noise and a linear drift of the load-cell zero.
+// specimen broke), correlated load noise and a linear drift of the load-cell zero; with
+// `fracture`, two more samples half a step and a step further, where the broken specimen
+// carries nothing (the load cell's zero drift and its noise).
 ForceCurve measure(const ForceCurve& truth, const Measurement& m, std::mt19937& rng);
 
 }  // namespace dtwire::gap::independent

@@ -17,6 +17,12 @@ struct Comparison {
   std::vector<double> weight;         // per point, sums to 1 (normalised trapezoid widths)
   std::vector<Branch> branches;       // monotone branches of lab.u
   std::vector<std::size_t> branch_of; // branch index of each point
+  // Where the record broke (its terminal drop, gap/include/dtwire/gap/fracture.hpp; 0: it ended
+  // otherwise), and the damage's clock on this record: the reference fracture displacement over
+  // this one's (1 for a record that did not break). Data of the record, kept by every copy (the
+  // held-out blocks, the predictive check's single curve).
+  double fracture_m = 0.0;
+  double damage_clock = 1.0;
 };
 
 Comparison make_comparison(const ForceCurve& lab);

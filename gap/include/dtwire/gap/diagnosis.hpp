@@ -106,7 +106,8 @@ struct Diagnosis {
   std::map<std::string, std::string> not_tested_reason;
   PredictiveCheck predictive;
   ForceCurve sim;                // oriented
-  std::vector<ForceCurve> labs;  // oriented
+  std::vector<ForceCurve> labs;  // oriented, each up to its fracture when it broke
+  std::vector<double> fracture_m;  // per laboratory curve: where it broke (0: it ended otherwise)
   ForceCurve best_model;         // the simulation with the cause (or the top effect) added
 };
 

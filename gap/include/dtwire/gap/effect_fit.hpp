@@ -25,6 +25,11 @@ struct EffectFit {
   int parameter_count = 0;
 };
 
+// The model compared with each laboratory curve of `problem`, in its order: the simulation
+// with `effects` (model-only ones run once), each record at its own damage clock when an effect
+// runs to fracture (records of one clock share a curve).
+std::vector<ForceCurve> record_models(const FitProblem& problem, const std::vector<AppliedEffect>& effects);
+
 // Fitted residual vector and weighted SSE for given parameters.
 EffectFit evaluate_fit(const FitProblem& problem, std::vector<AppliedEffect> effects);
 

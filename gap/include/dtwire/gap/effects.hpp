@@ -26,6 +26,9 @@ struct CurveScale {
   // Where the laboratory test ends (its largest displacement; 0: the simulation's end). An
   // effect whose size grows along the test (ductile damage) is judged by what the test shows.
   double test_end_m = 0.0;
+  // The damage's clock on the record the curve is compared with (Comparison::damage_clock):
+  // an effect that runs to fracture (`runs_to_fracture`) reads the displacement times it.
+  double damage_clock = 1.0;
 };
 CurveScale curve_scale(const ForceCurve& sim);
 
@@ -70,6 +73,9 @@ struct EffectSpec {
   int order = 0;             // composition order: material first, then the measurement chain
   std::size_t magnitude = 0; // index of the parameter that measures the effect's size
   double neutral = 0.0;      // value of that parameter for which the effect vanishes
+  // The effect runs on each fractured record's own clock to that record's fracture
+  // (CurveScale::damage_clock): one law, shared parameters, a model curve per record.
+  bool runs_to_fracture = false;
   std::function<std::vector<ParameterSpec>(const CurveScale&)> parameters;
   // The magnitude as the test shows it, which the plausible range of parameter `magnitude` is
   // stated for (unset: the parameter itself), and its name for the verdict.

@@ -34,6 +34,10 @@ ForceCurve scaled(const ForceCurve& model, const ScaleFit& s);
 // mean clamped to the bounds (all shifted alike). Without `active`: the plain model forces.
 std::vector<std::vector<double>> forces_with_scatter(const ForceCurve& model, const std::vector<Comparison>& labs,
                                                      const SpecimenScatter& scatter);
+// The same with a model per curve (`models[k]` for `labs[k]`: a damage on each record's clock).
+std::vector<std::vector<double>> forces_with_scatter(const std::vector<ForceCurve>& models,
+                                                     const std::vector<Comparison>& labs,
+                                                     const SpecimenScatter& scatter);
 
 // The scatter of repeated curves: bounds on the mean from the pairwise scale differences
 // (sd_a^2 = mean (a_j - a_i)^2 / 2 over pairs, at least kMinimumSpecimenScatter; bound
