@@ -88,6 +88,22 @@ PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
   return out;
 }
 
+std::optional<double> next_model_value(const std::vector<double>& values_run, double interpolated_minimum,
+                                       double best_run) {
+  std::vector<double> values = values_run;
+  std::sort(values.begin(), values.end());
+  const double range = values.back() - values.front();
+  if (values.size() < 2 || !(range > 0.0)) return std::nullopt;
+  bool known = false;
+  for (double v : values) known = known || std::abs(v - interpolated_minimum) < 0.02 * range;
+  if (!known) return interpolated_minimum;
+  const auto at = std::lower_bound(values.begin(), values.end(), best_run);
+  const double below = at == values.begin() ? 0.0 : best_run - *std::prev(at);
+  const double above = std::next(at) == values.end() ? 0.0 : *std::next(at) - best_run;
+  if (std::max(below, above) < 0.04 * range) return std::nullopt;
+  return below > above ? best_run - 0.5 * below : best_run + 0.5 * above;
+}
+
 ModelEffectSearch search_model_effect(const FitProblem& problem, const EffectSpec& effect, std::size_t runs) {
   const ParameterSpec spec = effect.parameters(problem.scale).front();
   std::vector<double> weight;
@@ -130,10 +146,15 @@ ModelEffectSearch search_model_effect(const FitProblem& problem, const EffectSpe
         best_v = v;
       }
     }
-    bool known = false;
-    for (const auto& [v, fit] : sampled) known = known || std::abs(v - best_v) < 0.02 * (hi - lo);
-    if (known) break;
-    run(best_v);
+    std::vector<double> values;
+    double best_run = effect.neutral;
+    for (const auto& [v, fit] : sampled) {
+      values.push_back(v);
+      if (fit.weighted_sse < sampled.at(best_run).weighted_sse) best_run = v;
+    }
+    const std::optional<double> next = next_model_value(values, best_v, best_run);
+    if (!next || sampled.count(spec.snapped(*next))) break;
+    run(*next);
   }
   const EffectFit* best = nullptr;
   for (const auto& [v, fit] : sampled) {

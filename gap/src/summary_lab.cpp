@@ -140,11 +140,18 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
         best_v = v;
       }
     }
-    // Closest sampled value within 2 % of the range: nothing new to learn there.
-    bool known = false;
-    for (const auto& [v, f] : sampled) known = known || std::abs(v - best_v) < 0.02 * (hi - lo);
-    if (known) break;
-    run(best_v);
+    std::vector<double> values;
+    double best_run = effect.neutral, best_run_gap = INFINITY;
+    for (const auto& [v, f] : sampled) {
+      values.push_back(v);
+      if (const double g = summary_gap(lab, f); g < best_run_gap) {
+        best_run_gap = g;
+        best_run = v;
+      }
+    }
+    const std::optional<double> next = next_model_value(values, best_v, best_run);
+    if (!next || sampled.count(*next)) break;
+    run(*next);
   }
   ModelSearch out{effect.neutral, sim, spent, {}};
   for (const auto& [v, f] : sampled) out.samples.push_back({{v}, f});

@@ -155,6 +155,46 @@ TEST(GapModelSearch, GridParameterTakesOnlyGridValues) {
   EXPECT_NEAR(s.best[0], 0.63, 0.02);
 }
 
+// The next value of a bounded one-parameter search: the interpolated minimum when it is new;
+// near a value run, the middle of the wider interval beside the best value run; nothing once
+// both of those intervals are narrower than 4 % of the range.
+TEST(GapModelSearch, NextValueBisectsBesideTheBestWhenTheInterpolationPointsAtAValueRun) {
+  EXPECT_DOUBLE_EQ(*next_model_value({0.05, 1.0}, 0.4, 1.0), 0.4);
+  EXPECT_DOUBLE_EQ(*next_model_value({1.0, 0.05}, 0.05, 0.05), 0.525);
+  EXPECT_DOUBLE_EQ(*next_model_value({0.05, 0.525, 1.0}, 0.525, 0.525), 0.2875);  // ties go below
+  EXPECT_DOUBLE_EQ(*next_model_value({0.0, 0.1, 1.0}, 0.1, 0.1), 0.55);
+  EXPECT_FALSE(next_model_value({0.0, 0.03, 0.06, 1.0}, 0.03, 0.03).has_value());
+  EXPECT_FALSE(next_model_value({1.0}, 1.0, 1.0).has_value());
+}
+
+// A model-only effect whose figure is not monotone between the range's ends (a DEM punch's peak
+// against a link stiffness): the stand-in's peak rises by up to 50 % around s = 2.6 and barely
+// moves at the plausible range's ends (0.5 and 4). The interpolation between the ends points at
+// the end value 4; the search must still look inside and find the bump within its five runs.
+TEST(GapSummaryLab, AResponseThatIsNotMonotoneIsSearchedInside) {
+  const auto bump = [](double s) { return std::exp(-std::pow((s - 2.6) / 0.8, 2)); };
+  const auto column = [&](double s) {
+    ForceCurve c = stand_in_column(1.0);
+    for (double& f : c.f) f *= 1.0 + 0.5 * (bump(s) - bump(1.0));
+    return c;
+  };
+  const double peak = curve_feature(column(2.6), "peak_force_N");
+  const std::vector<SummaryFeature> lab = {{"peak_force_N", peak, 0.02 * peak}};
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection"};
+  std::vector<double> asked;
+  options.model = [&](const std::vector<AppliedEffect>& effects) {
+    asked.push_back(effects.front().params.front());
+    return column(asked.back());
+  };
+  options.model_runs = 5;
+  const SummaryDiagnosis d = diagnose_summary(column(1.0), lab, options);
+  EXPECT_LE(asked.size(), 5u);
+  ASSERT_EQ(d.cause, "geometry_imperfection") << d.reason;
+  EXPECT_NEAR(d.ranking.front().fitted.front().params.front(), 2.6, 0.2);
+  EXPECT_LT(d.ranking.front().gap_after, d.noise_floor);
+}
+
 // A pair whose search leaves one member at its neutral value is that member's partner alone:
 // the single's answer is improved, no pair is named. The stand-in column's imperfection s = 3
 // with two runs of its own search (s = 0.5 and 4 only) and a grid effect (three nodes per wire
