@@ -90,10 +90,11 @@ PatternSearch pattern_search(const std::vector<ParameterSpec>& specs,
 
 std::optional<double> next_model_value(const std::vector<double>& values_run, double interpolated_minimum,
                                        double best_run) {
+  if (values_run.size() < 2) return std::nullopt;
   std::vector<double> values = values_run;
   std::sort(values.begin(), values.end());
   const double range = values.back() - values.front();
-  if (values.size() < 2 || !(range > 0.0)) return std::nullopt;
+  if (!(range > 0.0)) return std::nullopt;
   bool known = false;
   for (double v : values) known = known || std::abs(v - interpolated_minimum) < 0.02 * range;
   if (!known) return interpolated_minimum;
