@@ -22,7 +22,11 @@ std::filesystem::path write(const std::filesystem::path& file, const std::string
   return file;
 }
 
-const std::filesystem::path kRoot = std::filesystem::temp_directory_path() / "dtwire_campaign_include";
+// One folder per test: ctest runs this file's tests as parallel processes, and each clears its own.
+std::filesystem::path test_root() {
+  return std::filesystem::temp_directory_path() /
+         (std::string("dtwire_campaign_include_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+}
 
 const std::string kBase =
     "name = \"base\"\n[variables]\nflag = \"off\"\n"
@@ -30,16 +34,17 @@ const std::string kBase =
     "inputs = [\"{campaign}/a.prm\"]\noutputs = [\"{out}/a.msh\"]\n";
 
 TEST(CampaignInclude, IncludedStepsComeFirstWithTheirOwnFolderAndVariables) {
-  std::filesystem::remove_all(kRoot);
-  write(kRoot / "base/campaign.toml", kBase);
-  const auto study = write(kRoot / "study/campaign.toml",
+  const auto root = test_root();
+  std::filesystem::remove_all(root);
+  write(root / "base/campaign.toml", kBase);
+  const auto study = write(root / "study/campaign.toml",
                            "name = \"study\"\ninclude = [\"../base/campaign.toml\"]\n"
                            "[[step]]\nname = \"use\"\ncommand = [\"run\", \"{campaign}/b.prm\", \"--flag\", \"{flag}\"]\n"
                            "inputs = [\"{out}/a.msh\"]\n");
   Campaign c = read_campaign(study);
   ASSERT_EQ(c.steps.size(), 2u);
   EXPECT_EQ(c.steps[0].name, "make");
-  const std::string base_folder = (kRoot / "base").lexically_normal().string();
+  const std::string base_folder = (root / "base").lexically_normal().string();
   EXPECT_EQ(c.steps[0].command[3], base_folder + "/a.prm") << "{campaign} of an included step is its own file's folder";
   EXPECT_EQ(c.steps[0].inputs[0], base_folder + "/a.prm");
   EXPECT_EQ(c.steps[1].command[1], "{campaign}/b.prm") << "the including file's own steps keep {campaign}";
@@ -47,12 +52,13 @@ TEST(CampaignInclude, IncludedStepsComeFirstWithTheirOwnFolderAndVariables) {
   apply_variables(c, {"flag=on"});
   EXPECT_EQ(c.steps[0].command[5], "on");
   EXPECT_EQ(c.steps[1].command[3], "on");
-  std::filesystem::remove_all(kRoot);
+  std::filesystem::remove_all(root);
 }
 
 TEST(CampaignInclude, DuplicateNamesCyclesAndMissingFilesAreNamedAtTheirLine) {
-  std::filesystem::remove_all(kRoot);
-  write(kRoot / "base/campaign.toml", kBase);
+  const auto root = test_root();
+  std::filesystem::remove_all(root);
+  write(root / "base/campaign.toml", kBase);
   const auto expect_error = [](const std::filesystem::path& file, const std::string& part, int line) {
     try {
       read_campaign(file);
@@ -62,18 +68,18 @@ TEST(CampaignInclude, DuplicateNamesCyclesAndMissingFilesAreNamedAtTheirLine) {
       EXPECT_EQ(e.line(), line) << e.what();
     }
   };
-  expect_error(write(kRoot / "dup.toml", "name = \"d\"\ninclude = [\"base/campaign.toml\"]\n[[step]]\nname = \"make\"\n"
+  expect_error(write(root / "dup.toml", "name = \"d\"\ninclude = [\"base/campaign.toml\"]\n[[step]]\nname = \"make\"\n"
                                          "command = [\"mesh\", \"sw\"]\n"),
                "duplicate step name 'make' (an included campaign has it)", 4);
-  write(kRoot / "a.toml", "name = \"a\"\ninclude = [\"b.toml\"]\n[[step]]\nname = \"x\"\ncommand = [\"mesh\"]\n");
-  write(kRoot / "b.toml", "name = \"b\"\ninclude = [\"a.toml\"]\n[[step]]\nname = \"y\"\ncommand = [\"mesh\"]\n");
-  expect_error(kRoot / "a.toml", "makes a cycle", 2);
-  expect_error(write(kRoot / "missing.toml", "name = \"m\"\ninclude = [\"nowhere.toml\"]\n[[step]]\nname = \"x\"\ncommand = [\"mesh\"]\n"),
+  write(root / "a.toml", "name = \"a\"\ninclude = [\"b.toml\"]\n[[step]]\nname = \"x\"\ncommand = [\"mesh\"]\n");
+  write(root / "b.toml", "name = \"b\"\ninclude = [\"a.toml\"]\n[[step]]\nname = \"y\"\ncommand = [\"mesh\"]\n");
+  expect_error(root / "a.toml", "makes a cycle", 2);
+  expect_error(write(root / "missing.toml", "name = \"m\"\ninclude = [\"nowhere.toml\"]\n[[step]]\nname = \"x\"\ncommand = [\"mesh\"]\n"),
                "no campaign file", 2);
-  expect_error(write(kRoot / "vars.toml", "name = \"v\"\ninclude = [\"base/campaign.toml\"]\n[variables]\nflag = \"on\"\n"
+  expect_error(write(root / "vars.toml", "name = \"v\"\ninclude = [\"base/campaign.toml\"]\n[variables]\nflag = \"on\"\n"
                                           "[[step]]\nname = \"x\"\ncommand = [\"mesh\"]\n"),
                "variable 'flag' is declared by an included campaign", 4);
-  std::filesystem::remove_all(kRoot);
+  std::filesystem::remove_all(root);
 }
 
 // The shipped split: the study includes every step of the default campaign as the default runs it
@@ -127,9 +133,10 @@ TEST(CampaignSplit, TheStudyRunsEveryDefaultStepAsTheDefaultDoes) {
 // `dtwire campaign --study` takes the study's file (written here as a workflow: nothing runs);
 // with a campaign file as well it is refused before any work.
 TEST(CampaignSplit, StudyOptionRunsTheStudyFile) {
-  std::filesystem::remove_all(kRoot);
-  const auto workflow = kRoot / "study.smk";
-  ASSERT_EQ(run_command_line({"campaign", "--study", "-o", (kRoot / "out").string(), "--snakefile", workflow.string()}), 0);
+  const auto root = test_root();
+  std::filesystem::remove_all(root);
+  const auto workflow = root / "study.smk";
+  ASSERT_EQ(run_command_line({"campaign", "--study", "-o", (root / "out").string(), "--snakefile", workflow.string()}), 0);
   std::ifstream in(workflow);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("rule macro_fit"), std::string::npos) << "a study step";
@@ -137,7 +144,7 @@ TEST(CampaignSplit, StudyOptionRunsTheStudyFile) {
   EXPECT_EQ(run_command_line({"campaign", std::string(DTWIRE_SOURCE_DIR) + "/experiments/default/campaign.toml", "--study",
                               "--snakefile", workflow.string()}),
             kExitBadInput);
-  std::filesystem::remove_all(kRoot);
+  std::filesystem::remove_all(root);
 }
 
 }  // namespace
