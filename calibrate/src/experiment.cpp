@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "dtwire/core/curve_ops.hpp"
 #include "dtwire/core/error.hpp"
@@ -166,10 +167,29 @@ std::vector<double> simulated_values(const Experiment& e, const Curve& simulated
   return out;
 }
 
-double channel_scale(const Experiment& e, const ChannelWeight& c) {
-  if (c.scale > 0) return c.scale;
-  const double r = range_of(e.target.si(c.quantity));
+double channel_scale(const Experiment& e, const std::string& quantity, double scale) {
+  if (scale > 0) return scale;
+  const double r = range_of(e.target.si(quantity));
   return r > 0 ? r : 1.0;
+}
+
+// Index of the value of largest magnitude (the first, if several).
+std::size_t peak_index(const std::vector<double>& v) {
+  return static_cast<std::size_t>(
+      std::max_element(v.begin(), v.end(), [](double a, double b) { return std::abs(a) < std::abs(b); }) - v.begin());
+}
+
+// The simulated curve's peak of `quantity` over its whole path, with its abscissa (SI).
+std::pair<double, double> simulated_peak(const Experiment& e, const Curve& simulated, const std::string& quantity) {
+  if (!simulated.has(quantity) || !simulated.has(e.abscissa) || simulated.size() == 0)
+    throw ComputationError("experiment '" + e.name + "': the simulated curve lacks channel '" + quantity +
+                           "' for its peak");
+  const std::vector<double> y = simulated.si(quantity);
+  for (double v : y)
+    if (!std::isfinite(v))
+      throw ComputationError("experiment '" + e.name + "': the simulated " + quantity + " is not finite");
+  const std::size_t i = peak_index(y);
+  return {y[i], simulated.si(e.abscissa)[i]};
 }
 
 }  // namespace
@@ -186,6 +206,11 @@ void validate(const Experiment& e) {
       throw std::invalid_argument(where + "the target has no channel '" + c.quantity + "'");
     if (!(c.weight > 0)) throw std::invalid_argument(where + "channel weights must be > 0");
   }
+  for (const auto& p : e.peaks) {
+    if (!e.target.has(p.quantity))
+      throw std::invalid_argument(where + "the target has no channel '" + p.quantity + "' for its peak");
+    if (!(p.weight > 0)) throw std::invalid_argument(where + "peak weights must be > 0");
+  }
   const auto x = e.target.si(e.abscissa);
   if (!(range_of(x) > 0)) throw std::invalid_argument(where + "the target abscissa is constant");
   for (const Branch& b : branches_of(x, e.branch_tolerance))
@@ -193,18 +218,43 @@ void validate(const Experiment& e) {
       throw std::invalid_argument(where + "a target branch has < 2 distinct abscissa values");
 }
 
-std::size_t residual_count(const Experiment& e) { return e.channels.size() * e.target.size(); }
+bool compares_channel(const Experiment& e, const std::string& quantity) {
+  return std::any_of(e.channels.begin(), e.channels.end(), [&](const ChannelWeight& c) { return c.quantity == quantity; });
+}
+
+std::vector<std::size_t> residual_groups(const Experiment& e) {
+  std::vector<std::size_t> groups;
+  for (const auto& c : e.channels)
+    groups.push_back(e.target.size() + static_cast<std::size_t>(std::count_if(
+                                           e.peaks.begin(), e.peaks.end(),
+                                           [&](const PeakWeight& p) { return p.quantity == c.quantity; })));
+  const auto alone = static_cast<std::size_t>(
+      std::count_if(e.peaks.begin(), e.peaks.end(), [&](const PeakWeight& p) { return !compares_channel(e, p.quantity); }));
+  if (alone > 0) groups.push_back(alone);
+  return groups;
+}
+
+std::size_t residual_count(const Experiment& e) { return e.channels.size() * e.target.size() + e.peaks.size(); }
 
 std::vector<double> residuals(const Experiment& e, const Curve& simulated) {
   std::vector<double> r;
   r.reserve(residual_count(e));
   const double n = static_cast<double>(e.target.size());
+  const auto peak_row = [&](const PeakWeight& p) {
+    const std::vector<double> target = e.target.si(p.quantity);
+    const double factor = std::sqrt(e.weight * p.weight) / channel_scale(e, p.quantity, p.scale);
+    r.push_back(factor * (simulated_peak(e, simulated, p.quantity).first - target[peak_index(target)]));
+  };
   for (const auto& c : e.channels) {
     const auto sim = simulated_values(e, simulated, c.quantity);
     const auto target = e.target.si(c.quantity);
-    const double factor = std::sqrt(e.weight * c.weight / n) / channel_scale(e, c);
+    const double factor = std::sqrt(e.weight * c.weight / n) / channel_scale(e, c.quantity, c.scale);
     for (std::size_t i = 0; i < sim.size(); ++i) r.push_back(factor * (sim[i] - target[i]));
+    for (const auto& p : e.peaks)
+      if (p.quantity == c.quantity) peak_row(p);
   }
+  for (const auto& p : e.peaks)
+    if (!compares_channel(e, p.quantity)) peak_row(p);
   return r;
 }
 
@@ -246,6 +296,20 @@ std::vector<ChannelQuality> fit_quality(const Experiment& e, const Curve& simula
     q.nrmse = r > 0 ? q.rmse * target.unit.to_si / r : 0.0;
     q.r_squared = ss_tot > 0 ? 1.0 - ss_res / ss_tot : 0.0;
     out.push_back(q);
+  }
+  return out;
+}
+
+std::vector<PeakQuality> peak_quality(const Experiment& e, const Curve& simulated) {
+  std::vector<PeakQuality> out;
+  const Unit x_unit = e.target.channel(e.abscissa).unit;
+  for (const auto& p : e.peaks) {
+    const Channel& target = e.target.channel(p.quantity);
+    const std::vector<double> t = target.si();
+    const std::size_t i = peak_index(t);
+    const auto [peak, at] = simulated_peak(e, simulated, p.quantity);
+    out.push_back({e.name, p.quantity, target.unit.symbol, t[i] / target.unit.to_si, peak / target.unit.to_si,
+                   e.target.si(e.abscissa)[i] / x_unit.to_si, at / x_unit.to_si});
   }
   return out;
 }

@@ -397,7 +397,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     const Table x(raw, "experiment[" + std::to_string(++index) + "]", name);
     x.only({"name", "target", "target_columns", "abscissa", "arc_length", "channels", "weight",
             "branch_tolerance", "increments_per_leg", "input_template", "input_prm", "prm_set",
-            "pull_angle_deg", "pull_angle_rad", "path_from_target", "test"},
+            "pull_angle_deg", "pull_angle_rad", "path_from_target", "test", "peak"},
            "path_");
     for (const char* key : {"pull_angle_deg", "pull_angle_rad", "test"})
       if (x.has(key) && def.simulator != "dem_specimen") x.fail(x.get(key), key, "only for kind = \"dem_specimen\"");
@@ -474,6 +474,30 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
         x.fail(&c, "channels", "the target " + target.string() + " has no channel '" + w.quantity + "'");
       e.channels.push_back(w);
       compared.push_back({w.quantity, "channels", &c});
+    }
+    if (const toml::node* peaks = x.get("peak")) {
+      if (!peaks->is_array() || peaks->as_array()->empty())
+        x.fail(peaks, "peak", "expected a non-empty array, e.g. [\"force\"] or [{quantity = \"force\", weight = 1}]");
+      for (const toml::node& c : *peaks->as_array()) {
+        PeakWeight w;
+        if (c.is_string()) {
+          w.quantity = c.as_string()->get();
+        } else if (c.is_table()) {
+          const Table pt(*c.as_table(), x.field("peak"), name);
+          pt.only({"quantity", "weight", "scale"});
+          w.quantity = pt.text("quantity");
+          w.weight = pt.number("weight", 1.0);
+          w.scale = pt.number("scale", 0.0);
+          if (!(w.weight > 0)) pt.fail(pt.get("weight"), "weight", "expected a number > 0");
+          if (w.scale < 0) pt.fail(pt.get("scale"), "scale", "expected a number > 0 (or no field: the target's range)");
+        } else {
+          x.fail(&c, "peak", "expected a quantity name or a {quantity, weight, scale} table");
+        }
+        if (read_targets && !e.target.has(w.quantity))
+          x.fail(&c, "peak", "the target " + target.string() + " has no channel '" + w.quantity + "'");
+        e.peaks.push_back(w);
+        compared.push_back({w.quantity, "peak", &c});
+      }
     }
     if (read_targets && !e.target.has(e.abscissa))
       x.fail(x.get("abscissa"), "abscissa", "the target " + target.string() + " has no channel '" + e.abscissa + "'");

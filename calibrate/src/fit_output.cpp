@@ -149,6 +149,11 @@ void write_all_outputs(const FitDefinition& definition, const FitResult& result,
   root["covariance_parameters"] = json::array();
   for (const auto& p : result.parameters) root["covariance_parameters"].push_back(p.name);
   root["fit_quality"] = quality;
+  json peaks = json::array();
+  for (const auto& q : result.peaks)
+    peaks.push_back({{"experiment", q.experiment}, {"quantity", q.quantity}, {"unit", q.unit}, {"target", q.target},
+                     {"fitted", q.simulated}, {"target_at", q.target_abscissa}, {"fitted_at", q.simulated_abscissa}});
+  if (!peaks.empty()) root["fit_peaks"] = peaks;
   root["singular_values"] = result.singular_values;
   root["not_identified"] = json::array();
   for (std::size_t i = 0; i < result.identification.size(); ++i)
@@ -205,6 +210,17 @@ void write_all_outputs(const FitDefinition& definition, const FitResult& result,
     for (const auto& q : result.quality)
       s << "| " << q.experiment << " | " << q.quantity << " | " << q.points << " | " << number(q.rmse, 3)
         << " " << q.unit << " | " << number(q.nrmse, 3) << " | " << number(q.r_squared, 4) << " |\n";
+    if (!result.peaks.empty()) {
+      s << "\nPeaks (the target's value of largest magnitude against the fitted run's over its whole path):\n\n"
+        << "| curve | channel | target | fitted | difference | target at | fitted at |\n|---|---|---|---|---|---|---|\n";
+      for (const auto& q : result.peaks)
+        s << "| " << q.experiment << " | " << q.quantity << " | " << number(q.target, 4) << " " << q.unit << " | "
+          << number(q.simulated, 4) << " " << q.unit << " | "
+          << (q.target != 0 ? number(100.0 * (q.simulated - q.target) / std::abs(q.target), 3) + " %"
+                            : number(q.simulated - q.target, 4) + " " + q.unit)
+          << " | " << number(q.target_abscissa, 4)
+          << " | " << number(q.simulated_abscissa, 4) << " |\n";
+    }
     if (result.correlation) {
       s << "\nCorrelation matrix:\n\n|   |";
       for (const auto& p : result.parameters) s << " " << p.name << " |";

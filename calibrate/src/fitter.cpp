@@ -23,7 +23,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // The fit as the engine sees it: z = value / scale, the evaluator's residuals and Jacobian in
-// z, one residual group (own variance) per curve channel.
+// z, one residual group (own variance) per curve channel, its peak rows with it.
 lsq::Problem engine_problem(ProblemEvaluator& evaluator) {
   lsq::Problem problem;
   problem.parameter_count = evaluator.parameters().size();
@@ -38,7 +38,7 @@ lsq::Problem engine_problem(ProblemEvaluator& evaluator) {
   problem.residuals_and_jacobian = [&evaluator](const std::vector<double>& z, std::vector<double>& r,
                                                 std::vector<double>& J) { evaluator.residuals_and_jacobian(z, r, J); };
   for (const auto& experiment : evaluator.experiments())
-    for (std::size_t c = 0; c < experiment.channels.size(); ++c) problem.residual_groups.push_back(experiment.target.size());
+    for (std::size_t size : residual_groups(experiment)) problem.residual_groups.push_back(size);
   return problem;
 }
 
@@ -147,6 +147,7 @@ std::string fit_identity(const ProblemEvaluator& evaluator, const FitOptions& op
          << static_cast<int>(e.kind) << " tol " << e.branch_tolerance << "\n"
          << e.simulator->identity() << "\n" << format_csv(e.target);
     for (const auto& c : e.channels) text << c.quantity << " " << c.weight << " " << c.scale << "\n";
+    for (const auto& p : e.peaks) text << "peak " << p.quantity << " " << p.weight << " " << p.scale << "\n";
   }
   for (const auto& p : evaluator.parameters())
     text << "parameter " << p.name << " " << p.initial << " " << p.lower << " " << p.upper << " "
@@ -381,6 +382,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
     const auto& experiment = evaluator.experiments()[e];
     result.fitted.push_back(simulated_at_target(experiment, curves[e]));
     for (auto& q : fit_quality(experiment, curves[e])) result.quality.push_back(q);
+    for (auto& q : peak_quality(experiment, curves[e])) result.peaks.push_back(q);
   }
   result.statistics = evaluator.statistics();
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "dtwire/calibrate/experiment.hpp"
 #include "dtwire/calibrate/fit_file.hpp"
 #include "fit_folder_test_support.hpp"
 #include "dtwire/core/error.hpp"
@@ -142,6 +143,24 @@ TEST_F(FitFileTest, MissingChannelInTargetNamesLine) {
   const InputError e = error_of(replace_line(kValid, 17, "channels = [\"force\"]"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_NE(std::string(e.what()).find("no channel 'force'"), std::string::npos) << e.what();
+}
+
+// Peak rows (an [[experiment]]'s `peak`): read with their weights; bad entries name their line.
+TEST_F(FitFileTest, PeakRowsReadAndBadOnesNameTheirLine) {
+  const FitDefinition def = read_fit_file(write(kValid + "peak = [{quantity = \"stress\", weight = 0.5}]\n"));
+  ASSERT_EQ(def.experiments[0].peaks.size(), 1u);
+  EXPECT_EQ(def.experiments[0].peaks[0].quantity, "stress");
+  EXPECT_EQ(def.experiments[0].peaks[0].weight, 0.5);
+  EXPECT_EQ(residual_count(def.experiments[0]), def.experiments[0].target.size() + 1);
+  for (const auto& [line, part] : std::vector<std::pair<std::string, std::string>>{
+           {"peak = \"stress\"", "expected a non-empty array"},
+           {"peak = [\"force\"]", "no channel 'force'"},
+           {"peak = [{quantity = \"stress\", weight = 0}]", "expected a number > 0"},
+           {"peak = [{quantity = \"stress\", wieght = 1}]", "wieght"}}) {
+    const InputError e = error_of(kValid + line + "\n");
+    EXPECT_EQ(e.line(), 19) << line;
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(FitFileTest, MissingTargetFileIsAnInputError) {

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <algorithm>
 #include <fstream>
+#include <iterator>
 
 #include <nlohmann/json.hpp>
 
@@ -40,6 +42,7 @@ TEST(FitOutput, JsonAndHdf5HoldValuesUnitsSigmaCovarianceQuality) {
   e.target.add_channel("stress", *find_unit("Pa"), stress);
   e.abscissa = "strain";
   e.channels = {{"stress", 1.0, 0.0}};
+  e.peaks = {{"stress", 1.0, 0.0}};
   def.experiments = {e};
   ProblemEvaluator evaluator(def.experiments, def.parameters, EvaluationOptions{});
   const FitResult result = run_fit(evaluator, FitOptions{});
@@ -64,6 +67,11 @@ TEST(FitOutput, JsonAndHdf5HoldValuesUnitsSigmaCovarianceQuality) {
   ASSERT_EQ(json["fit_quality"].size(), 1u);
   EXPECT_TRUE(std::filesystem::exists(dir / json["fit_quality"][0]["fitted_csv"].get<std::string>()));
   EXPECT_TRUE(json["provenance"].contains("git_hash"));
+  ASSERT_EQ(json["fit_peaks"].size(), 1u);
+  EXPECT_EQ(json["fit_peaks"][0]["quantity"], "stress");
+  EXPECT_NEAR(json["fit_peaks"][0]["target"].get<double>(), *std::max_element(stress.begin(), stress.end()), 1.0);
+  EXPECT_NEAR(json["fit_peaks"][0]["fitted"].get<double>(), json["fit_peaks"][0]["target"].get<double>(), 5e6)
+      << "the fit meets the peak within the target's +-1 MPa noise and its own misfit";
 
   const Results stored = read_results(dir / "parameters.h5");
   ASSERT_EQ(stored.parameters.size(), 5u);
@@ -72,7 +80,10 @@ TEST(FitOutput, JsonAndHdf5HoldValuesUnitsSigmaCovarianceQuality) {
   ASSERT_TRUE(stored.parameters[0].sigma.has_value());
   EXPECT_EQ(*stored.parameters[0].sigma, result.sigma[0]);
   EXPECT_EQ(stored.curves.size(), 2u);  // target and fitted
-  EXPECT_TRUE(std::filesystem::exists(dir / "fit_report.md"));
+  std::ifstream report_in(dir / "fit_report.md");
+  const std::string report((std::istreambuf_iterator<char>(report_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report.find("| cyclic | stress |"), std::string::npos) << report;
+  EXPECT_NE(report.find("Peaks (the target's value"), std::string::npos) << report;
   std::filesystem::remove_all(dir);
 }
 

@@ -120,6 +120,47 @@ TEST(Residuals, MissingTargetChannelIsRejected) {
 }
 
 // Every stratum of every dimension holds exactly one point; same seed -> same design.
+// A target that ends where the specimen breaks (peak 2.5 kN at 3 mm, last point 2.0 kN) and a
+// simulation that follows it to 3.2 mm and then goes on rising to 3.4 kN past the target's end:
+// the points alone see 0.08 kN of difference at the last point; the peak row sees the 0.9 kN
+// the set is too strong, over the whole simulated path, and sits after its channel's rows.
+TEST(Residuals, APeakRowComparesTheSimulatedPeakOverTheWholePath) {
+  const Curve target = curve({0, 1, 2, 3, 3.2}, {0, 1, 2, 2.5, 2.0});
+  const Curve simulated = curve({0, 1, 2, 3, 3.2, 4, 6}, {0, 1, 2, 2.5, 2.08, 2.9, 3.4});
+  Experiment e = experiment(target);
+  e.channels.push_back({"displacement", 1.0, 0.0});
+  e.peaks = {{"force", 2.0, 0.0}};
+  ASSERT_EQ(residual_count(e), 2 * target.size() + 1);
+  EXPECT_EQ(residual_groups(e), (std::vector<std::size_t>{target.size() + 1, target.size()}));
+  const auto r = residuals(e, simulated);
+  ASSERT_EQ(r.size(), residual_count(e));
+  EXPECT_NEAR(r[4], std::sqrt(1.0 / 5.0) * 0.08 / 2.5, 1e-12) << "the last point, as before";
+  EXPECT_NEAR(r[5], std::sqrt(2.0) * (3.4 - 2.5) / 2.5, 1e-12) << "the peak row follows the force's points";
+  const auto q = peak_quality(e, simulated);
+  ASSERT_EQ(q.size(), 1u);
+  EXPECT_DOUBLE_EQ(q[0].target, 2.5);
+  EXPECT_DOUBLE_EQ(q[0].simulated, 3.4);
+  EXPECT_DOUBLE_EQ(q[0].target_abscissa, 3.0);
+  EXPECT_DOUBLE_EQ(q[0].simulated_abscissa, 6.0);
+  // A set that breaks early is too weak by its own peak; a peak of a channel not compared point
+  // by point is a group of its own at the end.
+  const Curve weak = curve({0, 1, 2, 3, 3.2, 6}, {0, 1, 1.8, 0.5, 0.2, 0});
+  e.channels = {{"displacement", 1.0, 0.0}};
+  EXPECT_EQ(residual_groups(e), (std::vector<std::size_t>{target.size(), 1}));
+  EXPECT_NEAR(residuals(e, weak).back(), std::sqrt(2.0) * (1.8 - 2.5) / 2.5, 1e-12);
+}
+
+// Peaks of compression curves are their largest magnitude, sign kept.
+TEST(Residuals, APeakIsTheValueOfLargestMagnitude) {
+  const Curve target = curve({0, 1, 2}, {0, -2, -1});
+  Experiment e = experiment(target);
+  e.peaks = {{"force", 1.0, 0.0}};
+  const auto r = residuals(e, curve({0, 1, 2}, {0, -2.5, -1}));
+  EXPECT_NEAR(r.back(), -0.5 / 2.0, 1e-12);
+  e.peaks = {{"missing", 1.0, 0.0}};
+  EXPECT_THROW(validate(e), std::invalid_argument);
+}
+
 TEST(LatinHypercube, OnePointPerStratumAndDeterministic) {
   const std::vector<double> lo{0.0, -1.0}, hi{1.0, 3.0};
   const auto a = latin_hypercube(8, lo, hi, 42);

@@ -20,6 +20,18 @@ struct ChannelWeight {
   double scale = 0.0;  // SI; residuals are divided by it. 0: the target channel's range
 };
 
+// The target's peak of a channel compared as one residual row of its own: for a target that
+// ends where the specimen breaks (a crack that no static state follows, a laboratory failure),
+// its strength is the figure the curve's points alone leave open, because the simulation may
+// go on rising past the target's last point. The simulated peak is taken over the whole
+// simulated path, which should run past the target's end, so a set that is stronger after the
+// target broke pays for it.
+struct PeakWeight {
+  std::string quantity;  // e.g. "force"
+  double weight = 1.0;   // 1: the row weighs as much as the channel's whole curve
+  double scale = 0.0;    // SI; 0: the target channel's range
+};
+
 struct Experiment {
   std::string name;
   std::shared_ptr<const Simulator> simulator;
@@ -27,6 +39,7 @@ struct Experiment {
   std::string abscissa = "displacement";  // quantity present in target and simulated curves
   AbscissaKind kind = AbscissaKind::Channel;
   std::vector<ChannelWeight> channels;
+  std::vector<PeakWeight> peaks;
   double weight = 1.0;
   // A reversal of the abscissa counts as a new branch once it exceeds this fraction of the
   // abscissa range (noise in laboratory curves must not create branches).
@@ -37,12 +50,22 @@ struct Experiment {
 // non-positive weight or cannot be split into branches.
 void validate(const Experiment& experiment);
 
-// Number of residuals the experiment contributes (one per target point and channel).
+// Number of residuals the experiment contributes (one per target point and channel, one per peak).
 std::size_t residual_count(const Experiment& experiment);
 
+// Whether `quantity` is one of the channels compared point by point.
+bool compares_channel(const Experiment& experiment, const std::string& quantity);
+
+// Sizes of the consecutive residual groups with a variance of their own (lsq::Problem): one per
+// channel, its peak rows with it; one for the peaks of channels not compared point by point.
+std::vector<std::size_t> residual_groups(const Experiment& experiment);
+
 // Residuals sqrt(w_exp w_ch / n_ch) (simulated - target) / scale_ch, in the order channel by
-// channel, point by point. Throws ComputationError if the simulated curve cannot be compared
-// (missing channel, different number of branches, too few points).
+// channel, point by point, each channel followed by its peak rows, sqrt(w_exp w_peak)
+// (simulated peak - target peak) / scale, a peak being the value of largest magnitude (signed);
+// then the peaks of channels not compared point by point. Throws ComputationError if the
+// simulated curve cannot be compared (missing channel, different number of branches, too few
+// points).
 std::vector<double> residuals(const Experiment& experiment, const Curve& simulated);
 
 // The simulated channels at the target's points (same abscissa), for plots and fit quality:
@@ -60,5 +83,17 @@ struct ChannelQuality {
 };
 
 std::vector<ChannelQuality> fit_quality(const Experiment& experiment, const Curve& simulated);
+
+struct PeakQuality {
+  std::string experiment;
+  std::string quantity;
+  std::string unit;  // of the two peaks (the target column's unit)
+  double target = 0.0;
+  double simulated = 0.0;  // over the whole simulated path
+  double target_abscissa = 0.0;     // where each peak is, in the abscissa's target unit
+  double simulated_abscissa = 0.0;
+};
+
+std::vector<PeakQuality> peak_quality(const Experiment& experiment, const Curve& simulated);
 
 }  // namespace dtwire::calibrate

@@ -91,6 +91,7 @@ struct FitResult {
   std::vector<StartSummary> starts;
   std::vector<std::string> warnings;
   std::vector<ChannelQuality> quality;
+  std::vector<PeakQuality> peaks;  // the experiments' peak rows, target against fitted
   std::vector<Curve> fitted;  // simulated channels at the targets' points, one per experiment
   EvaluationStatistics statistics;
   double wall_seconds = 0.0;
