@@ -49,9 +49,10 @@ std::optional<FigureBand> figure_band(const std::vector<BandEvidence>& bands, co
       const json sampled = f.value("sampled", json::object());
       const json linearised = f.value("linearised", json::object());
       if (sampled.value("count", 0) > 0 && has_number(sampled, "q05") && has_number(sampled, "q95")) {
-        if (!found || !found->sampled) found = FigureBand{sampled["q05"].get<double>(), sampled["q95"].get<double>(), true, b.step};
+        if (!found || !found->sampled) found = FigureBand{sampled["q05"].get<double>(), sampled["q95"].get<double>(), true, true, b.step};
       } else if (!found && has_number(linearised, "q05") && has_number(linearised, "q95")) {
-        found = FigureBand{linearised["q05"].get<double>(), linearised["q95"].get<double>(), false, b.step};
+        found = FigureBand{linearised["q05"].get<double>(), linearised["q95"].get<double>(), false,
+                           !linearised.contains("not_valid"), b.step};
       }
     }
   }
@@ -102,6 +103,9 @@ std::string band_markdown(const std::string& label, const std::vector<BandEviden
            << " runs of " << samples.value("drawn", 0) << " drawn, " << (f.value("converged", false) ? "converged" : "**not converged**");
         if (f.contains("linearised"))
           md << "; linearised " << number(f["linearised"].value("q05", NAN)) << " - " << number(f["linearised"].value("q95", NAN));
+      } else if (f.contains("linearised") && f["linearised"].contains("not_valid")) {
+        md << "not valid (" << number(f["linearised"].value("q05", NAN)) << " - " << number(f["linearised"].value("q95", NAN))
+           << ") | linearised (J C J^T): " << f["linearised"].value("not_valid", "");
       } else if (f.contains("linearised")) {
         md << number(f["linearised"].value("q05", NAN)) << " - " << number(f["linearised"].value("q95", NAN))
            << " | linearised (J C J^T)";

@@ -24,6 +24,7 @@ struct BandEvidence {
 struct FigureBand {
   double q05 = 0.0, q95 = 0.0;
   bool sampled = false;  // the sampled quantiles; false: the linearised value -+ 1.645 sd
+  bool valid = true;     // false: a linearised band that reaches 0 (propagate's "not_valid")
   std::string step;      // the `dem propagate` step that gave it
 };
 

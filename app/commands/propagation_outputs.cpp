@@ -102,8 +102,15 @@ void write_summary(const PropagationResult& r, const std::filesystem::path& out)
     }
     if (r.linearised) {
       const double sd = (*r.linearised)[f].sd;
-      entry["linearised"] = {{"sd", sd}, {"q05", r.base_figures[f] - calibrate::kNormal95 * sd},
-                             {"q95", r.base_figures[f] + calibrate::kNormal95 * sd}};
+      const double q05 = r.base_figures[f] - calibrate::kNormal95 * sd;
+      entry["linearised"] = {{"sd", sd}, {"q05", q05}, {"q95", r.base_figures[f] + calibrate::kNormal95 * sd}};
+      // Every mesh figure is a magnitude, positive at the fitted set: a first-order band that
+      // reaches 0 says the expansion does not hold over the parameters' spread (a NOT IDENTIFIED
+      // parameter's whole range), not that the figure could vanish.
+      if (r.base_figures[f] > 0 && q05 <= 0)
+        entry["linearised"]["not_valid"] =
+            "the first-order band reaches 0 or below for a figure positive at the fitted set: the linearisation does "
+            "not hold over the parameters' spread; sample it (--samples)";
     }
     figures.push_back(entry);
   }

@@ -101,6 +101,24 @@ TEST(ReportBand, TheMeshScaleTableCarriesThePunchBand) {
                            "peak_force_N").has_value());
 }
 
+// A linearised band that reaches 0 for a positive figure (the strip's secant of a set whose
+// stiffness hangs on NOT IDENTIFIED parameters: 3258 kN/m, "-141 - 6657" before) is named not
+// valid in both tables instead of printing a negative stiffness.
+TEST(ReportBand, ALinearisedBandThatReachesZeroIsNamedNotValid) {
+  const json strip_band = {
+      {"tool", "strip_tension"},
+      {"figures", json::array({json{{"key", "secant_EA_10_50_kN_per_m"}, {"unit", "kN/m"}, {"fitted_set", 3258.0},
+                                    {"linearised", {{"sd", 2066.0}, {"q05", -141.0}, {"q95", 6657.0},
+                                                    {"not_valid", "the first-order band reaches 0"}}}}})}};
+  const std::vector<BandEvidence> bands = {{"dem_strip_nm_band", "section + N-M fit", "done", strip_band, {}}};
+  const auto band = figure_band(bands, "section + N-M fit", "strip_tension", "secant_EA_10_50_kN_per_m");
+  ASSERT_TRUE(band.has_value());
+  EXPECT_FALSE(band->valid);
+  const std::string md = band_markdown("section + N-M fit", bands, json(), json());
+  EXPECT_EQ(md.find("-141 - 6657 | linearised"), std::string::npos) << md;
+  EXPECT_NE(md.find("not valid (-141 - 6.66e+03) | linearised (J C J^T): the first-order band reaches 0"), std::string::npos) << md;
+}
+
 TEST(ReportBand, ReadsTheSensitivityCsv) {
   const auto file = std::filesystem::temp_directory_path() / ("dtwire_sensitivity_" + std::to_string(::getpid()) + ".csv");
   std::ofstream(file) << "figure,parameter,first_order_index_1\nstrength,dt.N0_N,\n";
