@@ -367,6 +367,67 @@ TEST(DemSpecimen, RecoveryCoverageOverSeeds) {
 
 // The length scaling of a set (docs/calibrate.md): stiffnesses and hardening rates x r, damage
 // energies / r, forces and shape parameters unchanged, r = reference / link length.
+// A peak row on a target of another origin: the specimen's tension curve with the published sets
+// (arms without damage, as dt_specimen_fit.toml) up to its peak, then a snap the thesis law cannot
+// make (the force falls to 40 % within 0.5 mm, as the FE wire's crack band does), so no set of
+// the law reproduces the target. dt.N0 and dt.Nult fitted from a start far from the truth (2000,
+// 8000 N). With the peak row the fit keeps the specimen's strength: the simulated peak and
+// dt.Nult within 5 % (the tolerance of a recovery) of the target's and of the set that made the
+// rising branch (measured: -3.9 %); without it the snap pulls the set weaker, to dt.Nult's lower
+// bound 4600 N (-8 %): the row is what holds the strength (docs/calibrate.md, "Peak rows").
+TEST(DemSpecimen, APeakRowKeepsTheStrengthOfATargetThatSnaps) {
+  dem::ParameterMap truth = thesis_sets();
+  truth["sw.W1_J"] = 1e6;
+  truth["sw.W2_J"] = 2e6;
+  const std::vector<double> path{0.0, 0.003, 0.034};
+  const Curve full = specimen(path, 0.0, 10, 1, {}, "thesis", truth).simulate({});
+  const std::vector<double> u = full.si("displacement"), f = full.si("force");
+  const std::size_t peak = static_cast<std::size_t>(std::max_element(f.begin(), f.end()) - f.begin());
+  ASSERT_GT(peak, 5u);
+  ASSERT_LT(peak + 1, f.size()) << "the published set must peak inside the path";
+  std::cout << "target: peak " << f[peak] << " N at " << 1e3 * u[peak] << " mm\n";
+  std::vector<double> tu(u.begin(), u.begin() + static_cast<std::ptrdiff_t>(peak) + 1);
+  std::vector<double> tf(f.begin(), f.begin() + static_cast<std::ptrdiff_t>(peak) + 1);
+  tu.push_back(u[peak] + 5e-4);
+  tf.push_back(0.4 * f[peak]);
+  Curve target;
+  target.add_channel("displacement", *find_unit("m"), tu);
+  target.add_channel("force", *find_unit("N"), tf);
+
+  dem::ParameterMap fixed = truth;
+  fixed.erase("dt.N0_N");
+  fixed.erase("dt.Nult_N");
+  const auto fit = [&](bool with_peak) {
+    Experiment e;
+    e.name = "tension";
+    e.target = target;
+    // Past the snap by 2 mm: far enough to see a set that goes on rising, short of where the
+    // trial sets break (a broken specimen is a failed run).
+    e.simulator = std::make_shared<DemSpecimenSimulator>(
+        specimen({0.0, 0.003, u[peak] + 0.002}, 0.0, 10, 1, {}, "thesis", fixed));
+    e.channels = {{"force", 1.0, 0.0}};
+    if (with_peak) e.peaks = {{"force", 1.0, 0.0}};
+    std::vector<ParameterDefinition> parameters{{"dt.N0_N", "N", 2000, 500, 4500, 0, truth.at("dt.N0_N")},
+                                                {"dt.Nult_N", "N", 8000, 4600, 9500, 0, truth.at("dt.Nult_N")}};
+    ProblemEvaluator evaluator({e}, parameters, EvaluationOptions{});
+    FitOptions options;
+    options.max_iterations = 40;
+    const FitResult result = run_fit(evaluator, options);
+    const Curve fitted = e.simulator->simulate({{"dt.N0_N", result.values[0]}, {"dt.Nult_N", result.values[1]}});
+    const std::vector<double> fitted_force = fitted.si("force");
+    const double simulated_peak = *std::max_element(fitted_force.begin(), fitted_force.end());
+    std::cout << (with_peak ? "with" : "without") << " the peak row: dt.N0 " << result.values[0] << " N, dt.Nult "
+              << result.values[1] << " N (truth " << truth.at("dt.Nult_N") << "), peak " << simulated_peak
+              << " N against " << f[peak] << " N, cost " << result.cost << "\n";
+    return std::make_pair(result.values[1], simulated_peak);
+  };
+  const auto [nult, peak_force] = fit(true);
+  EXPECT_NEAR(peak_force / f[peak], 1.0, 0.05);
+  EXPECT_NEAR(nult / truth.at("dt.Nult_N"), 1.0, 0.05);
+  const auto without = fit(false);
+  EXPECT_GT(std::abs(without.first / truth.at("dt.Nult_N") - 1.0), std::abs(nult / truth.at("dt.Nult_N") - 1.0));
+}
+
 TEST(DemSpecimen, SetsAreScaledToTheLinkLength) {
   const dem::ParameterMap set = {{"EA_N", 1.6e7}, {"EI_Nm2_per_deg_convention", 0.122}, {"k_F", 2.39e4},
                                  {"k_M", 1120},   {"W1_J", 9.21},  {"W2_J", 140.01},
