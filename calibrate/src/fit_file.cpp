@@ -453,52 +453,36 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     e.branch_tolerance = x.number("branch_tolerance", e.branch_tolerance);
     if (e.branch_tolerance < 0) x.fail(x.get("branch_tolerance"), "branch_tolerance", "expected >= 0");
     std::vector<Compared> compared{{e.abscissa, "abscissa", x.get("abscissa")}};
-    const toml::node* channels = x.get("channels");
-    if (!channels || !channels->is_array() || channels->as_array()->empty())
-      x.fail(channels, "channels", "expected a non-empty array, e.g. [\"force\"] or [{quantity = \"force\", weight = 1}]");
-    for (const toml::node& c : *channels->as_array()) {
-      ChannelWeight w;
-      if (c.is_string()) {
-        w.quantity = c.as_string()->get();
-      } else if (c.is_table()) {
-        const Table ct(*c.as_table(), x.field("channels"), name);
-        ct.only({"quantity", "weight", "scale"});
-        w.quantity = ct.text("quantity");
-        w.weight = ct.number("weight", 1.0);
-        w.scale = ct.number("scale", 0.0);
-        if (!(w.weight > 0)) ct.fail(ct.get("weight"), "weight", "expected a number > 0");
-      } else {
-        x.fail(&c, "channels", "expected a quantity name or a {quantity, weight, scale} table");
-      }
-      if (read_targets && !e.target.has(w.quantity))
-        x.fail(&c, "channels", "the target " + target.string() + " has no channel '" + w.quantity + "'");
-      e.channels.push_back(w);
-      compared.push_back({w.quantity, "channels", &c});
-    }
-    if (const toml::node* peaks = x.get("peak")) {
-      if (!peaks->is_array() || peaks->as_array()->empty())
-        x.fail(peaks, "peak", "expected a non-empty array, e.g. [\"force\"] or [{quantity = \"force\", weight = 1}]");
-      for (const toml::node& c : *peaks->as_array()) {
-        PeakWeight w;
+    // `key` = ["force"] or [{quantity, weight, scale}], each a channel of the target.
+    const auto weighted_quantities = [&](const char* key) {
+      const toml::node* list = x.get(key);
+      if (!list || !list->is_array() || list->as_array()->empty())
+        x.fail(list, key, "expected a non-empty array, e.g. [\"force\"] or [{quantity = \"force\", weight = 1}]");
+      std::vector<ChannelWeight> out;
+      for (const toml::node& c : *list->as_array()) {
+        ChannelWeight w;
         if (c.is_string()) {
           w.quantity = c.as_string()->get();
         } else if (c.is_table()) {
-          const Table pt(*c.as_table(), x.field("peak"), name);
-          pt.only({"quantity", "weight", "scale"});
-          w.quantity = pt.text("quantity");
-          w.weight = pt.number("weight", 1.0);
-          w.scale = pt.number("scale", 0.0);
-          if (!(w.weight > 0)) pt.fail(pt.get("weight"), "weight", "expected a number > 0");
-          if (w.scale < 0) pt.fail(pt.get("scale"), "scale", "expected a number > 0 (or no field: the target's range)");
+          const Table ct(*c.as_table(), x.field(key), name);
+          ct.only({"quantity", "weight", "scale"});
+          w.quantity = ct.text("quantity");
+          w.weight = ct.number("weight", 1.0);
+          w.scale = ct.number("scale", 0.0);
+          if (!(w.weight > 0)) ct.fail(ct.get("weight"), "weight", "expected a number > 0");
+          if (w.scale < 0) ct.fail(ct.get("scale"), "scale", "expected a number > 0 (or no field: the target's range)");
         } else {
-          x.fail(&c, "peak", "expected a quantity name or a {quantity, weight, scale} table");
+          x.fail(&c, key, "expected a quantity name or a {quantity, weight, scale} table");
         }
         if (read_targets && !e.target.has(w.quantity))
-          x.fail(&c, "peak", "the target " + target.string() + " has no channel '" + w.quantity + "'");
-        e.peaks.push_back(w);
-        compared.push_back({w.quantity, "peak", &c});
+          x.fail(&c, key, "the target " + target.string() + " has no channel '" + w.quantity + "'");
+        out.push_back(w);
+        compared.push_back({w.quantity, key, &c});
       }
-    }
+      return out;
+    };
+    e.channels = weighted_quantities("channels");
+    if (x.has("peak")) e.peaks = weighted_quantities("peak");
     if (read_targets && !e.target.has(e.abscissa))
       x.fail(x.get("abscissa"), "abscissa", "the target " + target.string() + " has no channel '" + e.abscissa + "'");
     const int increments = static_cast<int>(x.integer("increments_per_leg", 100, 1));

@@ -26,11 +26,8 @@ struct ChannelWeight {
 // go on rising past the target's last point. The simulated peak is taken over the whole
 // simulated path, which should run past the target's end, so a set that is stronger after the
 // target broke pays for it.
-struct PeakWeight {
-  std::string quantity;  // e.g. "force"
-  double weight = 1.0;   // 1: the row weighs as much as the channel's whole curve
-  double scale = 0.0;    // SI; 0: the target channel's range
-};
+// Its weight 1 weighs the row as much as the channel's whole curve; scale 0: the channel's range.
+using PeakWeight = ChannelWeight;
 
 struct Experiment {
   std::string name;
