@@ -26,27 +26,14 @@
 
 #include "dtwire/core/csv.hpp"
 
+#include "process_scratch.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-// One per process: ctest runs each test in its own process, side by side.
-const fs::path& work_directory() {
-  static const fs::path dir = [] {
-    const auto d = fs::temp_directory_path() / ("dtwire_as_made_state_test_" + std::to_string(getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+const fs::path& work_directory() { return dtwire::fem::testing::process_scratch_dir("dtwire_as_made_state_test_"); }
+using dtwire::fem::testing::read_text;
 
 // Runs dtwire on `ranks` ranks; returns its exit code, the console in `console`.
 int dtwire(unsigned ranks, const std::string& arguments, std::string& console) {

@@ -25,26 +25,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "process_scratch.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path& work_directory() {
-  static const fs::path dir = [] {
-    const auto d = fs::temp_directory_path() / ("dtwire_junction_fracture_test_" + std::to_string(getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-  }();
-  return dir;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+const fs::path& work_directory() { return dtwire::fem::testing::process_scratch_dir("dtwire_junction_fracture_test_"); }
+using dtwire::fem::testing::read_text;
 
 // Runs `dtwire run PRM --out DIR -q EXTRA`; returns run.log's text (empty on a failed run).
 std::string run(const std::string& prm, const std::string& name, const std::string& extra) {
