@@ -206,6 +206,11 @@ void validate(const Experiment& e) {
       throw std::invalid_argument(where + "the target has no channel '" + c.quantity + "'");
     if (!(c.weight > 0)) throw std::invalid_argument(where + "channel weights must be > 0");
   }
+  for (const auto* list : {&e.channels, &e.peaks})
+    for (std::size_t i = 0; i < list->size(); ++i)
+      for (std::size_t j = 0; j < i; ++j)
+        if ((*list)[i].quantity == (*list)[j].quantity)
+          throw std::invalid_argument(where + "'" + (*list)[i].quantity + "' is compared twice");
   for (const auto& p : e.peaks) {
     if (!e.target.has(p.quantity))
       throw std::invalid_argument(where + "the target has no channel '" + p.quantity + "' for its peak");

@@ -476,6 +476,8 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
         }
         if (read_targets && !e.target.has(w.quantity))
           x.fail(&c, key, "the target " + target.string() + " has no channel '" + w.quantity + "'");
+        if (std::any_of(out.begin(), out.end(), [&](const ChannelWeight& o) { return o.quantity == w.quantity; }))
+          x.fail(&c, key, "'" + w.quantity + "' given twice");
         out.push_back(w);
         compared.push_back({w.quantity, key, &c});
       }

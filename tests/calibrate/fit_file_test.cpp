@@ -156,7 +156,8 @@ TEST_F(FitFileTest, PeakRowsReadAndBadOnesNameTheirLine) {
            {"peak = \"stress\"", "expected a non-empty array"},
            {"peak = [\"force\"]", "no channel 'force'"},
            {"peak = [{quantity = \"stress\", weight = 0}]", "expected a number > 0"},
-           {"peak = [{quantity = \"stress\", wieght = 1}]", "wieght"}}) {
+           {"peak = [{quantity = \"stress\", wieght = 1}]", "wieght"},
+           {"peak = [\"stress\", \"stress\"]", "'stress' given twice"}}) {
     const InputError e = error_of(kValid + line + "\n");
     EXPECT_EQ(e.line(), 19) << line;
     EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();

@@ -159,6 +159,8 @@ TEST(Residuals, APeakIsTheValueOfLargestMagnitude) {
   EXPECT_NEAR(r.back(), -0.5 / 2.0, 1e-12);
   e.peaks = {{"missing", 1.0, 0.0}};
   EXPECT_THROW(validate(e), std::invalid_argument);
+  e.peaks = {{"force", 1.0, 0.0}, {"force", 2.0, 0.0}};
+  EXPECT_THROW(validate(e), std::invalid_argument) << "a peak compared twice";
 }
 
 TEST(LatinHypercube, OnePointPerStratumAndDeterministic) {
