@@ -1,8 +1,10 @@
 // `dtwire gap features --model DT.prm`: the DT tension model against what the laboratory shows
-// besides its curve (issue 17): the tightening toe and where the specimen fails. The model runs
-// as it is and with each model-only effect at the end of its plausible range farthest from
-// neutral; the report says how far each moved the toe (gap/dt_features.hpp: toe compensation of
-// ISO 527-1 / ASTM D638), the force at 0.5 mm and the failure's place and mode.
+// besides its curve (issues 17, 50): the tightening toe, where the specimen fails and its peak.
+// The model runs as it is and with each model-only effect at the end of its plausible range
+// farthest from neutral; the report says how far each moved the toe (gap/dt_features.hpp: toe
+// compensation of ISO 527-1 / ASTM D638), the force at 0.5 mm, the failure's place and mode and
+// the peak, and which effect puts the failure where the laboratory's is, nearest its peak
+// (gap::explain_features).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -11,10 +13,12 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include "../cli.hpp"
 #include "../commands.hpp"
 #include "dtwire/core/axis_csv.hpp"
+#include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/prm_document.hpp"
 #include "dtwire/gap/curve_metrics.hpp"
@@ -27,9 +31,31 @@ namespace dtwire::app {
 namespace {
 
 struct FeaturesOptions {
-  std::string model, effects, lab_failure, axis, json, report;
+  std::string model, effects, lab_failure, lab_peak, lab_curve, axis, json, report;
+  double lab_peak_sd = 0.0;
+  std::vector<std::string> model_set;
   bool lab_toe = false;
+  gap::LabFeatures lab;  // the stated failure zone and peak, parsed
 };
+
+// --lab-peak F:SD (N): the laboratory's peak force and its standard deviation.
+std::pair<double, double> parse_lab_peak(const std::string& text) {
+  const auto colon = text.find(':');
+  double peak = 0.0, sd = 0.0;
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument(text);
+    std::size_t used = 0;
+    peak = std::stod(text.substr(0, colon), &used);
+    if (used != colon) throw std::invalid_argument(text);
+    sd = std::stod(text.substr(colon + 1), &used);
+    if (used != text.size() - colon - 1) throw std::invalid_argument(text);
+  } catch (const std::exception&) {
+    throw InputError("--lab-peak", "'" + text + "': expected PEAK_N:SD_N, e.g. 5000:500");
+  }
+  if (!(peak > 0.0) || !(sd > 0.0) || !std::isfinite(peak) || !std::isfinite(sd))
+    throw InputError("--lab-peak", "'" + text + "': the peak and its standard deviation must be positive (N)");
+  return {peak, sd};
+}
 
 struct RunFeatures {
   std::string effect = "none";
@@ -62,10 +88,32 @@ RunFeatures features_of(const Curve& curve, const std::vector<std::pair<double, 
   return r;
 }
 
+bool peak_stated(const FeaturesOptions& o) { return o.lab.peak_sd > 0.0; }
+
+gap::FeatureRun feature_run(const RunFeatures& r) {
+  return {r.effect, !r.error.empty(), r.peak_force, r.zone};
+}
+
+gap::FeatureVerdict verdict_of(const std::vector<RunFeatures>& runs, const FeaturesOptions& o) {
+  std::vector<gap::FeatureRun> read;
+  for (const auto& r : runs) read.push_back(feature_run(r));
+  return gap::explain_features(read, o.lab);
+}
+
+double peak_gap_sd(const RunFeatures& r, const FeaturesOptions& o) {
+  return std::abs(r.peak_force - o.lab.peak_force) / o.lab.peak_sd;
+}
+
 std::string fixed(double value, int digits) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(digits) << value;
   return s.str();
+}
+
+std::string joined(const std::vector<std::string>& parts, const std::string& separator) {
+  std::string text;
+  for (const std::string& part : parts) text += (text.empty() ? "" : separator) + part;
+  return text;
 }
 
 std::string markdown(const std::vector<RunFeatures>& runs, const FeaturesOptions& o) {
@@ -74,10 +122,15 @@ std::string markdown(const std::vector<RunFeatures>& runs, const FeaturesOptions
      << "Model: `" << o.model << "`. The laboratory shows"
      << (o.lab_toe ? " a tightening toe (soft initial branch)" : " no stated toe")
      << (o.lab_failure.empty() ? "" : (o.lab_toe ? " and" : ";") + std::string(" failure in the ") + o.lab_failure)
+     << (o.lab_curve.empty() ? "" : " (read from `" + o.lab_curve + "`)")
+     << (!peak_stated(o) ? "" : "; a peak of " + fixed(1e-3 * o.lab.peak_force, 2) + " kN (sd " +
+                                       fixed(1e-3 * o.lab.peak_sd, 2) + " kN)")
+     << (o.model_set.empty() ? "" : ". The model with `" + joined(o.model_set, "`, `") + "`")
      << ". Each model-only effect at the end of its plausible range farthest from neutral; toe by the "
         "toe compensation of ISO 527-1 / ASTM D638 (steepest chord below half the peak, extended to zero force).\n\n"
-     << "| effect | strength | toe (mm) | force at 0.5 mm (N) | peak (kN) | failure at (mm) | failure z (mm) | zone | mode |\n"
-     << "|---|---|---|---|---|---|---|---|---|\n";
+     << "| effect | strength | toe (mm) | force at 0.5 mm (N) | peak (kN) | failure at (mm) | failure z (mm) | zone | mode |"
+     << (!peak_stated(o) ? "" : " peak gap (sd) |") << "\n"
+     << "|---|---|---|---|---|---|---|---|---|" << (!peak_stated(o) ? "" : "---|") << "\n";
   const RunFeatures& base = runs.front();
   for (const auto& r : runs) {
     if (!r.error.empty()) {
@@ -88,7 +141,8 @@ std::string markdown(const std::vector<RunFeatures>& runs, const FeaturesOptions
        << " | " << fixed(r.force_at_half_mm, 0) << " | " << fixed(1e-3 * r.peak_force, 3) << " | "
        << (r.failure ? fixed(1e3 * r.failure->displacement, 2) : "no failure") << " | "
        << (r.failure ? fixed(1e3 * r.failure->z, 1) : "-") << " | " << gap::zone_name(r.zone) << " | "
-       << (r.failure ? r.failure->mode : "-") << " |\n";
+       << (r.failure ? r.failure->mode : "-") << " |"
+       << (!peak_stated(o) ? "" : " " + fixed(peak_gap_sd(r, o), 2) + " |") << "\n";
   }
   md << "\n## Diagnosis\n\n";
   bool toe_found = false, zone_found = false;
@@ -117,6 +171,25 @@ std::string markdown(const std::vector<RunFeatures>& runs, const FeaturesOptions
                       : "No effect tried moves the failure into the laboratory's zone (" + o.lab_failure +
                             "): the cause is outside these model effects (e.g. the resolution of the junction's "
                             "contact, the twisting of each wire about its own axis, a clamp at the junction).\n");
+  if (!o.lab_failure.empty() || peak_stated(o)) {
+    const gap::FeatureVerdict v = verdict_of(runs, o);
+    md << "\n**Which:** ";
+    if (v.effect == "none") {
+      md << "no effect tried " << (o.lab_failure.empty() ? "" : "puts the failure in the " + o.lab_failure)
+         << (!o.lab_failure.empty() && peak_stated(o) ? " and " : "")
+         << (!peak_stated(o) ? "" : "brings the peak nearer the laboratory's") << ".\n";
+    } else {
+      md << "`" << v.effect << "`" << (o.lab_failure.empty() ? "" : " puts the failure in the " + o.lab_failure);
+      if (peak_stated(o))
+        md << (o.lab_failure.empty() ? "" : " and") << " takes the peak's gap from " << fixed(v.gap_before_sd, 2) << " to "
+           << fixed(v.gap_after_sd, 2) << " sd (shrink " << fixed(v.shrink, 2) << "; "
+           << (v.within_scatter ? "within the laboratory's scatter" : "not to the laboratory's scatter") << ")";
+      md << (v.candidates.size() > 1 ? "; the other effects that do so: " : ".");
+      for (std::size_t k = 0, shown = 0; k < v.candidates.size(); ++k)
+        if (v.candidates[k] != v.effect) md << (shown++ ? ", `" : "`") << v.candidates[k] << "`";
+      md << (v.candidates.size() > 1 ? ".\n" : "\n");
+    }
+  }
   return md.str();
 }
 
@@ -124,6 +197,8 @@ nlohmann::json to_json(const std::vector<RunFeatures>& runs, const FeaturesOptio
   nlohmann::json j;
   j["model"] = o.model;
   j["laboratory"] = {{"toe", o.lab_toe}, {"failure_zone", o.lab_failure}};
+  if (peak_stated(o)) j["laboratory"]["peak"] = {{"force_N", o.lab.peak_force}, {"sd_N", o.lab.peak_sd}};
+  j["model_set"] = o.model_set;
   for (const auto& r : runs) {
     nlohmann::json e = {{"effect", r.effect}, {"strength", r.strength}};
     if (!r.error.empty()) {
@@ -139,6 +214,13 @@ nlohmann::json to_json(const std::vector<RunFeatures>& runs, const FeaturesOptio
     }
     j["runs"].push_back(e);
   }
+  if (!o.lab_failure.empty() || peak_stated(o)) {
+    const gap::FeatureVerdict v = verdict_of(runs, o);
+    j["verdict"] = {{"effect", v.effect}, {"candidates", v.candidates}};
+    if (peak_stated(o))
+      j["verdict"].update({{"peak_gap_before_sd", v.gap_before_sd}, {"peak_gap_after_sd", v.gap_after_sd},
+                           {"shrink", v.shrink}, {"within_scatter", v.within_scatter}});
+  }
   return j;
 }
 
@@ -153,11 +235,29 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
   c->add_option("--lab-failure", o->lab_failure, "Where the laboratory specimens fail")
       ->check(CLI::IsMember({"twist", "junction", "arm"}));
   c->add_flag("--lab-toe", o->lab_toe, "The laboratory curves show a tightening toe");
+  c->add_option("--lab-peak", o->lab_peak, "The laboratory's peak force and its standard deviation, PEAK_N:SD_N");
+  c->add_option("--lab-curve", o->lab_curve,
+                "A DT tension curve in the laboratory's role (CSV): its peak, and its failure's zone when the curve "
+                "reports one (`# failure:`, an FE run) and --lab-failure is not given")
+      ->check(CLI::ExistingFile);
+  c->add_option("--lab-peak-sd", o->lab_peak_sd, "The standard deviation of --lab-curve's peak (N)")
+      ->check(CLI::PositiveNumber);
+  c->add_option("--model-set", o->model_set,
+                "Section/Entry=value: change the model itself before any effect (repeatable), e.g. "
+                "'Material/Failure locus=johnson-cook'");
   c->add_option("--axis", o->axis, "The mesh's axis file (default: the .prm's mesh file with .axis.csv)");
   c->add_option("--json", o->json, "Write the figures as JSON");
   c->add_option("--report", o->report, "Write a Markdown report");
   commands.add(c, [o] {
-    SimulationModel model = make_fe_model(o->model);
+    if (!o->lab_peak.empty()) std::tie(o->lab.peak_force, o->lab.peak_sd) = parse_lab_peak(o->lab_peak);
+    for (const gap::FailureZone zone : {gap::FailureZone::twist, gap::FailureZone::junction, gap::FailureZone::arm})
+      if (gap::zone_name(zone) == o->lab_failure) o->lab.zone = zone;
+    if (!o->lab_curve.empty() && !o->lab_peak.empty())
+      throw InputError("--lab-curve", "give the laboratory's peak either as --lab-peak or from --lab-curve, not both");
+    if (o->lab_curve.empty() != !(o->lab_peak_sd > 0.0))
+      throw InputError(o->lab_curve.empty() ? "--lab-peak-sd" : "--lab-curve",
+                       "--lab-curve and --lab-peak-sd go together (the curve's peak and its standard deviation)");
+    SimulationModel model = make_fe_model(o->model, {}, o->model_set);
     std::filesystem::path axis = o->axis;
     if (axis.empty()) {
       const auto mesh = PrmDocument::read(o->model).get("Geometry/Mesh file");
@@ -165,6 +265,16 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
       axis = (std::filesystem::absolute(o->model).parent_path() / *mesh).replace_extension(".axis.csv");
     }
     const auto stations = read_axis_stations(axis);
+    if (!o->lab_curve.empty()) {
+      const RunFeatures lab = features_of(read_csv(o->lab_curve), stations);
+      o->lab.peak_force = lab.peak_force;
+      o->lab.peak_sd = o->lab_peak_sd;
+      if (!(lab.peak_force > 0.0)) throw InputError(o->lab_curve, "no positive force: no peak to hold the model to");
+      if (o->lab_failure.empty() && lab.failure) {
+        o->lab.zone = lab.zone;
+        o->lab_failure = gap::zone_name(lab.zone);
+      }
+    }
     std::vector<std::string> names;
     if (o->effects.empty()) {
       for (const auto& e : gap::effect_catalogue())

@@ -50,9 +50,29 @@ PrmDocument edit_prm(const PrmDocument& model, const PrmDocument& declared,
   return edited;
 }
 
-SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work) {
-  const PrmDocument model_prm = PrmDocument::read(prm);
+namespace {
+
+// The model's .prm with `settings` ("Section/Entry=value") put in; InputError naming --model-set
+// for a setting without '=' or an entry the solver does not declare.
+PrmDocument with_settings(PrmDocument model, const PrmDocument& declared, const std::vector<std::string>& settings) {
+  for (const std::string& setting : settings) {
+    const auto equals = setting.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw InputError("--model-set", "'" + setting + "': expected Section/Entry=value");
+    const std::string path = setting.substr(0, equals);
+    if (!declared.find(path))
+      throw InputError("--model-set", "'" + path + "' is no entry of the FE solver (`dtwire parameters` lists them)");
+    model.set(path, setting.substr(equals + 1));
+  }
+  return model;
+}
+
+}  // namespace
+
+SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work,
+                              const std::vector<std::string>& settings) {
   const PrmDocument declared = solver_declarations();
+  const PrmDocument model_prm = with_settings(PrmDocument::read(prm), declared, settings);
   check_declared(model_prm, declared);
   const std::filesystem::path directory = std::filesystem::absolute(prm).parent_path();
 

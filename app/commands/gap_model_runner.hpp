@@ -26,8 +26,10 @@ struct SimulationModel {
 
 // Reads the .prm as a typed document and checks its names against the solver's declarations
 // (InputError naming file:line for an unknown entry or a value that is not a number). Runs go to `work` (a fresh temp
-// directory when empty); each run's directory is removed after success.
-SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work = {});
+// directory when empty); each run's directory is removed after success. `settings` ("Section/Entry=value",
+// `--model-set`) change the model itself before any effect: the base every run starts from.
+SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work = {},
+                              const std::vector<std::string>& settings = {});
 
 // The .prm with the effects switched on (exposed for tests): `Fields` off, a relative mesh file
 // made absolute, then each effect's edits (app/gap_model/). `declared` holds the solver's

@@ -52,6 +52,7 @@ std::unique_ptr<ModelEffect> make_twist_tightening();
 std::unique_ptr<ModelEffect> make_shear_failure();
 std::unique_ptr<ModelEffect> make_coating_slip();
 std::unique_ptr<ModelEffect> make_forming_history();
+std::unique_ptr<ModelEffect> make_junction_fracture();
 
 // coating_slip: the bonded area of the top grips (m^2), from the faces of the .prm's mesh file
 // that carry its Top boundary ids.

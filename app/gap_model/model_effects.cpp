@@ -14,6 +14,7 @@ const std::vector<std::unique_ptr<ModelEffect>>& model_effects() {
     list.push_back(make_shear_failure());
     list.push_back(make_coating_slip());
     list.push_back(make_forming_history());
+    list.push_back(make_junction_fracture());
     return list;
   }();
   return all;

@@ -67,4 +67,29 @@ std::optional<ReportedFailure> parse_reported_failure(const std::string& text) {
   }
 }
 
+FeatureVerdict explain_features(const std::vector<FeatureRun>& runs, const LabFeatures& lab) {
+  FeatureVerdict verdict;
+  if (runs.empty() || runs.front().failed) return verdict;
+  const bool peak_stated = lab.peak_sd > 0.0;
+  const auto gap_sd = [&](const FeatureRun& r) {
+    return peak_stated ? std::abs(r.peak_force - lab.peak_force) / lab.peak_sd : 0.0;
+  };
+  verdict.gap_before_sd = verdict.gap_after_sd = gap_sd(runs.front());
+  const FeatureRun* best = nullptr;
+  for (std::size_t k = 1; k < runs.size(); ++k) {
+    const FeatureRun& r = runs[k];
+    if (r.failed || (lab.zone && r.zone != *lab.zone)) continue;
+    if (peak_stated && gap_sd(r) >= verdict.gap_before_sd) continue;
+    if (!lab.zone && !peak_stated) continue;  // nothing stated to explain
+    verdict.candidates.push_back(r.effect);
+    if (!best || gap_sd(r) < gap_sd(*best)) best = &r;
+  }
+  if (!best) return verdict;
+  verdict.effect = best->effect;
+  verdict.gap_after_sd = gap_sd(*best);
+  verdict.shrink = verdict.gap_before_sd > 0.0 ? 1.0 - verdict.gap_after_sd / verdict.gap_before_sd : 0.0;
+  verdict.within_scatter = verdict.gap_after_sd <= 1.0;
+  return verdict;
+}
+
 }  // namespace dtwire::gap

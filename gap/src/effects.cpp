@@ -265,6 +265,15 @@ std::vector<EffectSpec> make_catalogue() {
        {"forming_1", 0.0, 1.0, 0.5, 1.0, {}, {}, {}}, 0.0},
       {"shear_failure", "failure by combined tension and shear (e.g. at the SW/DT junction): the FE locus's shear branch lowered",
        {"shear_ductility_ratio_1", 0.3, 1.0, 0.5, 0.8, {}, {}, {}}, 1.0},
+      // The junction's fracture (issue 50; docs/fem_dt.md): the Hosford-Coulomb locus with a = 2,
+      // c = 0 and a crack band in place of the model's own, at 1 / b. Plausible b from the single
+      // wire's own tension (sw_tension.prm): 1.15 breaks it where the DEM literature's backbone
+      // ends (0.35 engineering strain), below 0.3 it breaks before its load maximum, which the
+      // laboratory's curve does not show.
+      {"junction_fracture", "the formed bend where the single wire leaves the twist runs out of ductility: a strain "
+       "to fracture b in every stress state (Hosford-Coulomb a = 2, c = 0) with a crack band, in place of the "
+       "model's own failure model; the parameter is 1 / b",
+       {"inverse_fracture_strain", 0.0, 4.0, 1.0 / 1.15, 1.0 / 0.3, {}, {}, {}}, 0.0},
       // The force at which the steel core slides in the gripped sheath (bond strength x gripped
       // area) over the clamped model's peak force: the curve levels off there. At 1 the bond
       // carries the peak and the model stays clamped (the partial slip near the grip edge of a

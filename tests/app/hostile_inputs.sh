@@ -99,6 +99,10 @@ case_ "--force-at-fraction: Value 1.5 not in range" gap mesh-selfcheck --model "
 # CLI::Range lets NaN through (every comparison with it is false).
 case_ "--force-at-fraction: Value nan is not a finite number" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction nan
 case_ "a mesh-test effect: it acts on a DEM panel model" gap features --model "$src/experiments/dt/dt_tension.prm" --effects mesh_distortion --json "$work/features.json"
+case_ "--lab-peak: '5000': expected PEAK_N:SD_N" gap features --model "$src/experiments/dt/dt_tension.prm" --lab-peak 5000 --json "$work/features.json"
+case_ "--lab-peak: '5000:-1': the peak and its standard deviation must be positive" gap features --model "$src/experiments/dt/dt_tension.prm" --lab-peak 5000:-1 --json "$work/features.json"
+case_ "--model-set: 'Material/Failure locs' is no entry of the FE solver" gap features --model "$src/experiments/dt/dt_tension.prm" --model-set 'Material/Failure locs=johnson-cook' --json "$work/features.json"
+case_ "junction_fracture: the .prm already carries a Hosford-Coulomb locus" gap features --model "$src/experiments/dt/dt_tension.prm" --effects junction_fracture --json "$work/features.json"
 case_ "--steps" export --params "$src/experiments/data/macroelement_thesis_params.json" --steps 0 --out "$work/export"
 case_ "no_such.prm" run no_such.prm $out
 case_ "ea_negative.json: wire type 'single_wire' (law thesis): thesis: parameter 'EA_N' must be finite and > 0" export --params ea_negative.json --out export

@@ -54,4 +54,44 @@ TEST(DtFeatures, ReportedFailureIsReadFromTheCurveMetadata) {
   EXPECT_FALSE(parse_reported_failure("no failure"));
 }
 
+// The verdict of `gap features` (issue 50): of the effects that put the failure where the
+// laboratory's is, the one nearest its peak. Figures as the level-0 DT tension runs give them
+// (docs/gap.md): the tight twist necks at 5.92 kN; friction keeps the failure in the twist; a
+// shear branch that leaves it there too; the junction's locus moves it to the junction below
+// the peak. Against 5.0 +- 0.5 kN: gap 1.84 sd before, 0.60 after (shrink 0.674).
+TEST(DtFeatures, VerdictNamesTheEffectThatPutsTheFailureInTheLaboratorysZoneNearestItsPeak) {
+  const std::vector<FeatureRun> runs = {{"none", false, 5920.0, FailureZone::twist},
+                                        {"wire_friction", false, 5960.0, FailureZone::twist},
+                                        {"shear_failure", false, 5400.0, FailureZone::twist},
+                                        {"forming_history", false, 6120.0, FailureZone::junction},
+                                        {"junction_fracture", false, 5300.0, FailureZone::junction},
+                                        {"twist_tightening", true, 0.0, FailureZone::unknown}};
+  LabFeatures lab{FailureZone::junction, 5000.0, 500.0};
+  FeatureVerdict v = explain_features(runs, lab);
+  EXPECT_EQ(v.effect, "junction_fracture");
+  // forming_history moves the failure but takes the peak away from the laboratory's.
+  EXPECT_EQ(v.candidates, std::vector<std::string>{"junction_fracture"});
+  EXPECT_NEAR(v.gap_before_sd, 1.84, 1e-12);
+  EXPECT_NEAR(v.gap_after_sd, 0.60, 1e-12);
+  EXPECT_NEAR(v.shrink, 1.0 - 0.60 / 1.84, 1e-12);
+  EXPECT_TRUE(v.within_scatter);
+
+  // The zone alone: the first effect that moves it (no peak to rank by).
+  v = explain_features(runs, LabFeatures{FailureZone::junction, 0.0, 0.0});
+  EXPECT_EQ(v.effect, "forming_history");
+  EXPECT_EQ(v.candidates, (std::vector<std::string>{"forming_history", "junction_fracture"}));
+  // The peak alone: the nearest, wherever it fails; 2.5 kN away is not within the scatter.
+  v = explain_features(runs, LabFeatures{std::nullopt, 5000.0, 500.0});
+  EXPECT_EQ(v.effect, "junction_fracture");
+  EXPECT_EQ(v.candidates, (std::vector<std::string>{"shear_failure", "junction_fracture"}));
+  v = explain_features(runs, LabFeatures{std::nullopt, 2500.0, 500.0});
+  EXPECT_EQ(v.effect, "junction_fracture");
+  EXPECT_FALSE(v.within_scatter);
+  // Nothing that moves the failure into the arm; nothing stated; a model that did not run.
+  EXPECT_EQ(explain_features(runs, LabFeatures{FailureZone::arm, 5000.0, 500.0}).effect, "none");
+  EXPECT_EQ(explain_features(runs, LabFeatures{}).effect, "none");
+  std::vector<FeatureRun> failed_base = runs;
+  failed_base.front().failed = true;
+  EXPECT_EQ(explain_features(failed_base, lab).effect, "none");
+}
 }  // namespace

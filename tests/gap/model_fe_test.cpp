@@ -147,6 +147,42 @@ TEST(GapModelPrm, ShearFailureSetsTheHosfordExponentOfAHosfordCoulombLocus) {
   EXPECT_NE(model.unsupported.at("shear_failure").find("Hosford-Coulomb b = 0"), std::string::npos);
 }
 
+// junction_fracture (issue 50) puts the junction's locus in place of the model's own failure
+// model: Hosford-Coulomb a = 2, c = 0, b = 1 / p, a 0.03 mm crack band, the run going on through
+// the crack; at 0 the model keeps its own. The bundled DT already carries that locus, so the
+// effect is named unsupported there, and supported on the same model with --model-set's
+// Johnson-Cook; the SW column has no twist.
+TEST(GapModelPrm, JunctionFractureReplacesTheFailureModelWithTheJunctionLocus) {
+  const std::string prm = "subsection Material\n  set Failure d1 = 0.05\n  set Failure d2 = 3.44\n"
+                          "  set Stop at failure = true\nend\n";
+  const std::string on = edited_text(prm, {{&gap::find_effect("junction_fracture"), {1.0 / 0.38}}}, ".");
+  for (const char* line : {"set Failure locus = hosford-coulomb\n", "set Hosford-Coulomb a = 2\n",
+                           "set Hosford-Coulomb b = 0.38\n", "set Hosford-Coulomb c = 0\n",
+                           "set Softening displacement (mm) = 0.03\n", "set Stop at failure = false\n"})
+    EXPECT_NE(on.find(line), std::string::npos) << line << " in\n" << on;
+  const std::string off = edited_text(prm, {{&gap::find_effect("junction_fracture"), {0.0}}}, ".");
+  EXPECT_EQ(off.find("hosford-coulomb"), std::string::npos) << off;
+  EXPECT_NE(off.find("set Stop at failure = true\n"), std::string::npos) << off;
+
+  const fs::path dt_prm = fs::path(DTWIRE_SOURCE_DIR) / "experiments/dt/dt_tension.prm";
+  const SimulationModel shipped = make_fe_model(dt_prm, fs::temp_directory_path() / "dtwire_gap_fe_test_j");
+  EXPECT_NE(shipped.unsupported.at("junction_fracture").find("already carries a Hosford-Coulomb locus"), std::string::npos);
+  const SimulationModel before = make_fe_model(dt_prm, fs::temp_directory_path() / "dtwire_gap_fe_test_j2",
+                                               {"Material/Failure locus=johnson-cook"});
+  EXPECT_EQ(before.unsupported.count("junction_fracture"), 0u);
+  const SimulationModel column = make_fe_model(kColumn, fs::temp_directory_path() / "dtwire_gap_fe_test_j3");
+  EXPECT_NE(column.unsupported.at("junction_fracture").find("Wire contact"), std::string::npos);
+  // A setting that names no solver entry, or has no value, is refused by its option.
+  for (const char* bad : {"Material/Failure locs=johnson-cook", "Material/Failure locus"}) {
+    try {
+      make_fe_model(dt_prm, fs::temp_directory_path() / "dtwire_gap_fe_test_j4", {bad});
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("--model-set"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // coating_slip: the top grips' bond (penalty factor 10) slides at p x the clamped model's peak
 // force (strength = p F / A); at the neutral 1 the model stays clamped. Supported when the grips
 // are lateral grip surfaces of a mesh file (the DT experiment), not on the generated column.

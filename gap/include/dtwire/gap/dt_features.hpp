@@ -33,4 +33,32 @@ struct ReportedFailure {
 };
 std::optional<ReportedFailure> parse_reported_failure(const std::string& text);
 
+// One run of the DT model (the model as it is, or with one effect) as `gap features` reads it.
+struct FeatureRun {
+  std::string effect;  // "none" for the model as it is
+  bool failed = false;  // the run did not finish
+  double peak_force = 0.0;  // N
+  FailureZone zone = FailureZone::unknown;
+};
+
+// What the laboratory shows: where the specimens fail (nullopt: not stated) and their peak force
+// with its standard deviation (N; sd 0: not stated).
+struct LabFeatures {
+  std::optional<FailureZone> zone;
+  double peak_force = 0.0, peak_sd = 0.0;
+};
+
+// Which effect explains the laboratory's failure and strength. A candidate puts the failure in the
+// laboratory's zone (when one is stated) and brings the peak nearer (when one is stated); of the
+// candidates, the one with the smallest peak gap after wins (the first one run on a tie, and the
+// first candidate when no peak is stated). `effect` is "none" when no run is a candidate.
+struct FeatureVerdict {
+  std::string effect = "none";
+  std::vector<std::string> candidates;
+  double gap_before_sd = 0.0, gap_after_sd = 0.0;  // |peak - laboratory| / sd; 0 with no peak
+  double shrink = 0.0;                             // 1 - after / before
+  bool within_scatter = false;                     // the gap after is at most 1 sd
+};
+FeatureVerdict explain_features(const std::vector<FeatureRun>& runs, const LabFeatures& lab);
+
 }  // namespace dtwire::gap
