@@ -31,7 +31,7 @@ namespace dtwire::app {
 namespace {
 
 struct FeaturesOptions {
-  std::string model, effects, lab_failure, lab_peak, lab_curve, axis, json, report;
+  std::string model, effects, lab_failure, lab_peak, lab_curve, axis, json, report, model_cache;
   double lab_peak_sd = 0.0;
   std::vector<std::string> model_set;
   bool lab_toe = false;
@@ -242,6 +242,8 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
       ->check(CLI::ExistingFile);
   c->add_option("--lab-peak-sd", o->lab_peak_sd, "The standard deviation of --lab-curve's peak (N)")
       ->check(CLI::PositiveNumber);
+  c->add_option("--model-cache", o->model_cache,
+                "Keep every FE run's curve in this folder and take it from there next time (resume, share runs)");
   c->add_option("--model-set", o->model_set,
                 "Section/Entry=value: change the model itself before any effect (repeatable), e.g. "
                 "'Material/Failure locus=johnson-cook'");
@@ -257,7 +259,7 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
     if (o->lab_curve.empty() != !(o->lab_peak_sd > 0.0))
       throw InputError(o->lab_curve.empty() ? "--lab-peak-sd" : "--lab-curve",
                        "--lab-curve and --lab-peak-sd go together (the curve's peak and its standard deviation)");
-    SimulationModel model = make_fe_model(o->model, {}, o->model_set);
+    SimulationModel model = make_fe_model(o->model, {}, o->model_set, o->model_cache);
     std::filesystem::path axis = o->axis;
     if (axis.empty()) {
       const auto mesh = PrmDocument::read(o->model).get("Geometry/Mesh file");

@@ -9,7 +9,9 @@
 #include <memory>
 #include <mutex>
 
+#include "../cli.hpp"
 #include "dtwire/calibrate/command_simulator.hpp"
+#include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/gap/effects.hpp"
@@ -70,7 +72,7 @@ PrmDocument with_settings(PrmDocument model, const PrmDocument& declared, const 
 }  // namespace
 
 SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work,
-                              const std::vector<std::string>& settings) {
+                              const std::vector<std::string>& settings, const std::filesystem::path& cache_directory) {
   const PrmDocument declared = solver_declarations();
   const PrmDocument model_prm = with_settings(PrmDocument::read(prm), declared, settings);
   check_declared(model_prm, declared);
@@ -91,6 +93,7 @@ SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem:
   if (work.empty())
     work = std::filesystem::temp_directory_path() / ("dtwire_gap_model_" + std::to_string(::getpid()));
   std::filesystem::create_directories(work);
+  if (!cache_directory.empty()) std::filesystem::create_directories(cache_directory);
   auto cache = std::make_shared<std::map<std::string, Curve>>();
   auto runs = std::make_shared<int>(0);
   const std::string source = prm.string();
@@ -100,21 +103,33 @@ SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem:
   // `gap --jobs N` calls the runner from several threads: the cache, the counter and the console
   // lines are shared (each FE run has its own folder).
   auto shared = std::make_shared<std::mutex>();
+  // $DTWIRE_FE_EXECUTABLE: a dtwire built with fem, when this one was built without it.
+  const char* fe_executable = std::getenv("DTWIRE_FE_EXECUTABLE");
+  const std::filesystem::path program = fe_executable ? std::filesystem::path(fe_executable) : calibrate::dtwire_executable();
+  // What makes a run besides its .prm text, for the cache on disk: the solver and the mesh.
+  std::string identity = program.string() + "\n" + version_string() + "\n";
+  if (const auto mesh = model_prm.get("Geometry/Mesh file"); mesh && !mesh->empty())
+    if (const auto file = directory / *mesh; std::filesystem::is_regular_file(file)) identity += sha256_file(file) + "\n";
   const auto run = [=, keep = runs](const std::string& edited, const std::string& label) {
     const std::string key = sha256_text(edited);
+    const std::filesystem::path stored = cache_directory.empty() ? std::filesystem::path()
+                                                                 : cache_directory / (sha256_text(identity + edited).substr(0, 24) + ".csv");
     {
       const std::lock_guard<std::mutex> lock(*shared);
       if (const auto hit = cache->find(key); hit != cache->end()) return hit->second;
+      if (!stored.empty() && std::filesystem::is_regular_file(stored)) {
+        std::cout << "  FE run: " << label << " (from " << stored.string() << ")\n" << std::flush;
+        return (*cache)[key] = read_csv(stored);
+      }
       std::cout << "  FE run: " << label << "\n" << std::flush;
     }
     calibrate::CommandSpecification spec;
-    // $DTWIRE_FE_EXECUTABLE: a dtwire built with fem, when this one was built without it.
-    const char* fe_executable = std::getenv("DTWIRE_FE_EXECUTABLE");
-    spec.program = fe_executable ? std::filesystem::path(fe_executable) : calibrate::dtwire_executable();
+    spec.program = program;
     spec.arguments = {"run", "{input}", "--out", "{output}", "--quiet"};
     spec.input_template = edited;
     spec.work_directory = work;
     const Curve curve = calibrate::CommandSimulator(spec).simulate({});
+    if (!stored.empty()) write_csv(curve, stored);  // atomic: a run cut short leaves no entry
     const std::lock_guard<std::mutex> lock(*shared);
     ++*keep;
     std::cout << "  FE run: " << label << " done\n" << std::flush;

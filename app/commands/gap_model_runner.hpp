@@ -27,9 +27,13 @@ struct SimulationModel {
 // Reads the .prm as a typed document and checks its names against the solver's declarations
 // (InputError naming file:line for an unknown entry or a value that is not a number). Runs go to `work` (a fresh temp
 // directory when empty); each run's directory is removed after success. `settings` ("Section/Entry=value",
-// `--model-set`) change the model itself before any effect: the base every run starts from.
+// `--model-set`) change the model itself before any effect: the base every run starts from. With a
+// `cache_directory` every finished run's curve is kept there under a key of the edited .prm, the
+// mesh file and the solver's version, and taken from there by a later command (an interrupted
+// diagnosis resumes; another one asking for the same run does not run it again).
 SimulationModel make_fe_model(const std::filesystem::path& prm, std::filesystem::path work = {},
-                              const std::vector<std::string>& settings = {});
+                              const std::vector<std::string>& settings = {},
+                              const std::filesystem::path& cache_directory = {});
 
 // The .prm with the effects switched on (exposed for tests): `Fields` off, a relative mesh file
 // made absolute, then each effect's edits (app/gap_model/). `declared` holds the solver's

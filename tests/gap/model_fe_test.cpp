@@ -12,6 +12,7 @@
 
 #include "cli.hpp"
 #include "commands/gap_model_runner.hpp"
+#include "dtwire/core/curve.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/gap/summary_lab.hpp"
@@ -268,6 +269,31 @@ TEST(GapModelFe, InjectedImperfectionRecoveredThroughDtwireRun) {
   EXPECT_LE(*model.runs, 2 + 4);  // base + injected + the search (cached repeats are free)
 }
 
+// With a cache folder every finished FE run is kept on disk under a key of the edited .prm, its
+// mesh and the solver's version: a second model (another command, or a resumed one) takes the
+// same run from there, its curve and metadata as run, and runs nothing; another effect runs anew.
+TEST(GapModelFe, ACacheFolderKeepsFinishedRunsForTheNextCommand) {
+  const std::string exe = fe_executable();
+  if (exe.empty()) GTEST_SKIP() << "no dtwire with fem in this build (set DTWIRE_FE_EXECUTABLE)";
+  ::setenv("DTWIRE_FE_EXECUTABLE", exe.c_str(), 1);
+  const fs::path root = fs::temp_directory_path() / "dtwire_gap_fe_test_cache";
+  fs::remove_all(root);
+  const SimulationModel first = make_fe_model(kColumn, root / "work1", {}, root / "cache");
+  const Curve run = first.run_curve({});
+  EXPECT_EQ(*first.runs, 1);
+  const SimulationModel second = make_fe_model(kColumn, root / "work2", {}, root / "cache");
+  const Curve again = second.run_curve({});
+  EXPECT_EQ(*second.runs, 0);
+  EXPECT_EQ(again.si("force"), run.si("force"));
+  EXPECT_EQ(again.metadata("run_id"), run.metadata("run_id"));
+  second.run_curve({{&gap::find_effect("geometry_imperfection"), {2.0}}});
+  EXPECT_EQ(*second.runs, 1);
+  // A base setting is part of the run: the same effect on another base is run anew.
+  const SimulationModel stiffer = make_fe_model(kColumn, root / "work3", {"Material/Young modulus (MPa)=210000"}, root / "cache");
+  stiffer.run_curve({});
+  EXPECT_EQ(*stiffer.runs, 1);
+}
+
 // coating_slip through `dtwire run`: a small gripped SW (30 mm, 5 mm grips, level 0; elastic-plastic,
 // pulled 0.5 mm) whose top grips slide at 0.6 of the clamped peak force gives the laboratory
 // figures (peak and end force, 2 % sd); the summary search recovers the capacity.
@@ -377,6 +403,15 @@ TEST(GapFeatures, BadInputIsNamedBeforeAnyRun) {
   const auto panel_effect = run({"--effects", "mesh_distortion"});
   EXPECT_EQ(panel_effect.first, 2);
   EXPECT_NE(panel_effect.second.find("DEM panel model"), std::string::npos) << panel_effect.second;
+  // The laboratory's peak: as PEAK:SD, or a curve with its sd, not both.
+  EXPECT_EQ(run({"--lab-peak", "5000"}).first, 2);
+  EXPECT_EQ(run({"--lab-peak", "5000:0"}).first, 2);
+  EXPECT_EQ(run({"--lab-peak", "5kN:500"}).first, 2);
+  const fs::path curve = fs::path(DTWIRE_SOURCE_DIR) / "experiments/data/sw_2.7mm_dem_backbone.csv";
+  const auto without_sd = run({"--lab-curve", curve.string()});
+  EXPECT_EQ(without_sd.first, 2);
+  EXPECT_NE(without_sd.second.find("--lab-peak-sd"), std::string::npos) << without_sd.second;
+  EXPECT_EQ(run({"--lab-curve", curve.string(), "--lab-peak-sd", "100", "--lab-peak", "5000:500"}).first, 2);
   EXPECT_FALSE(fs::exists(json));
 }
 
