@@ -57,7 +57,7 @@ FailureZone failure_zone(double z, const std::vector<std::pair<double, double>>&
 
 std::optional<ReportedFailure> parse_reported_failure(const std::string& text) {
   static const std::regex pattern(
-      R"(^\s*([A-Za-z-]+(?: [A-Za-z-]+)*) at displacement ([-+0-9.eE]+) mm.*\bz = ([-+0-9.eE]+) mm)");
+      R"(^\s*(?:in the [A-Za-z -]+, )?([A-Za-z-]+(?: [A-Za-z-]+)*) at displacement ([-+0-9.eE]+) mm.*\bz = ([-+0-9.eE]+) mm)");
   std::smatch m;
   if (!std::regex_search(text, m, pattern)) return std::nullopt;
   try {

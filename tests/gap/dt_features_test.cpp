@@ -52,6 +52,13 @@ TEST(DtFeatures, ReportedFailureIsReadFromTheCurveMetadata) {
   EXPECT_NEAR(f->displacement, 32.9713e-3, 1e-12);
   EXPECT_NEAR(f->z, 27.454e-3, 1e-12);
   EXPECT_FALSE(parse_reported_failure("no failure"));
+  // Since issue 50 the FE names the place first (fem's Junction planes); the figures are the same.
+  const auto placed = parse_reported_failure(
+      "in the junction, uniform tension at displacement 4.57998 mm, force 3675.15 N, z = 41.6437 mm, r = 2.72709 mm");
+  ASSERT_TRUE(placed);
+  EXPECT_EQ(placed->mode, "uniform tension");
+  EXPECT_NEAR(placed->displacement, 4.57998e-3, 1e-12);
+  EXPECT_NEAR(placed->z, 41.6437e-3, 1e-12);
 }
 
 // The verdict of `gap features` (issue 50): of the effects that put the failure where the

@@ -25,8 +25,8 @@ std::string zone_name(FailureZone zone);
 // one, within 10 %) the twist, anything more curved a junction bend.
 FailureZone failure_zone(double z, const std::vector<std::pair<double, double>>& stations);
 
-// The failure an FE curve's metadata reports (`# failure: <mode> at displacement X mm, ...,
-// z = Z mm, ...`), in SI; nullopt when the text has no such figures.
+// The failure an FE curve's metadata reports (`# failure: [in the <place>, ]<mode> at displacement
+// X mm, ..., z = Z mm, ...`), in SI; nullopt when the text has no such figures.
 struct ReportedFailure {
   std::string mode;
   double displacement = 0.0, z = 0.0;  // m
