@@ -268,11 +268,14 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
     }
     const auto stations = read_axis_stations(axis);
     if (!o->lab_curve.empty()) {
-      const RunFeatures lab = features_of(read_csv(o->lab_curve), stations);
+      const Curve lab_curve = read_csv(o->lab_curve);
+      if (!lab_curve.has("displacement") || !lab_curve.has("force"))
+        throw InputError(o->lab_curve, "expected displacement_<length unit> and force_<force unit> columns (a DT tension curve)");
+      const RunFeatures lab = features_of(lab_curve, stations);
       o->lab.peak_force = lab.peak_force;
       o->lab.peak_sd = o->lab_peak_sd;
       if (!(lab.peak_force > 0.0)) throw InputError(o->lab_curve, "no positive force: no peak to hold the model to");
-      if (o->lab_failure.empty() && lab.failure) {
+      if (o->lab_failure.empty() && lab.failure && lab.zone != gap::FailureZone::unknown) {
         o->lab.zone = lab.zone;
         o->lab_failure = gap::zone_name(lab.zone);
       }

@@ -412,6 +412,10 @@ TEST(GapFeatures, BadInputIsNamedBeforeAnyRun) {
   EXPECT_EQ(without_sd.first, 2);
   EXPECT_NE(without_sd.second.find("--lab-peak-sd"), std::string::npos) << without_sd.second;
   EXPECT_EQ(run({"--lab-curve", curve.string(), "--lab-peak-sd", "100", "--lab-peak", "5000:500"}).first, 2);
+  // A curve in strain and stress is no DT tension curve: named, before any run.
+  const auto stress_strain = run({"--lab-curve", curve.string(), "--lab-peak-sd", "100"});
+  EXPECT_EQ(stress_strain.first, 2);
+  EXPECT_NE(stress_strain.second.find("sw_2.7mm_dem_backbone.csv"), std::string::npos) << stress_strain.second;
   EXPECT_FALSE(fs::exists(json));
 }
 
