@@ -311,6 +311,11 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
       runs.push_back(r);
     };
     run({}, "none", 0.0);
+    // Without the model's own run there is nothing to hold the effects against (and a value the
+    // solver refuses, e.g. from --model-set, would fail every run the same way).
+    if (!runs.front().error.empty())
+      throw ComputationError("the model as it is did not run (" + runs.front().error +
+                             "); no effect was tried");
     for (const auto& name : names) {
       const gap::EffectSpec& effect = gap::find_effect(name);
       const gap::ParameterSpec spec = effect.parameters(gap::CurveScale{}).at(effect.magnitude);

@@ -412,6 +412,15 @@ TEST(GapFeatures, BadInputIsNamedBeforeAnyRun) {
   EXPECT_EQ(without_sd.first, 2);
   EXPECT_NE(without_sd.second.find("--lab-peak-sd"), std::string::npos) << without_sd.second;
   EXPECT_EQ(run({"--lab-curve", curve.string(), "--lab-peak-sd", "100", "--lab-peak", "5000:500"}).first, 2);
+  // A value the solver refuses fails the model's own run: the command stops there (exit 1,
+  // naming the run's log) instead of failing every effect's run the same way.
+  if (const std::string exe = fe_executable(); !exe.empty()) {
+    ::setenv("DTWIRE_FE_EXECUTABLE", exe.c_str(), 1);
+    const auto refused = run({"--model-set", "Material/Failure locus=foo", "--effects", "wire_friction"});
+    EXPECT_EQ(refused.first, 1);
+    EXPECT_NE(refused.second.find("the model as it is did not run"), std::string::npos) << refused.second;
+    EXPECT_NE(refused.second.find("command.log"), std::string::npos) << refused.second;
+  }
   // A curve in strain and stress is no DT tension curve: named, before any run.
   const auto stress_strain = run({"--lab-curve", curve.string(), "--lab-peak-sd", "100"});
   EXPECT_EQ(stress_strain.first, 2);
