@@ -1,13 +1,30 @@
 #include "direct_solver.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
+
+// OpenBLAS's own call, when the BLAS loaded is OpenBLAS (Debian's default); null otherwise.
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 
 namespace dtwire::fem {
 namespace {
 
 void check(PetscErrorCode code, const char* what) {
   if (code != 0) throw std::runtime_error(std::string("PETSc error in ") + what + " (" + std::to_string(code) + ")");
+}
+
+// One BLAS thread per process unless OPENBLAS_NUM_THREADS says otherwise. OpenBLAS starts one
+// thread per core in every process and its idle threads spin; MUMPS's fronts here are small
+// (level-0 DT: 6426 dofs), so alone the second thread gains nothing (103 s vs 101 s to failure),
+// while two runs side by side on 2 cores (campaign --jobs 2, ctest -j2) spun each other's cores:
+// solve 342 s -> 42 s, run 528 s -> 152 s (docs/fem_dt.md, "Speed").
+void use_one_blas_thread_unless_asked() {
+  static const bool once = [] {
+    if (openblas_set_num_threads && !std::getenv("OPENBLAS_NUM_THREADS")) openblas_set_num_threads(1);
+    return true;
+  }();
+  (void)once;
 }
 
 }  // namespace
@@ -24,6 +41,7 @@ void DirectSolver::solve(const dealii::PETScWrappers::MPI::SparseMatrix& A, deal
                          const dealii::PETScWrappers::MPI::Vector& b) {
   if (pattern_changed_) reset();  // PETSc would take the new pattern's matrix for the old one
   if (!ksp_) {
+    use_one_blas_thread_unless_asked();
     check(KSPCreate(comm_, &ksp_), "KSPCreate");
     check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
     PC pc;
