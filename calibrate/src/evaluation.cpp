@@ -333,6 +333,11 @@ std::vector<Curve> ProblemEvaluator::simulate(const std::vector<double>& values)
   return curves;
 }
 
+void ProblemEvaluator::set_relative_step(double relative_step) {
+  if (!(relative_step > 0 && relative_step < 1)) throw std::invalid_argument("relative_step must lie in (0, 1)");
+  options_.relative_step = relative_step;
+}
+
 EvaluationStatistics ProblemEvaluator::statistics() const {
   std::lock_guard<std::mutex> lock(failure_kinds_mutex_);
   return {simulations_.load(), cache_hits_.load(), failures_.load(), failure_kinds_};

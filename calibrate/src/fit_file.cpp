@@ -325,7 +325,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     fit.only({"loss", "loss_scale", "starts", "log_parameters", "seed", "max_iterations", "relative_step",
               "central_differences", "threads", "function_tolerance", "parameter_tolerance",
               "gradient_tolerance", "disk_cache", "identification_tolerance", "screening_iterations",
-              "screening_cost_ratio", "line_search"});
+              "screening_cost_ratio", "line_search", "polish_relative_step"});
     def.disk_cache = fit.boolean("disk_cache", false);
     def.fit.loss = loss_kind(fit);
     def.fit.loss_scale = fit.number("loss_scale", 1.0);
@@ -343,6 +343,12 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     def.evaluation.relative_step = fit.number("relative_step", def.evaluation.relative_step);
     if (!(def.evaluation.relative_step > 0 && def.evaluation.relative_step < 1))
       fit.fail(fit.get("relative_step"), "relative_step", "expected a number in (0, 1)");
+    if (fit.has("polish_relative_step")) {
+      def.fit.polish_relative_step = fit.number("polish_relative_step", 0.0);
+      if (!(def.fit.polish_relative_step > def.evaluation.relative_step && def.fit.polish_relative_step < 1))
+        fit.fail(fit.get("polish_relative_step"), "polish_relative_step",
+                 "expected a number above relative_step (" + std::to_string(def.evaluation.relative_step) + ") and below 1");
+    }
     def.evaluation.central_differences = fit.boolean("central_differences", false);
     def.evaluation.threads = static_cast<unsigned>(fit.integer("threads", 0, 0));
     read_screening(fit, def.fit);

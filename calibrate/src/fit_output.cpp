@@ -164,6 +164,12 @@ void write_all_outputs(const FitDefinition& definition, const FitResult& result,
   root["residual_count"] = result.residual_count;
   root["best_start"] = result.best_start;
   root["starts"] = starts;
+  if (result.polish.run) {
+    const auto& p = result.polish;
+    root["polish"] = {{"relative_step", p.relative_step}, {"cost_before", p.cost_before},
+                      {"cost_after", std::isfinite(p.cost_after) ? json(p.cost_after) : json(nullptr)},
+                      {"iterations", p.iterations}, {"taken", p.taken}, {"message", p.message}};
+  }
   root["statistics"] = {{"simulations", result.statistics.simulations},
                         {"cache_hits", result.statistics.cache_hits},
                         {"failed_simulations", result.statistics.failures},
@@ -182,6 +188,12 @@ void write_all_outputs(const FitDefinition& definition, const FitResult& result,
       << result.best_start + 1 << "); " << result.statistics.simulations << " simulation runs ("
       << result.statistics.cache_hits << " cache hits, " << result.statistics.failures
       << " failed), wall time " << number(result.wall_seconds, 3) << " s; run " << provenance.run_id << ".\n\n";
+    if (result.polish.run)
+      s << "Polish (finite-difference step " << number(result.polish.relative_step) << " from the best start's end): cost "
+        << number(result.polish.cost_before, 4) << " -> "
+        << (std::isfinite(result.polish.cost_after) ? number(result.polish.cost_after, 4) : std::string("failed")) << " in "
+        << result.polish.iterations << " iterations, "
+        << (result.polish.taken ? "taken" : "not taken (no lower cost)") << ".\n\n";
     if (!result.covariance_status.empty() && result.covariance_status != "positive definite")
       s << "**Covariance " << result.covariance_status << ": the sigma below are not standard errors.**\n\n";
     s << "| parameter | value | sigma | unit | bounds | reference | identified |\n|---|---|---|---|---|---|---|\n";

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <ostream>
 #include <sstream>
 
@@ -162,6 +163,7 @@ std::string fit_identity(const ProblemEvaluator& evaluator, const FitOptions& op
     text << "screening " << stage.iterations << " " << stage.cost_ratio << "\n";
   // Likewise only the non-default line search is named (it changes the steps a start takes).
   if (options.value_only_line_search) text << "line_search values\n";
+  if (options.polish_relative_step > 0.0) text << "polish " << options.polish_relative_step << "\n";
   return sha256_text(text.str());
 }
 
@@ -242,24 +244,69 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
     for (const auto& st : summary.starts) messages += " [" + st.message + "]";
     throw ComputationError("fit failed from every start:" + messages);
   }
-  result.completed = true;
   result.best_start = *summary.best;
-  result.fitted_values = evaluator.from_scaled(summary.x);
+  std::vector<double> best_x = summary.x;
+  double best_cost = summary.cost;
+  if (options.polish_relative_step > 0.0) {
+    PolishSummary& polish = result.polish;
+    polish.run = true;
+    polish.relative_step = options.polish_relative_step;
+    polish.cost_before = summary.cost;
+    const double fine_step = evaluator.relative_step();
+    evaluator.set_relative_step(options.polish_relative_step);
+    lsq::Options coarse = engine;
+    coarse.screening.clear();
+    coarse.parallel_starts = 1;
+    coarse.after_start = nullptr;
+    // The checkpoint keeps the multi-start's ends; a resumed fit polishes them again.
+    coarse.after_iteration = [&](const lsq::Iteration& it, const std::vector<lsq::Start>&) {
+      if (options.progress)
+        *options.progress << "fit polish (relative step " << options.polish_relative_step << ") iteration "
+                          << it.iteration << ": cost " << std::setprecision(6) << it.cost
+                          << (it.step_accepted ? "" : " (step rejected)") << "\n" << std::flush;
+      ++iterations_this_run;
+      return !((options.stop_after_iterations >= 0 && iterations_this_run > options.stop_after_iterations) ||
+               (options.stop_requested && options.stop_requested->load()));
+    };
+    const lsq::Summary polished = lsq::solve(problem, coarse, lsq::starts_at({summary.x}));
+    evaluator.set_relative_step(fine_step);
+    result.statistics = evaluator.statistics();
+    if (!polished.completed) {
+      result.completed = false;
+      result.wall_seconds = std::chrono::duration<double>(Clock::now() - started).count();
+      return result;
+    }
+    const lsq::Start& end = polished.starts.front();
+    polish.iterations = end.iterations;
+    polish.message = end.message;
+    polish.cost_after = polished.best ? polished.cost : std::numeric_limits<double>::quiet_NaN();
+    polish.taken = polished.best && polished.cost < summary.cost;
+    if (polish.taken) {
+      best_x = polished.x;
+      best_cost = polished.cost;
+    }
+    if (options.progress)
+      *options.progress << "fit polish: cost " << summary.cost << " -> " << polish.cost_after << " in "
+                        << polish.iterations << " iterations, " << (polish.taken ? "taken" : "not taken (no lower cost)")
+                        << ": " << polish.message << "\n";
+  }
+  result.completed = true;
+  result.fitted_values = evaluator.from_scaled(best_x);
   result.values = resolve_offsets(parameters, result.fitted_values);
-  result.cost = summary.cost;
+  result.cost = best_cost;
   result.residual_variance = 2.0 * result.cost / static_cast<double>(m - n);
 
   // Covariance in z (the engine's grouped sandwich: each curve channel its own variance,
   // since curves are weighted by the user, not necessarily by their noise), then of the fitted
   // values in SI, then of the parameters' own values (offsets resolved: A Cov A^T).
-  const lsq::Uncertainty u = lsq::uncertainty_at(problem, engine, summary.x);
+  const lsq::Uncertainty u = lsq::uncertainty_at(problem, engine, best_x);
   if (u.covariance) {
     Eigen::MatrixXd fitted_cov(n, n), corr(n, n);
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = 0; j < n; ++j)
         fitted_cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
             (*u.covariance)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
-            parameters[i].derivative(summary.x[i]) * parameters[j].derivative(summary.x[j]);
+            parameters[i].derivative(best_x[i]) * parameters[j].derivative(best_x[j]);
     for (std::size_t i = 0; i < n; ++i)
       result.fitted_sigma.push_back(
           std::sqrt(std::max(fitted_cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 0.0)));
@@ -298,7 +345,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
     std::vector<double> steps(n);
     for (std::size_t j = 0; j < n; ++j) {
       const double own = std::abs(result.values[j]) > 0 ? std::abs(result.values[j]) : parameters[j].upper - parameters[j].lower;
-      steps[j] = 0.5 * options.identification_tolerance * own / parameters[j].derivative(summary.x[j]);
+      steps[j] = 0.5 * options.identification_tolerance * own / parameters[j].derivative(best_x[j]);
     }
     lsq::Problem secant = problem;
     secant.residuals_and_jacobian = [&evaluator, steps](const std::vector<double>& z, std::vector<double>& r,
@@ -306,14 +353,14 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
       evaluator.residuals_and_secant_jacobian(z, steps, r, J);
     };
     try {
-      const lsq::Uncertainty s = lsq::uncertainty_at(secant, engine, summary.x);
+      const lsq::Uncertainty s = lsq::uncertainty_at(secant, engine, best_x);
       if (s.covariance) {
         Eigen::MatrixXd fitted_cov(n, n);
         for (std::size_t i = 0; i < n; ++i)
           for (std::size_t j = 0; j < n; ++j)
             fitted_cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
                 (*s.covariance)(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) *
-                parameters[i].derivative(summary.x[i]) * parameters[j].derivative(summary.x[j]);
+                parameters[i].derivative(best_x[i]) * parameters[j].derivative(best_x[j]);
         const Eigen::MatrixXd cov = resolve_covariance(parameters, fitted_cov);
         for (std::size_t i = 0; i < n; ++i)
           result.secant_sigma.push_back(std::sqrt(std::max(cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)), 0.0)));
@@ -356,7 +403,7 @@ FitResult run_fit(ProblemEvaluator& evaluator, const FitOptions& options) {
   // starts' ends); the others are named.
   std::vector<StartEnd> ends;
   for (const auto& st : result.starts) ends.push_back({st.state == "done" ? st.end : std::vector<double>{}, st.cost});
-  const bool stepped_here = evaluator.last_jacobian_point() == summary.x;  // uncertainty_at's Jacobian
+  const bool stepped_here = evaluator.last_jacobian_point() == best_x;  // uncertainty_at's Jacobian
   std::vector<double> correlation;
   if (result.correlation)
     for (Eigen::Index i = 0; i < result.correlation->rows(); ++i)

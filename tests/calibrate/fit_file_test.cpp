@@ -139,6 +139,21 @@ TEST_F(FitFileTest, LineSearchReadAndABadOneNamesItsField) {
   EXPECT_EQ(e.line(), 7) << e.what();
 }
 
+// The polish's step (FitOptions::polish_relative_step): none by default; one at or below the
+// fit's own step, or 1 and more, names its line and field.
+TEST_F(FitFileTest, PolishStepReadAndABadOneNamesItsField) {
+  EXPECT_EQ(read_fit_file(write(kValid)).fit.polish_relative_step, 0.0);
+  EXPECT_EQ(read_fit_file(write(replace_line(kValid, 6, "starts = 2\npolish_relative_step = 0.01"))).fit.polish_relative_step,
+            0.01);
+  for (const std::string lines : {"relative_step = 1e-3\npolish_relative_step = 1e-3", "polish_relative_step = 1.5",
+                                  "polish_relative_step = -0.01"}) {
+    const InputError e = error_of(replace_line(kValid, 6, "starts = 2\n" + lines));
+    EXPECT_NE(std::string(e.what()).find("fit.polish_relative_step"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("above relative_step"), std::string::npos) << e.what();
+    EXPECT_GE(e.line(), 7) << e.what();
+  }
+}
+
 TEST_F(FitFileTest, MissingChannelInTargetNamesLine) {
   const InputError e = error_of(replace_line(kValid, 17, "channels = [\"force\"]"));
   EXPECT_EQ(e.line(), 17);

@@ -45,7 +45,9 @@ TEST(FitOutput, JsonAndHdf5HoldValuesUnitsSigmaCovarianceQuality) {
   e.peaks = {{"stress", 1.0, 0.0}};
   def.experiments = {e};
   ProblemEvaluator evaluator(def.experiments, def.parameters, EvaluationOptions{});
-  const FitResult result = run_fit(evaluator, FitOptions{});
+  FitOptions options;
+  options.polish_relative_step = 1e-2;
+  const FitResult result = run_fit(evaluator, options);
   write_fit_outputs(def, result, make_provenance("test"), dir);
 
   std::ifstream in(dir / "parameters.json");
@@ -84,6 +86,13 @@ TEST(FitOutput, JsonAndHdf5HoldValuesUnitsSigmaCovarianceQuality) {
   const std::string report((std::istreambuf_iterator<char>(report_in)), std::istreambuf_iterator<char>());
   EXPECT_NE(report.find("| cyclic | stress |"), std::string::npos) << report;
   EXPECT_NE(report.find("Peaks (the target's value"), std::string::npos) << report;
+  // The polish, whether taken or not, with its costs (FitOptions::polish_relative_step).
+  ASSERT_TRUE(json.contains("polish"));
+  EXPECT_EQ(json["polish"]["relative_step"].get<double>(), 1e-2);
+  EXPECT_EQ(json["polish"]["cost_before"].get<double>(), result.polish.cost_before);
+  EXPECT_EQ(json["polish"]["taken"].get<bool>(), result.polish.taken);
+  EXPECT_LE(result.cost, result.polish.cost_before);
+  EXPECT_NE(report.find("Polish (finite-difference step"), std::string::npos) << report;
   std::filesystem::remove_all(dir);
 }
 

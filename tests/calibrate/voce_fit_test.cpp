@@ -304,5 +304,65 @@ TEST(VoceFit, ParallelJacobianEqualsSerial) {
   EXPECT_EQ(j1, j2);
 }
 
+// The Voce bar whose stress moves in jumps of `quantum` Pa (the stand-in for a DEM specimen,
+// whose links yield and break one load increment apart): between jumps the response is flat.
+class QuantizedStress final : public Simulator {
+ public:
+  QuantizedStress(std::shared_ptr<const Simulator> smooth, double quantum) : smooth_(std::move(smooth)), quantum_(quantum) {}
+  Curve simulate(const ParameterValues& parameters) const override {
+    const Curve smooth = smooth_->simulate(parameters);
+    Curve out;
+    for (const Channel& c : smooth.channels()) {
+      std::vector<double> si = c.si();
+      if (c.quantity == "stress")
+        for (double& value : si) value = quantum_ * std::round(value / quantum_);
+      out.add_channel_si(c.quantity, c.unit.dimension, si, c.unit);
+    }
+    return out;
+  }
+  std::string identity() const override { return "quantized " + std::to_string(quantum_) + ": " + smooth_->identity(); }
+  std::vector<std::pair<std::string, Dimension>> channels() const override { return smooth_->channels(); }
+  std::vector<std::string> parameter_names() const override { return smooth_->parameter_names(); }
+
+ private:
+  std::shared_ptr<const Simulator> smooth_;
+  double quantum_;
+};
+
+// On a response that moves in jumps of 5 MPa, a finite-difference step far below the jumps
+// (1e-6) sees zero or spikes and Levenberg-Marquardt stops short of the truth; the polish with
+// a step wider than the jumps (2 %: about 4 GPa of E, 5-30 MPa of stress) follows the trend:
+// its cost is lower, it is taken, and E and sigma_y0 (the parameters the three paths identify
+// sharply) come within 5 % of the truth. Measured: without the polish the fit does not leave
+// its start (E 150 GPa, cost 0.029); with it E 200.1 GPa, sigma_y0 303.8 MPa, cost 4.3e-5.
+TEST(VoceFit, PolishWithACoarseStepPassesTheJumpsOfAQuantizedResponse) {
+  auto experiments = voce_experiments();
+  for (Experiment& e : experiments) e.simulator = std::make_shared<QuantizedStress>(e.simulator, 5e6);
+  ProblemEvaluator fine(experiments, voce_parameters(), serial_evaluation());
+  const FitResult unpolished = run_fit(fine, FitOptions{});
+  ASSERT_TRUE(unpolished.completed);
+  EXPECT_FALSE(unpolished.polish.run);
+
+  ProblemEvaluator evaluator(experiments, voce_parameters(), serial_evaluation());
+  FitOptions options;
+  options.polish_relative_step = 0.02;
+  const FitResult polished = run_fit(evaluator, options);
+  ASSERT_TRUE(polished.completed);
+  ASSERT_TRUE(polished.polish.run);
+  EXPECT_TRUE(polished.polish.taken);
+  EXPECT_DOUBLE_EQ(polished.polish.cost_before, unpolished.cost);
+  EXPECT_LT(polished.cost, 0.5 * unpolished.cost);
+  EXPECT_EQ(evaluator.relative_step(), 1e-6);  // the fine step is back for the covariance
+  for (const char* name : {"E_Pa", "sigma_y0_Pa"}) {
+    const auto i = static_cast<std::size_t>(std::find_if(polished.parameters.begin(), polished.parameters.end(),
+                                                         [&](const auto& p) { return p.name == name; }) -
+                                            polished.parameters.begin());
+    EXPECT_LT(std::abs(polished.values[i] - kTruth.at(name)), 0.05 * kTruth.at(name)) << name;
+  }
+  std::cout << "quantized Voce bar: cost " << unpolished.cost << " -> " << polished.cost << " (polish "
+            << polished.polish.iterations << " iterations); E " << unpolished.values[0] << " -> " << polished.values[0]
+            << ", sigma_y0 " << unpolished.values[1] << " -> " << polished.values[1] << "\n";
+}
+
 }  // namespace
 }  // namespace dtwire::calibrate

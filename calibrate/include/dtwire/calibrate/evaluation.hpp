@@ -102,6 +102,11 @@ class ProblemEvaluator {
 
   EvaluationStatistics statistics() const;
 
+  // The finite-difference step of residuals_and_jacobian (EvaluationOptions::relative_step);
+  // the fit's polish (fitter.hpp) solves with a coarser one. Not while a Jacobian is taken.
+  double relative_step() const { return options_.relative_step; }
+  void set_relative_step(double relative_step);
+
  private:
   struct Outcome {
     std::vector<double> residuals;

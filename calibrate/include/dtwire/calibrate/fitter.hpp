@@ -51,6 +51,13 @@ struct FitOptions {
   // The bounded solve's line search from values alone (lsq::Options::value_only_line_search):
   // [fit] line_search = "values"; the default "gradients" is Ceres' cubic interpolation.
   bool value_only_line_search = false;
+  // > 0: the polish. After the multi-start, the best start's end is solved once more with this
+  // finite-difference step (EvaluationOptions::relative_step, in z) and taken if its cost is
+  // lower. A simulator whose response moves in small jumps (a DEM specimen's links yielding one
+  // load increment apart) makes a fine step's Jacobian see the jumps, not the trend, and
+  // Levenberg-Marquardt stops at the first one ("parameter tolerance reached"); a step wider
+  // than the jumps follows the trend. [fit] polish_relative_step; 0: none.
+  double polish_relative_step = 0.0;
   const std::atomic<bool>* stop_requested = nullptr;  // e.g. set by a SIGINT handler
   std::ostream* progress = nullptr;
 };
@@ -61,6 +68,17 @@ struct StartSummary {
   double cost = 0.0;  // Ceres cost 1/2 sum rho(r^2) at the end
   int iterations = 0;
   std::string state;  // "pending", "running", "done", "failed"
+  std::string message;
+};
+
+// The polish's outcome (FitOptions::polish_relative_step).
+struct PolishSummary {
+  bool run = false;
+  double relative_step = 0.0;
+  double cost_before = 0.0;  // the best start's
+  double cost_after = 0.0;   // the polish's end (not finite: it failed)
+  int iterations = 0;
+  bool taken = false;        // its end replaced the best start's
   std::string message;
 };
 
@@ -89,6 +107,7 @@ struct FitResult {
   std::size_t residual_count = 0;
   std::size_t best_start = 0;
   std::vector<StartSummary> starts;
+  PolishSummary polish;
   std::vector<std::string> warnings;
   std::vector<ChannelQuality> quality;
   std::vector<PeakQuality> peaks;  // the experiments' peak rows, target against fitted
