@@ -8,7 +8,10 @@
 // the ratios of steps and wall time to it and the differences of the peak, its displacement and
 // the onset. Issue 52's goal: under 60 s on 2 idle cores; on a machine shared with other jobs
 // compare CPU seconds (a thread waiting at a barrier is not charged while descheduled).
-//   build/bench/bench_dem_punch_macro [--reference SUMMARY.json] [THREADS...]   (default: 1 2)
+// --set-params TAG=FILE swaps a link type's set as `dem run --set-params` does (e.g. the
+// campaign's recommended `export_nm` sets, its `dem_punch_nm`); --set ENTRY adds a `dem run --set`.
+//   build/bench/bench_dem_punch_macro [--reference SUMMARY.json] [--set-params TAG=FILE]...
+//                                     [--set TABLE.KEY=VALUE]... [THREADS...]   (default: 1 2)
 #include <ctime>
 #include <cstdlib>
 #include <filesystem>
@@ -37,8 +40,16 @@ double summary_number(const std::string& text, const std::string& key) {
 int main(int argc, char** argv) {
   std::vector<int> thread_counts;
   std::string reference;
+  std::vector<std::string> set_params;
+  std::vector<std::string> set_entries = {"boundary.pretension_strain=0.0", "boundary.wall_below_m=0.1",
+                                          "dynamics.settle_s=120.0",        "dynamics.settle_rest_ratio=1e-4",
+                                          "tool.kn_N_per_m=1e8",            "tool.ks_N_per_m=1e7",
+                                          "tool.stop_below_peak_fraction=0.5"};
   for (int i = 1; i < argc; ++i) {
-    if (std::string(argv[i]) == "--reference" && i + 1 < argc) reference = argv[++i];
+    const std::string argument = argv[i];
+    if (argument == "--reference" && i + 1 < argc) reference = argv[++i];
+    else if (argument == "--set-params" && i + 1 < argc) set_params.push_back(argv[++i]);
+    else if (argument == "--set" && i + 1 < argc) set_entries.push_back(argv[++i]);
     else thread_counts.push_back(std::atoi(argv[i]));
   }
   if (thread_counts.empty()) thread_counts = {1, 2};
@@ -54,10 +65,15 @@ int main(int argc, char** argv) {
     reference_text = buffer.str();
   }
   const std::filesystem::path file = std::string(DTWIRE_SOURCE_DIR) + "/experiments/dem/punch_macro.toml";
-  const RunInput input = read_run_input(file, {"boundary.pretension_strain=0.0", "boundary.wall_below_m=0.1",
-                                               "dynamics.settle_s=120.0", "dynamics.settle_rest_ratio=1e-4",
-                                               "tool.kn_N_per_m=1e8", "tool.ks_N_per_m=1e7",
-                                               "tool.stop_below_peak_fraction=0.5"});
+  RunInput input = read_run_input(file, set_entries);
+  for (const std::string& entry : set_params) {
+    const auto equals = entry.find('=');
+    if (equals == std::string::npos) {
+      std::cerr << "bench_dem_punch_macro: --set-params expects TAG=FILE, found '" << entry << "'\n";
+      return 2;
+    }
+    override_link_set(input, entry.substr(0, equals), entry.substr(equals + 1), "--set-params");
+  }
   const auto dir = std::filesystem::temp_directory_path() / "dtwire_bench_dem_punch_macro";
   double one_thread_seconds = 0.0;
   for (int threads : thread_counts) {

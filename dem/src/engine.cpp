@@ -81,11 +81,11 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
   s.reaction_previous.assign(n, Vector3::Zero());
   s.node_damping_work.assign(n, 0.0);
   s.node_support_work.assign(n, 0.0);
+  s.node_gravity_work.assign(n, 0.0);
   s.node_kinetic.assign(n, 0.0);
   s.links = std::move(links);
   s.link_state.resize(s.links.size());
   s.link_load.resize(s.links.size());
-  s.node_links.resize(n);
   for (std::size_t l = 0; l < s.links.size(); ++l) {
     const NetLink& link = s.links[l].link;
     if (link.a < 0 || link.b < 0 || static_cast<std::size_t>(link.a) >= n || static_cast<std::size_t>(link.b) >= n ||
@@ -96,8 +96,20 @@ Engine::Engine(std::vector<NetNode> nodes, std::vector<EngineLink> links, Engine
     if (!(d.norm() > 0.0)) throw std::invalid_argument("link " + std::to_string(l) + ": zero length");
     s.link_state[l].length = d.norm();
     s.link_state[l].transverse = initial_transverse(d / d.norm());
-    s.node_links[link.a].emplace_back(static_cast<int>(l), true);
-    s.node_links[link.b].emplace_back(static_cast<int>(l), false);
+  }
+  // Each node's links in link order (the gather's fixed order).
+  s.node_link_start.assign(n + 1, 0);
+  for (const EngineLink& link : s.links) {
+    ++s.node_link_start[static_cast<std::size_t>(link.link.a) + 1];
+    ++s.node_link_start[static_cast<std::size_t>(link.link.b) + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) s.node_link_start[i + 1] += s.node_link_start[i];
+  s.node_link_entries.resize(s.node_link_start[n]);
+  std::vector<std::size_t> filled(s.node_link_start.begin(), s.node_link_start.end() - 1);
+  for (std::size_t l = 0; l < s.links.size(); ++l) {
+    const NetLink& link = s.links[l].link;
+    s.node_link_entries[filled[static_cast<std::size_t>(link.a)]++] = {static_cast<int>(l), 0};
+    s.node_link_entries[filled[static_cast<std::size_t>(link.b)]++] = {static_cast<int>(l), 1};
   }
   if (options_.time_step > 0.0) check_and_set_step(options_.time_step);
   else dt_ = automatic_time_step();

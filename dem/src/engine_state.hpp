@@ -2,6 +2,7 @@
 // (engine_step.cpp); not part of the public interface (engine.hpp).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <utility>
@@ -24,7 +25,16 @@ struct LinkState {
 // What a link puts on its nodes, apart from its state: the nodes gather these at random, so they
 // sit in a compact array of their own.
 struct LinkLoad {
-  Vector3 force_on_a = Vector3::Zero(), moment_on_a = Vector3::Zero(), moment_on_b = Vector3::Zero();
+  Vector3 force_on_a = Vector3::Zero();
+  std::array<Vector3, 2> moment{Vector3::Zero(), Vector3::Zero()};  // on end a, on end b
+};
+
+// A node's link, as the node loop gathers it: which end the node is (0: a, 1: b) indexes the
+// link's moments and gives the force's sign without a branch (the ends come in no order, and a
+// mispredicted branch per link cost more than the gather's arithmetic).
+struct NodeLinkEntry {
+  int link = 0;
+  int end = 0;
 };
 
 struct ToolState {
@@ -59,11 +69,13 @@ struct Engine::State {
   std::vector<double> inverse_mass, inverse_inertia;  // inertial (scaled); 0 for held nodes
   std::vector<double> radius;  // contact radius against tools, contiguous for the tool loop
   std::vector<Vector3> force, moment, damping_previous, damping_moment_previous, reaction_previous;
-  std::vector<double> node_damping_work, node_support_work, node_kinetic;
+  std::vector<double> node_damping_work, node_support_work, node_gravity_work, node_kinetic;
   std::vector<EngineLink> links;
   std::vector<engine_detail::LinkState> link_state;
   std::vector<engine_detail::LinkLoad> link_load;
-  std::vector<std::vector<std::pair<int, bool>>> node_links;  // (link, node is end a)
+  // Node i's links: node_link_entries[node_link_start[i] .. node_link_start[i + 1]) (compressed rows).
+  std::vector<std::size_t> node_link_start;
+  std::vector<engine_detail::NodeLinkEntry> node_link_entries;
   std::vector<engine_detail::ToolState> tools;
   std::vector<engine_detail::RollerState> rollers;
   bool imposed_pending = false;

@@ -12,7 +12,9 @@
 namespace dtwire::dem {
 namespace {
 
-double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+// Without branches: the signs of the damping's products are random from node to node, and a
+// mispredicted branch per component made the sign a third of the node loop (perf, the punch).
+double sign(double x) { return static_cast<double>((x > 0.0) - (x < 0.0)); }
 
 // YADE's second-order local damping on one vector quantity (force or moment): each component
 // is reduced or amplified by alpha depending on whether it accelerates the predicted motion.
@@ -44,6 +46,7 @@ Vector3 free_components(const NetNode& node, const Vector3& v) {
 
 using engine_detail::LinkLoad;
 using engine_detail::LinkState;
+using engine_detail::NodeLinkEntry;
 using engine_detail::RollerState;
 using engine_detail::ToolState;
 
@@ -59,77 +62,47 @@ void Engine::step() {
   const std::size_t n = s.nodes.size();
   const std::size_t links = s.links.size();
   const int threads = options_.threads;
+  const bool imposed = s.imposed_pending;
+  const bool arrest = arrest_pending_;
+  arrest_pending_ = false;
 
-  // 1. Links: each writes only its own state. The kinematics of every link first, then the laws:
-  // a law update is an opaque call, and between two of them the square roots and divisions of
-  // one link's frame cannot overlap another's (the kinematics loop runs about twice as fast on
-  // its own). The two loops give each thread the same links (static schedule), so no barrier.
-  // A law that gives up (an exception) must not leave the parallel region, where it would
-  // terminate the process: the first one is kept with its link and thrown after the region.
-  // Below parallel_threshold (or on one thread) the loops run as orphaned worksharing loops on
-  // the calling thread: the same order and arithmetic, without entering a parallel region, whose
-  // team start and end (libgomp's futex calls) cost about a tenth of a 5-link specimen's step
-  // (bench_dt_specimen_steps, perf).
+  // One parallel region a step: the links, tools and rollers, a serial sum of the contacts, then
+  // the nodes. Each loop writes only its own slots; every sum over links or nodes runs on one
+  // thread in a fixed order, so 1 and N threads give bit-identical results. A region's team start
+  // and end, and the serial stretches where the other threads spin, cost more than a loop on a
+  // 2-core machine (docs/dem_engine.md, "Speed"). Below parallel_threshold (or on one thread)
+  // the same worksharing loops run orphaned on the calling thread, without entering a region.
+  // A law that gives up (an exception) must not leave the region, where it would terminate the
+  // process: the first one is kept with its link, the rest of the step is skipped, and it is
+  // thrown after the region.
   std::string law_failure;
   std::size_t failed_link = links;
-  const auto link_loops = [&] {
-#pragma omp for schedule(static) nowait
-    for (std::size_t l = 0; l < links; ++l) {
-      LinkState& state = s.link_state[l];
-      const NetLink& link = s.links[l].link;
-      const Vector3 d = s.x[link.b] - s.x[link.a];
-      const double length = d.norm();
-      const Vector3 axis = d / length;
-      Vector3 t1 = state.transverse - state.transverse.dot(axis) * axis;
-      t1.normalize();
-      const Vector3 t2 = axis.cross(t1);
-      const double half = 0.5 * length;
-      const Vector3 relative = (s.v[link.b] - half * s.w[link.b].cross(axis)) - (s.v[link.a] + half * s.w[link.a].cross(axis));
-      const Vector3 spin = s.w[link.b] - s.w[link.a];
-      state.increment << length - state.length, moved * relative.dot(t1), moved * relative.dot(t2),
-          moved * spin.dot(axis), moved * spin.dot(t1), moved * spin.dot(t2);
-      if (s.imposed_pending) state.increment.tail<5>().setZero();
-      state.length = length;
-      state.axis = axis;
-      state.transverse = t1;
-      state.binormal = t2;
-    }
+  // Links go in blocks, a block's kinematics first, then its laws: a law update is an opaque
+  // call, and between two of them the square roots and divisions of one link's frame cannot
+  // overlap another's. Every loop is statically scheduled: a thread keeps the same nodes and,
+  // with the mesh's numbering, much the same links step after step, in its own core's cache
+  // (handing blocks out dynamically balanced the threads better but made the links' reads of the
+  // nodes cross between the cores: no faster, bench_dem_punch_macro).
+  const std::size_t blocks = (links + link_block - 1) / link_block;
+  const auto step_loops = [&] {
+    node_tool_contacts(moved);  // no barrier: the links read only positions and velocities
 #pragma omp for schedule(static)
-    for (std::size_t l = 0; l < links; ++l) {
-      LinkState& state = s.link_state[l];
-      ContactLaw& law = *s.links[l].law;
-      if (!state.broken) {
-        try {
-          law.update(state.increment);
-        } catch (const std::exception& e) {
-#pragma omp critical(dtwire_dem_law_failure)
-          if (l < failed_link) {
-            failed_link = l;
-            law_failure = e.what();
-          }
-          continue;
-        }
-      }
-      state.broken = law.broken();
-      const Vector6 q = state.broken ? Vector6::Zero() : law.forces();
-      const Vector3& axis = state.axis;
-      const Vector3& t1 = state.transverse;
-      const Vector3& t2 = state.binormal;
-      const double half = 0.5 * state.length;
-      const Vector3 couple = q[3] * axis + q[4] * t1 + q[5] * t2;
-      // The shear's lever: axis x (q1 t1 + q2 t2) = q1 t2 - q2 t1 (a right-handed frame).
-      const Vector3 lever = half * (q[1] * t2 - q[2] * t1);
-      LinkLoad& load = s.link_load[l];
-      load.force_on_a = q[0] * axis + q[1] * t1 + q[2] * t2;
-      load.moment_on_a = couple + lever;
-      load.moment_on_b = -couple + lever;
-    }
+    for (std::size_t block = 0; block < blocks; ++block) {
+      const std::size_t first = block * link_block, last = std::min(links, first + link_block);
+      link_kinematics(moved, first, last);
+      link_laws(first, last, failed_link, law_failure);
+    }  // a barrier: every link's load is in place
+    if (failed_link < links) return;
+    link_roller_contacts(moved);  // needs the laws' broken flags
+#pragma omp single
+    contact_sums(imposed);
+    node_updates(moved, spanned, dt, imposed, arrest);
   };
-  if (threads > 1 && links >= options_.parallel_threshold) {
+  if (threads > 1 && std::max(n, links) >= options_.parallel_threshold) {
 #pragma omp parallel num_threads(threads)
-    link_loops();
+    step_loops();
   } else {
-    link_loops();
+    step_loops();
   }
   if (failed_link < links)
     throw std::runtime_error("link " + std::to_string(failed_link) + " (nodes " +
@@ -137,13 +110,129 @@ void Engine::step() {
                              std::to_string(s.links[failed_link].link.b) + ") at step " +
                              std::to_string(steps_) + ": " + law_failure);
 
-  // 2. Tools: every node against every tool (each node writes its own slot).
+  // Serial sums (fixed order: deterministic).
+  double kinetic = 0.0, gravity_work = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    kinetic += s.node_kinetic[i];
+    if (s.nodes[i].fixity == NodeFixity::Free) {
+      energy_.damping += s.node_damping_work[i];
+      energy_.boundary_work += s.node_support_work[i];
+      gravity_work += s.node_gravity_work[i];
+    } else {
+      energy_.boundary_work += s.node_damping_work[i];
+    }
+  }
+  energy_.gravity_work += gravity_work;
+  // The stored energies are state functions: summed when energy() is read, not every step.
+  energy_stale_ = true;
+  if (imposed) {
+    const EnergySplit& stored = energy();  // the links were unloaded before the jump
+    energy_.boundary_work += stored.link_elastic + stored.link_plastic + stored.link_damage;
+  }
+
+  // Rigid tools: free bodies integrate their own motion, kinematic ones move as prescribed.
+  const Vector3 gravity = options_.gravity;
+  for (ToolState& t : s.tools) {
+    if (t.parked) continue;
+    Tool& tool = *t.tool;
+    if (tool.mass > 0.0) {
+      const Vector3 weight = tool.mass * gravity;
+      if (!imposed) energy_.gravity_work += weight.dot(tool.position - t.previous_position);
+      const Vector3 v_old = tool.velocity, w_old = tool.angular_velocity;
+      tool.velocity += spanned * (t.force_on_tool + weight) / tool.mass;
+      tool.angular_velocity += spanned * t.moment_on_tool / tool.rotational_inertia;
+      kinetic += 0.5 * tool.mass * v_old.dot(tool.velocity) +
+                 0.5 * tool.rotational_inertia * w_old.dot(tool.angular_velocity);
+    }
+    t.previous_position = tool.position;
+    tool.position += dt * tool.velocity;
+    const double angle = dt * tool.angular_velocity.norm();
+    if (angle > 0.0)
+      tool.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(angle, tool.angular_velocity.normalized())) * tool.orientation;
+    tool.orientation.normalize();
+  }
+  for (RollerState& r : s.rollers) {
+    r.previous_point = r.roller.point;
+    r.roller.point += dt * r.roller.velocity;
+  }
+  energy_.kinetic = kinetic;
+  s.imposed_pending = false;
+  time_ += dt;
+  last_move_ = dt;
+  ++steps_;
+}
+
+// 1a. Links [first, last): each one's frame and the increments of its six generalised
+// displacements.
+void Engine::link_kinematics(double moved, std::size_t first, std::size_t last) {
+  State& s = *s_;
+  for (std::size_t l = first; l < last; ++l) {
+    LinkState& state = s.link_state[l];
+    const NetLink& link = s.links[l].link;
+    const Vector3 d = s.x[link.b] - s.x[link.a];
+    const double length = d.norm();
+    const Vector3 axis = d / length;
+    Vector3 t1 = state.transverse - state.transverse.dot(axis) * axis;
+    t1.normalize();
+    const Vector3 t2 = axis.cross(t1);
+    const double half = 0.5 * length;
+    const Vector3 relative = (s.v[link.b] - half * s.w[link.b].cross(axis)) - (s.v[link.a] + half * s.w[link.a].cross(axis));
+    const Vector3 spin = s.w[link.b] - s.w[link.a];
+    state.increment << length - state.length, moved * relative.dot(t1), moved * relative.dot(t2),
+        moved * spin.dot(axis), moved * spin.dot(t1), moved * spin.dot(t2);
+    if (s.imposed_pending) state.increment.tail<5>().setZero();
+    state.length = length;
+    state.axis = axis;
+    state.transverse = t1;
+    state.binormal = t2;
+  }
+}
+
+// 1b. Links [first, last): the laws and the loads each link puts on its nodes.
+void Engine::link_laws(std::size_t first, std::size_t last, std::size_t& failed_link, std::string& law_failure) {
+  State& s = *s_;
+  for (std::size_t l = first; l < last; ++l) {
+    LinkState& state = s.link_state[l];
+    ContactLaw& law = *s.links[l].law;
+    if (!state.broken) {
+      try {
+        law.update(state.increment);
+      } catch (const std::exception& e) {
+#pragma omp critical(dtwire_dem_law_failure)
+        if (l < failed_link) {
+          failed_link = l;
+          law_failure = e.what();
+        }
+        continue;
+      }
+    }
+    state.broken = law.broken();
+    const Vector6 q = state.broken ? Vector6::Zero() : law.forces();
+    const Vector3& axis = state.axis;
+    const Vector3& t1 = state.transverse;
+    const Vector3& t2 = state.binormal;
+    const double half = 0.5 * state.length;
+    const Vector3 couple = q[3] * axis + q[4] * t1 + q[5] * t2;
+    // The shear's lever: axis x (q1 t1 + q2 t2) = q1 t2 - q2 t1 (a right-handed frame).
+    const Vector3 lever = half * (q[1] * t2 - q[2] * t1);
+    LinkLoad& load = s.link_load[l];
+    load.force_on_a = q[0] * axis + q[1] * t1 + q[2] * t2;
+    load.moment[0] = couple + lever;
+    load.moment[1] = -couple + lever;
+  }
+}
+
+// 2. Tools: every node against every tool (each node writes its own slot); no barrier (the
+// links' loop that follows ends with one).
+void Engine::node_tool_contacts(double moved) {
+  State& s = *s_;
+  const std::size_t n = s.nodes.size();
   for (ToolState& t : s.tools) {
     if (t.parked) continue;  // its contact arrays stay zero
     const Tool& tool = *t.tool;
     const double kn = tool.contact.normal_stiffness, ks = tool.contact.shear_stiffness, mu = tool.contact.friction;
     const double bounding = tool.bounding_radius();
-#pragma omp parallel for num_threads(threads) schedule(static) if (n >= options_.parallel_threshold)
+#pragma omp for schedule(static) nowait
     for (std::size_t i = 0; i < n; ++i) {
       const double r = s.radius[i];
       SurfacePoint surface;
@@ -190,10 +279,14 @@ void Engine::step() {
       t.contact_energy[i] = 0.5 * normal_force * normal_force / kn + 0.5 * shear.squaredNorm() / ks;
     }
   }
+}
 
-  // Rollers: every link against every roller (each link writes its own slot).
+// Rollers: every link against every roller (each link writes its own slot); ends with a barrier.
+void Engine::link_roller_contacts(double moved) {
+  State& s = *s_;
+  const std::size_t links = s.links.size();
   for (RollerState& r : s.rollers) {
-#pragma omp parallel for num_threads(threads) schedule(static) if (links >= options_.parallel_threshold)
+#pragma omp for schedule(static)
     for (std::size_t l = 0; l < links; ++l) {
       const NetLink& link = s.links[l].link;
       r.on_a[l].setZero();
@@ -215,9 +308,14 @@ void Engine::step() {
       r.friction_increment[l] = c.friction_work;
     }
   }
+}
 
-  // Works over x_{n-1} -> x_n (none for an imposed jump: its work is in the links).
-  const bool imposed = s.imposed_pending;
+// The tools' and rollers' resultants, contact counts and works over x_{n-1} -> x_n (none for an
+// imposed jump: its work is in the links); one thread, fixed order.
+void Engine::contact_sums(bool imposed) {
+  State& s = *s_;
+  const std::size_t n = s.nodes.size();
+  const std::size_t links = s.links.size();
   for (RollerState& r : s.rollers) {
     Vector3 on_links = Vector3::Zero();
     std::size_t contacts = 0;
@@ -249,20 +347,26 @@ void Engine::step() {
     t.force_on_tool = -on_nodes;
     t.moment_on_tool = on_tool_moment;
   }
+}
 
-  // 3. Nodes: gather in a fixed order, damp, integrate.
+// 3. Nodes: gather in a fixed order, damp, integrate, move (free nodes by their velocity, guided
+// ones at their prescribed one). Each node's works go to its own slots, summed after the region.
+void Engine::node_updates(double moved, double spanned, double dt, bool imposed, bool arrest) {
+  State& s = *s_;
+  const std::size_t n = s.nodes.size();
   const Vector3 gravity = options_.gravity;
   const double alpha = options_.local_damping;
-  const bool arrest = arrest_pending_;
-  arrest_pending_ = false;
-  const auto node_loop = [&] {
 #pragma omp for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
-    Vector3 f = s.nodes[i].mass * gravity, m = Vector3::Zero();
-    for (const auto& [l, is_a] : s.node_links[i]) {
-      const LinkLoad& load = s.link_load[l];
-      f += is_a ? load.force_on_a : Vector3(-load.force_on_a);
-      m += is_a ? load.moment_on_a : load.moment_on_b;
+    const NetNode& node = s.nodes[i];
+    Vector3 f = node.mass * gravity, m = Vector3::Zero();
+    const std::size_t first = s.node_link_start[i], last = s.node_link_start[i + 1];
+    for (std::size_t k = first; k < last; ++k) {
+      const NodeLinkEntry entry = s.node_link_entries[k];
+      const LinkLoad& load = s.link_load[static_cast<std::size_t>(entry.link)];
+      // (-1) x force is -force bit for bit: end b takes the opposite of end a's force.
+      f += (1.0 - 2.0 * entry.end) * load.force_on_a;
+      m += load.moment[static_cast<std::size_t>(entry.end)];
     }
     for (const ToolState& t : s.tools) {
       if (!t.touching[i]) continue;  // its slots are zero
@@ -270,21 +374,29 @@ void Engine::step() {
       m += t.moment_on_node[i];
     }
     for (const RollerState& r : s.rollers)
-      for (const auto& [l, is_a] : s.node_links[i]) f += is_a ? r.on_a[l] : r.on_b[l];
+      for (std::size_t k = first; k < last; ++k) {
+        const NodeLinkEntry entry = s.node_link_entries[k];
+        const auto l = static_cast<std::size_t>(entry.link);
+        f += entry.end == 0 ? r.on_a[l] : r.on_b[l];
+      }
     s.force[i] = f;
     s.moment[i] = m;
     const Vector3 dx = imposed ? Vector3::Zero() : Vector3(s.x[i] - s.x_previous[i]);
-    const NodeFixity fixity = s.nodes[i].fixity;
-    if (fixity != NodeFixity::Free) {
+    if (node.fixity != NodeFixity::Free) {
       // The support supplies -f (held) or whatever keeps the prescribed velocity: its work.
       s.node_damping_work[i] = 0.5 * (s.reaction_previous[i] - f).dot(dx);
       s.reaction_previous[i] = -f;
-      s.node_kinetic[i] = fixity == NodeFixity::Guided ? 0.5 * s.nodes[i].mass * options_.mass_scale * s.v[i].squaredNorm() : 0.0;
+      s.node_kinetic[i] = node.fixity == NodeFixity::Guided ? 0.5 * node.mass * options_.mass_scale * s.v[i].squaredNorm() : 0.0;
+      s.x_previous[i] = s.x[i];
+      if (node.fixity == NodeFixity::Guided) {
+        s.v[i] = node.guided_velocity;
+        s.x[i] += dt * s.v[i];
+      }
       continue;
     }
+    s.node_gravity_work[i] = node.mass * gravity.dot(dx);
     // A slider support takes the held components: its reaction -f does the support's work (its
     // velocity may be prescribed), and nothing there is damped or counted as kinetic energy.
-    const NetNode& node = s.nodes[i];
     const Vector3 reaction = free_components(node, f) - f;
     s.node_support_work[i] = 0.5 * (s.reaction_previous[i] + reaction).dot(dx);
     s.reaction_previous[i] = reaction;
@@ -309,72 +421,9 @@ void Engine::step() {
       s.v[i] -= free_components(node, s.v[i]);
       s.w[i].setZero();
     }
-  }
-  };
-  if (threads > 1 && n >= options_.parallel_threshold) {
-#pragma omp parallel num_threads(threads)
-    node_loop();
-  } else {
-    node_loop();
-  }
-
-  // Serial sums (fixed order: deterministic).
-  double kinetic = 0.0, gravity_work = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    kinetic += s.node_kinetic[i];
-    if (s.nodes[i].fixity == NodeFixity::Free) {
-      energy_.damping += s.node_damping_work[i];
-      energy_.boundary_work += s.node_support_work[i];
-      if (!imposed) gravity_work += s.nodes[i].mass * gravity.dot(s.x[i] - s.x_previous[i]);
-    } else {
-      energy_.boundary_work += s.node_damping_work[i];
-    }
-  }
-  energy_.gravity_work += gravity_work;
-  // The stored energies are state functions: summed when energy() is read, not every step.
-  energy_stale_ = true;
-  if (imposed) {
-    const EnergySplit& stored = energy();  // the links were unloaded before the jump
-    energy_.boundary_work += stored.link_elastic + stored.link_plastic + stored.link_damage;
-  }
-
-  // Rigid tools: free bodies integrate their own motion, kinematic ones move as prescribed.
-  for (ToolState& t : s.tools) {
-    if (t.parked) continue;
-    Tool& tool = *t.tool;
-    if (tool.mass > 0.0) {
-      const Vector3 weight = tool.mass * gravity;
-      if (!imposed) energy_.gravity_work += weight.dot(tool.position - t.previous_position);
-      const Vector3 v_old = tool.velocity, w_old = tool.angular_velocity;
-      tool.velocity += spanned * (t.force_on_tool + weight) / tool.mass;
-      tool.angular_velocity += spanned * t.moment_on_tool / tool.rotational_inertia;
-      kinetic += 0.5 * tool.mass * v_old.dot(tool.velocity) +
-                 0.5 * tool.rotational_inertia * w_old.dot(tool.angular_velocity);
-    }
-    t.previous_position = tool.position;
-    tool.position += dt * tool.velocity;
-    const double angle = dt * tool.angular_velocity.norm();
-    if (angle > 0.0)
-      tool.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(angle, tool.angular_velocity.normalized())) * tool.orientation;
-    tool.orientation.normalize();
-  }
-  for (RollerState& r : s.rollers) {
-    r.previous_point = r.roller.point;
-    r.roller.point += dt * r.roller.velocity;
-  }
-  energy_.kinetic = kinetic;
-
-  // Positions: free nodes by their velocity, guided nodes at their prescribed one.
-  for (std::size_t i = 0; i < n; ++i) {
     s.x_previous[i] = s.x[i];
-    if (s.nodes[i].fixity == NodeFixity::Pinned) continue;
-    if (s.nodes[i].fixity == NodeFixity::Guided) s.v[i] = s.nodes[i].guided_velocity;
     s.x[i] += dt * s.v[i];
   }
-  s.imposed_pending = false;
-  time_ += dt;
-  last_move_ = dt;
-  ++steps_;
 }
 
 RelaxResult Engine::relax(double tolerance, long max_steps) {

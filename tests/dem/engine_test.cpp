@@ -557,7 +557,7 @@ TEST(DemEngine, ALawThatGivesUpInTheThreadedLoopEndsTheStepWithItsLinkNamed) {
     std::vector<NetNode> nodes;
     std::vector<EngineLink> links;
     for (int i = 0; i < 8; ++i) nodes.push_back(make_node(Vector3(0.05 * i, 0, 0), 0.0043, i == 0 ? NodeFixity::Pinned : NodeFixity::Free));
-    for (std::size_t i = 0; i + 1 < nodes.size(); ++i) links.push_back({{i, i + 1, LinkTag::SingleWire}, std::make_unique<GivesUpAfterStretch>()});
+    for (std::size_t i = 0; i + 1 < nodes.size(); ++i) links.push_back({{static_cast<int>(i), static_cast<int>(i + 1), LinkTag::SingleWire}, std::make_unique<GivesUpAfterStretch>()});
     EngineOptions options;
     options.gravity = Vector3::Zero();
     options.time_step = 1e-6;

@@ -13,10 +13,12 @@
 //      v_{n+1/2} = v_{n-1/2} + dt (F + F_d)/m_inertial, x_{n+1} = x_n + dt v_{n+1/2}
 //      (when the step changes, the variable-step form: increments over the last move's step,
 //      the velocity update over the mean of the last and the next step).
-// Links are updated in parallel (OpenMP), each writing its own slot; nodes then gather their
-// links in a fixed order, so 1 and N threads give bit-identical results.
+// Links, tools and nodes are updated in parallel (OpenMP, one region a step), each writing its own
+// slot; nodes gather their links in a fixed order and every sum runs on one thread in a fixed
+// order, so 1 and N threads give bit-identical results.
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "dtwire/dem/net.hpp"
@@ -183,6 +185,14 @@ class Engine {
   void check_and_set_step(double dt);   // a given step, checked as set_time_step says
   void refresh_automatic_step();        // after set_support: the automatic step of the new bound
   double stability_bound(bool with_parked_tools, bool held_as_free) const;
+  // The step's loops (engine_step.cpp), run inside one parallel region by every thread.
+  static constexpr std::size_t link_block = 256;  // links whose kinematics go before their laws
+  void link_kinematics(double moved, std::size_t first, std::size_t last);
+  void link_laws(std::size_t first, std::size_t last, std::size_t& failed_link, std::string& law_failure);
+  void node_tool_contacts(double moved);
+  void link_roller_contacts(double moved);
+  void contact_sums(bool imposed);  // one thread
+  void node_updates(double moved, double spanned, double dt, bool imposed, bool arrest);
 
   struct State;
   std::unique_ptr<State> s_;
