@@ -314,25 +314,48 @@ TEST(DemEngine, EnergyBalanceClosesWithGravityDampingAndPlasticity) {
   EXPECT_LT(chain_balance_error(0.1), 0.1 * coarse);  // second order: 25x smaller expected
 }
 
+// Every loop of the step's parallel region split between threads: a sagging chain of 600 links
+// (three link blocks of 256), a wall it falls onto (the tools' loop) and a roller pressing it
+// from above (the rollers' loop); its ends pinned.
 TEST(DemEngine, OneAndTwoThreadsGiveIdenticalStates) {
   auto run = [](int threads) {
     std::vector<NetNode> nodes;
     std::vector<EngineLink> links;
-    const int n = 40;
+    const int n = 600;
+    const double spacing = 0.005;
     for (int j = 0; j <= n; ++j)
-      nodes.push_back(make_node(Vector3(j * 0.05, 0.01 * std::sin(j), 0), 0.004, j == 0 || j == n ? NodeFixity::Pinned : NodeFixity::Free));
+      nodes.push_back(make_node(Vector3(j * spacing, 0.001 * std::sin(j), 0), 0.004, j == 0 || j == n ? NodeFixity::Pinned : NodeFixity::Free));
     for (int j = 1; j <= n; ++j)
-      links.push_back({{j - 1, j, LinkTag::SingleWire}, j % 2 ? elastic_bond(0.05) : string_link(0.05)});
+      links.push_back({{j - 1, j, LinkTag::SingleWire}, j % 2 ? elastic_bond(spacing) : string_link(spacing)});
     EngineOptions options;
     options.local_damping = 0.2;
     options.threads = threads;
     options.parallel_threshold = 0;
     Engine engine(nodes, std::move(links), options);
+    auto wall = std::make_unique<PlaneWall>(Vector3::UnitZ());
+    wall->position = Vector3(0.0, 0.0, -0.002);
+    wall->contact.normal_stiffness = 1e5;
+    wall->contact.shear_stiffness = 1e4;
+    wall->contact.friction = 0.3;
+    engine.add_tool(std::move(wall));
+    Roller roller;
+    roller.point = Vector3(0.5 * n * spacing, 0.0, 0.01);
+    roller.axis = Vector3::UnitY();
+    roller.radius = 0.01;
+    roller.velocity = Vector3(0.0, 0.0, -0.05);
+    roller.contact.normal_stiffness = 1e5;
+    roller.contact.shear_stiffness = 1e4;
+    roller.contact.friction = 0.2;
+    engine.add_roller(roller, std::vector<double>(static_cast<std::size_t>(n), 0.00135));
     for (int k = 0; k < 3000; ++k) engine.step();
+    EXPECT_GT(engine.tool_contacts(0), 0u);  // the loops under test did work
+    EXPECT_GT(engine.roller_contacts(0), 0u);
     std::vector<double> state;
     for (int j = 0; j <= n; ++j)
       for (int c = 0; c < 3; ++c) state.push_back(engine.position(j)[c]);
     state.push_back(engine.energy().balance_error());
+    state.push_back(engine.tool_force(0).z());
+    state.push_back(engine.roller_force(0).z());
     return state;
   };
   EXPECT_EQ(run(1), run(2));  // bit-identical
