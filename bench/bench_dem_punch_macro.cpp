@@ -37,7 +37,7 @@ double summary_number(const std::string& text, const std::string& key) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int run_bench(int argc, char** argv) {
   std::vector<int> thread_counts;
   std::string reference;
   std::vector<std::string> set_params;
@@ -103,4 +103,13 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run_bench(argc, argv);
+  } catch (const std::exception& e) {  // a bad --set or --set-params names its entry
+    std::cerr << "bench_dem_punch_macro: " << e.what() << "\n";
+    return 2;
+  }
 }
