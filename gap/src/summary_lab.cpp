@@ -361,11 +361,15 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     return !options.inapplicable.count(e.name) && (!e.needs_model || (options.model && !options.model_unsupported.count(e.name)));
   };
   // The model-only searches are independent of each other and of the random stream: with
-  // jobs > 1 they run first, side by side, and the loop below takes their results.
+  // jobs > 1 they run first, side by side, the costliest first (a long search started last runs
+  // alone at the end), and the loop below takes their results.
   std::map<std::string, ModelSearch> searched;
   std::vector<const EffectSpec*> to_search;
   for (const EffectSpec* e : requested)
     if (e->needs_model && testable(*e)) to_search.push_back(e);
+  std::stable_sort(to_search.begin(), to_search.end(), [](const EffectSpec* a, const EffectSpec* b) {
+    return a->relative_run_cost > b->relative_run_cost;
+  });
   if (options.jobs > 1 && to_search.size() > 1) {
     std::vector<std::optional<ModelSearch>> results(to_search.size());
     std::vector<std::exception_ptr> errors(to_search.size());

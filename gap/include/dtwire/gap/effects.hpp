@@ -76,6 +76,9 @@ struct EffectSpec {
   // The effect runs on each fractured record's own clock to that record's fracture
   // (CurveScale::damage_clock): one law, shared parameters, a model curve per record.
   bool runs_to_fracture = false;
+  // A model-only effect's run time over the model's own (the side-by-side searches start the
+  // costliest first, so that it does not run alone at the end).
+  double relative_run_cost = 1.0;
   std::function<std::vector<ParameterSpec>(const CurveScale&)> parameters;
   // The magnitude as the test shows it, which the plausible range of parameter `magnitude` is
   // stated for (unset: the parameter itself), and its name for the verdict.
