@@ -154,7 +154,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
                       "with a model-only effect (each at most one FE run)")->capture_default_str();
   command->add_option("--jobs", options->jobs,
                       "With --lab-summary: model-only effects searched side by side, each run a "
-                      "process of its own (the diagnosis is the serial one)")
+                      "process of its own (the diagnosis is the serial one); a DEM model's base run "
+                      "takes this many threads")
       ->capture_default_str()
       ->check(CLI::Range(1, 1024));
   command->add_option("--effects", options->effects,
@@ -210,7 +211,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     std::vector<RemoveWhenEmpty> cleanup;
     std::vector<std::filesystem::path> temporary_caches;  // removed after a diagnosis that ends well
     cleanup.reserve(options->models.size());
-    const DemModelOptions dem_options{options->model_set, options->model_set_params, options->model_cache};
+    const DemModelOptions dem_options{options->model_set, options->model_set_params, options->model_cache,
+                                      options->jobs};
     const auto fe_model = [&](const std::string& file) -> SimulationModel& {
       auto found = fe_models.find(file);
       if (found == fe_models.end()) {

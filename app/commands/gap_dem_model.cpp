@@ -157,7 +157,7 @@ SimulationModel make_dem_model(const std::filesystem::path& toml, const DemModel
   for (const auto& [tag, set] : base.link_sets)
     for (const auto& file : set.files) identity += file.string() + "\n" + file_text(file) + "\n";
   const std::filesystem::path input = std::filesystem::absolute(toml);
-  std::vector<std::string> base_arguments = {"dem", "run", input.string(), "--no-frames", "-q", "--threads", "1"};
+  std::vector<std::string> base_arguments = {"dem", "run", input.string(), "--no-frames", "-q"};
   for (const std::string& entry : options.set) base_arguments.insert(base_arguments.end(), {"--set", entry});
   for (const std::string& entry : options.set_params) base_arguments.insert(base_arguments.end(), {"--set-params", entry});
 
@@ -179,7 +179,8 @@ SimulationModel make_dem_model(const std::filesystem::path& toml, const DemModel
     if (!std::filesystem::exists(run / "finished")) {
       std::filesystem::remove_all(run);
       std::filesystem::create_directories(run);
-      arguments.insert(arguments.end(), {"-o", (run / "out").string()});
+      const unsigned threads = effects.empty() ? std::max(1u, options.base_threads) : 1u;
+      arguments.insert(arguments.end(), {"--threads", std::to_string(threads), "-o", (run / "out").string()});
       {
         std::ofstream command(run / "command.txt");
         command << calibrate::dtwire_executable().string();

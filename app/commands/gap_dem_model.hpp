@@ -19,6 +19,11 @@ struct DemModelOptions {
   std::vector<std::string> set;         // `dem run --set` entries of the base model
   std::vector<std::string> set_params;  // `dem run --set-params TAG=FILE` of the base model
   std::filesystem::path cache;          // run folders; empty: a temporary folder, removed at the end
+  // Threads of the base run (no effect switched on), which a diagnosis makes alone before its
+  // searches; the searches' runs take one thread each (`--jobs` of them side by side). A run's
+  // curve does not depend on its thread count (the engine's sums run in a fixed order), so the
+  // count is not part of the cache key.
+  unsigned base_threads = 1;
 };
 
 // The base model as `dem run` reads it (InputError naming file:line, the entry or the option
