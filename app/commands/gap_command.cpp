@@ -428,10 +428,17 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       ->capture_default_str();
   selfcheck->add_option("--backbone", self->run.backbone_csv, "DEM backbone CSV used as a base model")
       ->capture_default_str();
+  selfcheck->add_option("--write-curves", self->run.curves_dir,
+                        "Write every trial's simulation and laboratory curves to DIR/trial_NNN_<truth>/ (the JSON's "
+                        "trial order), to diagnose a miss again with gap --lab ... --sim ...");
   selfcheck->add_option("--json", self->json, "Write the figures and every trial as JSON");
   selfcheck->add_option("--report", self->report, "Write a Markdown summary");
   selfcheck->add_flag("--require-goals", self->require_goals, "Exit 1 when a goal is missed");
   commands.add(selfcheck, [self] {
+    // A backbone that is not there would leave half the trials out without a word.
+    if (!self->run.backbone_csv.empty() && !std::filesystem::is_regular_file(self->run.backbone_csv))
+      throw InputError("--backbone", "no such file: '" + self->run.backbone_csv.string() +
+                                         "' (expected the DEM backbone CSV; --backbone '' runs the Voce base alone)");
     const gap::SelfcheckResult result = gap::run_selfcheck(self->run);
     const nlohmann::json json = gap::selfcheck_json(result);
     gap::require_finite(json);

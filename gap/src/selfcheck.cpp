@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <iomanip>
 #include <map>
 #include <random>
 #include <sstream>
 #include <stdexcept>
 
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/units.hpp"
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/gap/synthetic_curves.hpp"
 #include "independent/independent_effects.hpp"
@@ -96,7 +100,7 @@ SelfcheckTrial trial_of(const Base& base, const std::vector<std::string>& effect
 }
 
 SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effects,
-                         std::mt19937& rng, unsigned seed) {
+                         std::mt19937& rng, unsigned seed, std::vector<ForceCurve>& labs_out) {
   const ForceCurve& sim = base.curve;
   const CurveScale scale = curve_scale(sim);
   const double end_fraction = uniform(rng, base.min_end_fraction, 1.0);
@@ -122,6 +126,7 @@ SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effec
 
   DiagnosisOptions options;
   options.seed = seed;
+  labs_out = {lab};
   const Diagnosis d = diagnose({lab}, sim, options);
   SelfcheckTrial t = trial_of(base, effects);
   t.predicted = d.cause;
@@ -156,7 +161,8 @@ double initial_stiffness(const ForceCurve& sim) {
 // record ending where the specimen broke, with the fracture's drop. The diagnosis gets the bare
 // base model.
 SelfcheckTrial run_independent_trial(const Base& base, const std::vector<std::string>& effects,
-                                     std::size_t repeats, std::mt19937& rng, unsigned seed) {
+                                     std::size_t repeats, std::mt19937& rng, unsigned seed,
+                                     std::vector<ForceCurve>& labs_out) {
   const ForceCurve& sim = base.curve;
   std::normal_distribution<double> normal(0.0, 1.0);
   std::vector<independent::Setting> settings(effects.size());
@@ -200,6 +206,7 @@ SelfcheckTrial run_independent_trial(const Base& base, const std::vector<std::st
   }
   DiagnosisOptions options;
   options.seed = seed;
+  labs_out = labs;
   const Diagnosis d = diagnose(labs, sim, options);
   SelfcheckTrial t = trial_of(base, effects);
   for (std::size_t e = 0; e < effects.size(); ++e)
@@ -210,6 +217,28 @@ SelfcheckTrial run_independent_trial(const Base& base, const std::vector<std::st
   for (const RankedEffect& r : d.ranking)
     if (r.effect == d.cause) t.shrink = r.shrink;
   return t;  // magnitudes are not comparable across shapes: no parameter error
+}
+
+Curve as_csv_curve(const ForceCurve& c, const SelfcheckTrial& t, const std::string& role) {
+  Curve out;
+  out.add_channel_si("displacement", Dimension::Length, c.u, *find_unit("m"));  // SI: the values read back exactly
+  out.add_channel_si("force", Dimension::Force, c.f, *find_unit("N"));
+  out.set_metadata("source", "gap selfcheck: " + role + (c.source.empty() ? "" : " (" + c.source + ")"));
+  out.set_metadata("selfcheck_truth", t.truth);
+  if (!t.shape.empty()) out.set_metadata("selfcheck_shape", t.shape);
+  out.set_metadata("selfcheck_base", t.base);
+  return out;
+}
+
+void write_trial_curves(const std::filesystem::path& dir, std::size_t index, const SelfcheckTrial& t, const Base& base,
+                        const std::vector<ForceCurve>& labs) {
+  std::ostringstream name;
+  name << "trial_" << std::setw(3) << std::setfill('0') << index << "_" << t.truth;
+  const std::filesystem::path trial = dir / name.str();
+  std::filesystem::create_directories(trial);
+  write_csv(as_csv_curve(base.curve, t, "simulation"), trial / "sim.csv");
+  for (std::size_t i = 0; i < labs.size(); ++i)
+    write_csv(as_csv_curve(labs[i], t, "laboratory"), trial / ("lab_" + std::to_string(i + 1) + ".csv"));
 }
 
 double fraction(std::size_t hit, std::size_t total) {
@@ -232,8 +261,11 @@ SelfcheckResult run_selfcheck(const SelfcheckOptions& options) {
   if (!independent_family && options.family != "fitted")
     throw std::invalid_argument("--family: expected fitted or independent, got " + options.family);
   const auto run_trial = [&](const Base& base, const std::vector<std::string>& effects, unsigned seed) {
-    return independent_family ? run_independent_trial(base, effects, options.repeats, rng, seed)
-                              : dtwire::gap::run_trial(base, effects, rng, seed);
+    std::vector<ForceCurve> labs;
+    SelfcheckTrial t = independent_family ? run_independent_trial(base, effects, options.repeats, rng, seed, labs)
+                                          : dtwire::gap::run_trial(base, effects, rng, seed, labs);
+    if (!options.curves_dir.empty()) write_trial_curves(options.curves_dir, result.trials.size() + 1, t, base, labs);
+    return t;
   };
   for (std::size_t k = 0; k < options.trials; ++k)
     for (const std::string& effect : curve_effects())
@@ -386,9 +418,13 @@ std::string selfcheck_markdown(const SelfcheckResult& r) {
   std::ostringstream s;
   s.setf(std::ios::fixed);
   s.precision(2);
+  std::map<std::string, std::size_t> per_base;
+  for (const SelfcheckTrial& t : r.trials) ++per_base[t.base];
+  std::string bases;
+  for (const auto& [name, n] : per_base) bases += (bases.empty() ? "" : ", ") + name + " " + std::to_string(n);
   s << "### Gap diagnosis selfcheck (" << r.family << " family)\n\n"
-    << r.trials.size() << " trials of synthetic laboratory curves (effect withheld from the simulation), "
-    << r.seconds << " s.\n\n"
+    << r.trials.size() << " trials of synthetic laboratory curves (effect withheld from the simulation; base models: "
+    << bases << "), " << r.seconds << " s.\n\n"
     << "| figure | value | goal |\n|---|---|---|\n"
     << "| top-1 cause correct, single effects whose gap stands above the noise floor | "
     << cell(r.single_top1_visible, singles - r.singles_below_floor) << " | >= " << kGoalTop1 << " |\n"

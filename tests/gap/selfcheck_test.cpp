@@ -97,3 +97,43 @@ TEST(GapSelfcheck, TrialsBelowTheNoiseFloorAreScoredApart) {
 
 }  // namespace
 }  // namespace dtwire::gap
+
+#include <filesystem>
+
+#include "dtwire/core/csv.hpp"
+#include "dtwire/gap/diagnosis.hpp"
+#include "dtwire/gap/force_curve.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+// --write-curves: a trial's curves as written are the ones it diagnosed: diagnosed again from the
+// files, the gap is the one the selfcheck recorded.
+TEST(GapSelfcheck, WrittenCurvesReproduceTheTrial) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "dtwire_selfcheck_curves_test";
+  std::filesystem::remove_all(dir);
+  SelfcheckOptions options;
+  options.family = "independent";
+  options.trials = 0;
+  options.pair_trials = 0;
+  options.none_trials = 1;
+  options.seed = 3;
+  options.curves_dir = dir;
+  const SelfcheckResult r = run_selfcheck(options);
+  ASSERT_EQ(r.trials.size(), 1u);
+  const std::filesystem::path trial = dir / "trial_001_none";
+  ASSERT_TRUE(std::filesystem::exists(trial / "sim.csv"));
+  EXPECT_EQ(read_csv(trial / "lab_1.csv").metadata("selfcheck_truth"), "none");
+  const CurveConversion si;
+  std::vector<ForceCurve> labs;
+  for (const char* name : {"lab_1.csv", "lab_2.csv"}) labs.push_back(load_force_curve(trial / name, si));
+  DiagnosisOptions again;
+  again.seed = options.seed + 1;  // the first trial's seed
+  const Diagnosis d = diagnose(labs, load_force_curve(trial / "sim.csv", si), again);
+  EXPECT_NEAR(d.gap_before, r.trials[0].gap_before, 1e-12 * r.trials[0].gap_before);
+  EXPECT_EQ(d.cause, r.trials[0].predicted);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace dtwire::gap

@@ -20,6 +20,9 @@ struct SelfcheckOptions {
   // other physical forms with a realistic measurement chain (docs/gap.md, "Independent family").
   std::string family = "fitted";
   std::size_t repeats = 2;  // independent family: laboratory curves per trial (specimen scatter)
+  // Set: every trial's simulation and laboratory curves written to DIR/trial_NNN_<truth>/ (sim.csv,
+  // lab_1.csv, ...), so that a miss can be diagnosed again with `dtwire gap --lab ... --sim ...`.
+  std::filesystem::path curves_dir;
 };
 
 struct SelfcheckTrial {
