@@ -147,8 +147,8 @@ std::vector<EffectSpec> make_catalogue() {
       // (docs/gap.md, the ranges' table).
       // Scaling the displacement of a curve with a peak has a basin per way the peaks line up:
       // from the centre (1, the neutral scale) and a few random starts the fit ended at 1.08
-      // instead of 1.43 in a third of the seeds on an extensometer drifting from 1.3 to 1.5
-      // (the independent selfcheck's drifting knife edges), so it also starts across the range.
+      // instead of 1.43 for 4 seeds in 12 on a drifting extensometer (a selfcheck record,
+      // tests/gap/data/drifting_knife_edge), so it also starts across the range.
       return std::vector<ParameterSpec>{{"scale_1", 0.3, 2.5, 0.5, 1.5, {}, {}, {0.6, 0.8, 1.2, 1.4}},
                                         {"elastic_unscaled_1", 0.0, 1.0, 0.0, 1.0, {}, 0.0, {}}};
     };
