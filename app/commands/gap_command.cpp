@@ -439,6 +439,14 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     if (!self->run.backbone_csv.empty() && !std::filesystem::is_regular_file(self->run.backbone_csv))
       throw InputError("--backbone", "no such file: '" + self->run.backbone_csv.string() +
                                          "' (expected the DEM backbone CSV; --backbone '' runs the Voce base alone)");
+    if (const std::filesystem::path& dir = self->run.curves_dir; !dir.empty() && std::filesystem::exists(dir)) {
+      if (!std::filesystem::is_directory(dir))
+        throw InputError("--write-curves", "'" + dir.string() + "' is a file; give a folder");
+      if (!std::filesystem::is_empty(dir))
+        throw InputError("--write-curves", "'" + dir.string() +
+                                               "' is not empty (an earlier run's trials would mix with this one's); "
+                                               "give a new or empty folder");
+    }
     const gap::SelfcheckResult result = gap::run_selfcheck(self->run);
     const nlohmann::json json = gap::selfcheck_json(result);
     gap::require_finite(json);

@@ -96,6 +96,8 @@ case_ "Value -1 not in range 1 to 1024" fit "$fit" --threads -1 -o "$work/fit"
 case_ "Value 0 not in range 1 to 1024" fit "$fit" --threads 0 -o "$work/fit"
 case_ "--trials: Value -1 not in range" gap selfcheck --trials -1
 case_ "--backbone: no such file" gap selfcheck --trials 1 --backbone /nonexistent/backbone.csv
+case_ "--write-curves: '$src/README.md' is a file" gap selfcheck --trials 1 --write-curves "$src/README.md"
+case_ "--write-curves: '$src/tests' is not empty" gap selfcheck --trials 1 --write-curves "$src/tests"
 case_ "--force-at-fraction: Value 1.5 not in range" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction 1.5
 # CLI::Range lets NaN through (every comparison with it is false).
 case_ "--force-at-fraction: Value nan is not a finite number" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction nan
