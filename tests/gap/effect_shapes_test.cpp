@@ -94,8 +94,12 @@ TEST(GapEffectShapes, RateGainGrowsOverTheTestAndInTheNeck) {
         const ForceCurve r = with(sim, "strain_rate", {s0, g, h});
         for (std::size_t i = 1; i < sim.size(); ++i) {
           const double factor = r.f[i] / sim.f[i];
-          if (s0 >= 1.0) EXPECT_GE(factor, 1.0 - 1e-12) << s0 << " " << g << " " << h;
-          if (s0 <= 1.0) EXPECT_LE(factor, 1.0 + 1e-12) << s0 << " " << g << " " << h;
+          if (s0 >= 1.0) {
+            EXPECT_GE(factor, 1.0 - 1e-12) << s0 << " " << g << " " << h;
+          }
+          if (s0 <= 1.0) {
+            EXPECT_LE(factor, 1.0 + 1e-12) << s0 << " " << g << " " << h;
+          }
           EXPECT_LE(std::abs(factor - 1.0), 4.0 * std::abs(s0 - 1.0) + 1e-12);
         }
       }
@@ -156,8 +160,9 @@ TEST(GapEffectShapes, GripSlipOnsetSpreadIsTheMeanSlipOverTheJaw) {
   double fmax = 0.0;
   for (std::size_t i = 0; i < sim.size(); ++i) {
     fmax = std::max(fmax, sim.f[i]);
-    if (i % 25 == 0)
+    if (i % 25 == 0) {
       EXPECT_NEAR(spread.u[i] - sim.u[i], rate * (mean_excess(fmax) - mean_excess(0.0)), 1e-7) << "at F_max " << fmax;
+    }
   }
   EXPECT_DOUBLE_EQ(spread.u.front(), sim.u.front());  // nothing slips at rest
 }
