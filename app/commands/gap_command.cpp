@@ -1,5 +1,6 @@
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -431,6 +432,9 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   selfcheck->add_option("--write-curves", self->run.curves_dir,
                         "Write every trial's simulation and laboratory curves to DIR/trial_NNN_<truth>/ (the JSON's "
                         "trial order), to diagnose a miss again with gap --lab ... --sim ...");
+  selfcheck->add_option("--effects", self->run.effects,
+                        "Comma-separated single effects to trial (and to draw pairs from); default: all of them")
+      ->delimiter(',');
   selfcheck->add_option("--json", self->json, "Write the figures and every trial as JSON");
   selfcheck->add_option("--report", self->report, "Write a Markdown summary");
   selfcheck->add_flag("--require-goals", self->require_goals, "Exit 1 when a goal is missed");
@@ -447,6 +451,15 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
                                                "' is not empty (an earlier run's trials would mix with this one's); "
                                                "give a new or empty folder");
     }
+    for (const std::string& name : self->run.effects)
+      if (std::find(gap::selfcheck_effects().begin(), gap::selfcheck_effects().end(), name) ==
+          gap::selfcheck_effects().end()) {
+        std::string known;
+        for (const std::string& k : gap::selfcheck_effects()) known += (known.empty() ? "" : ", ") + k;
+        throw InputError("--effects", "'" + name + "' is no curve-mode effect (expected one of " + known + ")");
+      }
+    if (self->run.pair_trials > 0 && !self->run.effects.empty() && self->run.effects.size() < 2)
+      throw InputError("--pair-trials", "pairs need at least two --effects (give --pair-trials 0 for one effect)");
     const gap::SelfcheckResult result = gap::run_selfcheck(self->run);
     const nlohmann::json json = gap::selfcheck_json(result);
     gap::require_finite(json);

@@ -17,13 +17,14 @@
 #include "independent/independent_effects.hpp"
 
 namespace dtwire::gap {
-namespace {
 
-const std::vector<std::string>& curve_effects() {
+const std::vector<std::string>& selfcheck_effects() {
   static const std::vector<std::string> names = {"machine_compliance", "grip_slip", "initial_slack",
                                                  "gauge_length", "ductile_damage", "strain_rate"};
   return names;
 }
+
+namespace {
 
 double uniform(std::mt19937& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
@@ -260,6 +261,12 @@ SelfcheckResult run_selfcheck(const SelfcheckOptions& options) {
   const bool independent_family = options.family == "independent";
   if (!independent_family && options.family != "fitted")
     throw std::invalid_argument("--family: expected fitted or independent, got " + options.family);
+  const std::vector<std::string>& trialled = options.effects.empty() ? selfcheck_effects() : options.effects;
+  for (const std::string& name : trialled)
+    if (std::find(selfcheck_effects().begin(), selfcheck_effects().end(), name) == selfcheck_effects().end())
+      throw std::invalid_argument("--effects: '" + name + "' is no curve-mode effect of the selfcheck");
+  if (options.pair_trials > 0 && trialled.size() < 2)
+    throw std::invalid_argument("--pair-trials: pairs need at least two --effects");
   const auto run_trial = [&](const Base& base, const std::vector<std::string>& effects, unsigned seed) {
     std::vector<ForceCurve> labs;
     SelfcheckTrial t = independent_family ? run_independent_trial(base, effects, options.repeats, rng, seed, labs)
@@ -268,12 +275,12 @@ SelfcheckResult run_selfcheck(const SelfcheckOptions& options) {
     return t;
   };
   for (std::size_t k = 0; k < options.trials; ++k)
-    for (const std::string& effect : curve_effects())
+    for (const std::string& effect : trialled)
       result.trials.push_back(run_trial(next_base(), {effect}, ++trial_seed));
   for (std::size_t k = 0; k < options.none_trials; ++k)
     result.trials.push_back(run_trial(next_base(), {}, ++trial_seed));
   for (std::size_t k = 0; k < options.pair_trials; ++k) {
-    std::vector<std::string> names = curve_effects();
+    std::vector<std::string> names = trialled;
     std::shuffle(names.begin(), names.end(), rng);
     result.trials.push_back(run_trial(next_base(), {names[0], names[1]}, ++trial_seed));
   }
@@ -293,6 +300,7 @@ void score_trials(SelfcheckResult& result) {
               pair_partial = 0;
   double shrink_sum = 0.0;
   std::vector<double> errors;
+  result.per_effect.clear();
   for (const SelfcheckTrial& t : result.trials) {
     if (t.truth == "none") {
       ++nones;
@@ -300,12 +308,17 @@ void score_trials(SelfcheckResult& result) {
     } else if (t.truth.find('+') == std::string::npos) {
       ++singles;
       single_hits += t.predicted == t.truth;
+      SelfcheckResult::EffectCounts& counts = result.per_effect[t.truth];
       if (t.gap_before > t.noise_floor) {
         ++visible;
         visible_hits += t.predicted == t.truth;
+        ++counts.above_floor;
+        counts.found += t.predicted == t.truth;
       } else {
         ++result.singles_below_floor;
         result.singles_below_floor_none += t.predicted == "none";
+        ++counts.below_floor;
+        counts.below_floor_none += t.predicted == "none";
       }
       spurious_pairs += t.predicted.find('+') != std::string::npos;
       shrink_sum += t.shrink;
@@ -339,7 +352,7 @@ void score_trials(SelfcheckResult& result) {
     std::sort(errors.begin(), errors.end());
     result.median_parameter_error = errors[errors.size() / 2];
   }
-  std::vector<std::string> labels = curve_effects();
+  std::vector<std::string> labels = selfcheck_effects();
   labels.push_back("none");
   for (const SelfcheckTrial& t : result.trials)
     for (const std::string& name : {t.truth, t.predicted})
@@ -366,6 +379,12 @@ nlohmann::json selfcheck_json(const SelfcheckResult& r) {
   for (const SelfcheckTrial& t : r.trials) ++matrix[t.truth][t.predicted];
   nlohmann::json confusion = nlohmann::json::object();
   for (const auto& [truth, row] : matrix) confusion[truth] = row;
+  nlohmann::json per_effect = nlohmann::json::object();
+  for (const auto& [name, c] : r.per_effect)
+    per_effect[name] = {{"above_floor", c.above_floor},
+                        {"found", c.found},
+                        {"below_floor", c.below_floor},
+                        {"below_floor_read_none", c.below_floor_none}};
   return {{"single_top1", r.single_top1},
           {"single_top1_visible", r.single_top1_visible},
           {"singles_below_floor", r.singles_below_floor},
@@ -384,6 +403,8 @@ nlohmann::json selfcheck_json(const SelfcheckResult& r) {
           {"seconds", r.seconds},
           {"labels", r.labels},
           {"confusion", confusion},
+          {"per_effect", per_effect},
+          {"goal_top1_per_effect", kGoalTop1PerEffect},
           {"trials", trials}};
 }
 
@@ -442,8 +463,19 @@ std::string selfcheck_markdown(const SelfcheckResult& r) {
                         : fixed2(r.mean_parameter_error) + " / " + fixed2(r.median_parameter_error) +
                               " (n = " + std::to_string(magnitudes) + ")")
     << " | - |\n\n"
-    << "Goals " << (r.goals_met ? "met" : "NOT met") << ".\n\n"
-    << "Confusion matrix (rows: injected, columns: diagnosed):\n\n| injected |";
+    << "Goals " << (r.goals_met ? "met" : "NOT met") << ".\n\n";
+  if (!r.per_effect.empty()) {
+    // Issue 51 asks for each effect at 0.95 or better; a handful of trials an effect cannot show
+    // it, so this table is reported beside the goals, not counted in them.
+    s << "Per effect (goal >= " << kGoalTop1PerEffect << " above the floor, each effect apart):\n\n"
+      << "| injected | above the floor: found | below the floor: read `none` |\n|---|---|---|\n";
+    for (const auto& [name, c] : r.per_effect)
+      s << "| " << name << " | " << c.found << " of " << c.above_floor
+        << (c.above_floor ? " (" + fixed2(fraction(c.found, c.above_floor)) + ")" : std::string()) << " | "
+        << c.below_floor_none << " of " << c.below_floor << " |\n";
+    s << "\n";
+  }
+  s << "Confusion matrix (rows: injected, columns: diagnosed):\n\n| injected |";
   for (const auto& c : columns) s << " " << c << " |";
   s << "\n|---|";
   for (std::size_t i = 0; i < columns.size(); ++i) s << "---|";

@@ -98,6 +98,8 @@ case_ "--trials: Value -1 not in range" gap selfcheck --trials -1
 case_ "--backbone: no such file" gap selfcheck --trials 1 --backbone /nonexistent/backbone.csv
 case_ "--write-curves: '$src/README.md' is a file" gap selfcheck --trials 1 --write-curves "$src/README.md"
 case_ "--write-curves: '$src/tests' is not empty" gap selfcheck --trials 1 --write-curves "$src/tests"
+case_ "--effects: 'bogus' is no curve-mode effect" gap selfcheck --trials 1 --effects gauge_length,bogus
+case_ "--pair-trials: pairs need at least two --effects" gap selfcheck --trials 1 --effects gauge_length
 case_ "--force-at-fraction: Value 1.5 not in range" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction 1.5
 # CLI::Range lets NaN through (every comparison with it is false).
 case_ "--force-at-fraction: Value nan is not a finite number" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction nan

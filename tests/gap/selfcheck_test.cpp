@@ -55,6 +55,26 @@ TEST(GapSelfcheck, IndependentFamilyRunsOnRepeatedSpecimens) {
   EXPECT_THROW(run_selfcheck(options), std::invalid_argument);
 }
 
+// --effects: the trials are of the chosen effects only; a name that is no effect, or pairs drawn
+// from one effect, are refused.
+TEST(GapSelfcheck, OnlyTheChosenEffectsAreTrialled) {
+  SelfcheckOptions options;
+  options.family = "independent";
+  options.trials = 1;
+  options.pair_trials = 0;
+  options.none_trials = 0;
+  options.seed = 5;
+  options.effects = {"gauge_length"};
+  const SelfcheckResult r = run_selfcheck(options);
+  ASSERT_EQ(r.trials.size(), 1u);
+  for (const SelfcheckTrial& t : r.trials) EXPECT_EQ(t.truth, "gauge_length");
+  options.pair_trials = 1;
+  EXPECT_THROW(run_selfcheck(options), std::invalid_argument);
+  options.pair_trials = 0;
+  options.effects = {"gauge_length", "wire_friction"};
+  EXPECT_THROW(run_selfcheck(options), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace dtwire::gap
 
@@ -93,6 +113,14 @@ TEST(GapSelfcheck, TrialsBelowTheNoiseFloorAreScoredApart) {
   EXPECT_NE(text.find("above the noise floor | 0.90 (n = 10)"), std::string::npos) << text;
   EXPECT_NE(text.find("1 of 2"), std::string::npos) << text;
   EXPECT_EQ(selfcheck_json(r).at("singles_below_floor").get<std::size_t>(), 2u);
+  // Issue 51's goal is per effect: grip_slip 9 of 10 above the floor, strain_rate none above it.
+  ASSERT_EQ(r.per_effect.size(), 2u);
+  EXPECT_EQ(r.per_effect.at("grip_slip").above_floor, 10u);
+  EXPECT_EQ(r.per_effect.at("grip_slip").found, 9u);
+  EXPECT_EQ(r.per_effect.at("strain_rate").below_floor, 2u);
+  EXPECT_EQ(r.per_effect.at("strain_rate").below_floor_none, 1u);
+  EXPECT_NE(text.find("| grip_slip | 9 of 10 (0.90) | 0 of 0 |"), std::string::npos) << text;
+  EXPECT_EQ(selfcheck_json(r).at("per_effect").at("strain_rate").at("below_floor_read_none").get<int>(), 1);
 }
 
 }  // namespace
