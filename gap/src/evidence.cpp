@@ -99,6 +99,7 @@ std::string percent(double share) {
 
 void decide(Diagnosis& d, bool testable) {
   d.cause = "none";
+  d.also_closes.clear();
   d.refused_effect.clear();
   const auto cause = std::find_if(d.ranking.begin(), d.ranking.end(), [](const RankedEffect& r) { return r.qualifies; });
   if (d.gap_before <= d.noise_floor) {
@@ -123,6 +124,17 @@ void decide(Diagnosis& d, bool testable) {
     d.cause = cause->effect;
     d.reason = cause->gap_after <= d.noise_floor ? "closes the gap to the noise floor"
                                                  : "reduces the gap most, but not to the noise floor";
+    if (cause->gap_after <= d.noise_floor) {
+      std::ostringstream others;
+      others.precision(3);
+      for (const RankedEffect& r : d.ranking)
+        if (&r != &*cause && r.qualifies && r.gap_after <= d.noise_floor && r.effect.find('+') == std::string::npos) {
+          d.also_closes.push_back(r.effect);
+          others << (d.also_closes.size() > 1 ? ", " : "") << r.effect << " (dAICc +" << r.aicc - cause->aicc << ")";
+        }
+      if (!d.also_closes.empty())
+        d.reason += "; so does " + others.str() + ": the laboratory's scatter does not tell them apart";
+    }
     return;
   }
   if (refused != d.ranking.end()) {

@@ -154,6 +154,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
                         {"ranking", ranking},
                         {"cause", d.cause},
                         {"cause_reason", d.reason},
+                        {"also_closes", d.also_closes},
                         {"noise_sigma_N", d.noise_sigma_N},
                         {"frechet_before", d.frechet_before},
                         {"pcm_before", d.pcm_before},

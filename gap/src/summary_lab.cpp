@@ -517,6 +517,17 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     d.cause = cause->effect;
     d.reason = cause->gap_after <= d.noise_floor ? "brings the features within the laboratory scatter"
                                                  : "reduces the gap most, but not to the laboratory scatter";
+    if (cause->gap_after <= d.noise_floor) {
+      std::ostringstream others;
+      others.precision(3);
+      for (const SummaryCandidate& c : d.ranking)
+        if (&c != &*cause && c.qualifies && c.gap_after <= d.noise_floor && c.effect.find('+') == std::string::npos) {
+          d.also_closes.push_back(c.effect);
+          others << (d.also_closes.size() > 1 ? ", " : "") << c.effect << " (AIC +" << c.aic - cause->aic << ")";
+        }
+      if (!d.also_closes.empty())
+        d.reason += "; so does " + others.str() + ": the laboratory's scatter does not tell them apart";
+    }
   }
   d.best_model = d.ranking.empty() ? d.sim
                                     : (cause != d.ranking.end() ? *cause : d.ranking.front()).curve;
@@ -590,7 +601,8 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
   nlohmann::json out = {{"metric", d.metric},       {"noise_floor", d.noise_floor},
                         {"gap_before", d.gap_before}, {"where", where},
                         {"ranking", ranking},       {"cause", d.cause},
-                        {"cause_reason", d.reason}, {"compression", d.compression},
+                        {"cause_reason", d.reason}, {"also_closes", d.also_closes},
+                        {"compression", d.compression},
                         {"not_tested", d.not_tested}, {"not_tested_reason", d.not_tested_reason},
                         {"lab_summary", lab},       {"sim", d.sim.source}, {"verdict", d.verdict}};
   for (const SummaryCandidate& c : d.ranking)

@@ -124,3 +124,36 @@ TEST(GapVerdict, NoEffectClosesARippleAndTheReasonSaysHowFarTheBestGot) {
 
 }  // namespace
 }  // namespace dtwire::gap
+
+#include "dtwire/gap/force_curve.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+// An extensometer whose scale applies to the plastic part only, on the DEM backbone (a record of
+// the independent selfcheck, `--effects gauge_length --seed 13`, trial 24; tests/gap/data/
+// gauge_or_grip_slip). The curve hardens to its end, where the force is a function of the
+// displacement, so a grip slip growing with the force stretches it as the gauge does: both close
+// the gap to the noise floor (gap after 0.0018 and 0.0020, floor 0.0025) and the information
+// criterion ranks the slip first. The verdict names the gauge beside it, never the slip alone.
+TEST(GapVerdict, AnEffectThatAlsoClosesTheGapIsNamedBesideTheCause) {
+  const std::string data = std::string(DTWIRE_SOURCE_DIR) + "/tests/gap/data/gauge_or_grip_slip/";
+  const CurveConversion si;
+  const std::vector<ForceCurve> labs = {load_force_curve(data + "lab_1.csv", si), load_force_curve(data + "lab_2.csv", si)};
+  DiagnosisOptions options;
+  options.try_pairs = false;
+  const Diagnosis d = diagnose(labs, load_force_curve(data + "sim.csv", si), options);
+  ASSERT_EQ(d.verdict, "cause") << d.reason;
+  std::vector<std::string> named = d.also_closes;
+  named.push_back(d.cause);
+  EXPECT_NE(std::find(named.begin(), named.end(), "gauge_length"), named.end()) << d.reason;
+  EXPECT_NE(std::find(named.begin(), named.end(), "grip_slip"), named.end()) << d.reason;
+  for (const std::string& other : d.also_closes) {
+    EXPECT_LE(entry(d, other).gap_after, d.noise_floor);
+    EXPECT_NE(d.reason.find("so does " + d.also_closes.front()), std::string::npos) << d.reason;
+  }
+  EXPECT_EQ(diagnosis_json(d).at("also_closes").size(), d.also_closes.size());
+}
+
+}  // namespace
+}  // namespace dtwire::gap

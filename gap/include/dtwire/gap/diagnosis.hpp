@@ -102,6 +102,10 @@ struct Diagnosis {
   // (nothing to explain), "nothing_tested".
   std::string verdict = "no_effect_closes";
   std::string refused_effect;  // "beyond_plausible_range": the ranking entry it names
+  // "cause" that closes the gap to the noise floor: the other single effects that qualify and do
+  // too. The evidence ranks them below the cause, but the laboratory's own scatter does not tell
+  // them apart (e.g. a gauge scale against a grip slip on a curve that hardens to its end).
+  std::vector<std::string> also_closes;
   std::vector<std::string> not_tested;
   std::map<std::string, std::string> not_tested_reason;
   PredictiveCheck predictive;

@@ -90,6 +90,8 @@ struct SummaryDiagnosis {
   // As Diagnosis::verdict (issue 51): cause, beyond_plausible_range (refused_effect names the
   // candidate), no_effect_closes, within_noise.
   std::string verdict = "no_effect_closes", refused_effect;
+  // "cause" within the scatter: the other single effects that qualify and are too (Diagnosis::also_closes).
+  std::vector<std::string> also_closes;
   std::vector<std::string> not_tested;
   std::map<std::string, std::string> not_tested_reason;
   ForceCurve sim, best_model;  // oriented
