@@ -124,17 +124,9 @@ void decide(Diagnosis& d, bool testable) {
     d.cause = cause->effect;
     d.reason = cause->gap_after <= d.noise_floor ? "closes the gap to the noise floor"
                                                  : "reduces the gap most, but not to the noise floor";
-    if (cause->gap_after <= d.noise_floor) {
-      std::ostringstream others;
-      others.precision(3);
-      for (const RankedEffect& r : d.ranking)
-        if (&r != &*cause && r.qualifies && r.gap_after <= d.noise_floor && r.effect.find('+') == std::string::npos) {
-          d.also_closes.push_back(r.effect);
-          others << (d.also_closes.size() > 1 ? ", " : "") << r.effect << " (dAICc +" << r.aicc - cause->aicc << ")";
-        }
-      if (!d.also_closes.empty())
-        d.reason += "; so does " + others.str() + ": the laboratory's scatter does not tell them apart";
-    }
+    if (cause->gap_after <= d.noise_floor)
+      d.reason += also_closing(d.ranking, *cause, d.noise_floor, "dAICc", [](const RankedEffect& r) { return r.aicc; },
+                               &d.also_closes);
     return;
   }
   if (refused != d.ranking.end()) {

@@ -2,6 +2,7 @@
 // Evidence shared by the single-mode and the combined (several loading modes) diagnosis:
 // the information criterion, the score and whether a candidate qualifies as the cause.
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,24 @@
 namespace dtwire::gap::evidence {
 
 double aicc(double mse, double n_eff, int k);
+
+// The single candidates other than `cause` that qualify and close the gap to `floor` too (a
+// curve's RankedEffect or a summary's SummaryCandidate), appended to `names`; returns the reason's
+// addition ("; so does X (dAICc +16): ..."), empty when there is none. `criterion` gives each
+// candidate's information criterion, labelled `label` in the text.
+template <class Candidate, class Criterion>
+std::string also_closing(const std::vector<Candidate>& ranking, const Candidate& cause, double floor,
+                         const char* label, Criterion criterion, std::vector<std::string>* names) {
+  std::ostringstream others;
+  others.precision(3);
+  for (const Candidate& c : ranking)
+    if (&c != &cause && c.qualifies && c.gap_after <= floor && c.effect.find('+') == std::string::npos) {
+      names->push_back(c.effect);
+      others << (names->size() > 1 ? ", " : "") << c.effect << " (" << label << " +"
+             << criterion(c) - criterion(cause) << ")";
+    }
+  return names->empty() ? std::string() : "; so does " + others.str() + ": the laboratory's scatter does not tell them apart";
+}
 
 // Names joined with '+' in alphabetical order ("a+b" for a pair).
 std::string joined_name(std::vector<std::string> names);

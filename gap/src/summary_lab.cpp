@@ -517,17 +517,9 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     d.cause = cause->effect;
     d.reason = cause->gap_after <= d.noise_floor ? "brings the features within the laboratory scatter"
                                                  : "reduces the gap most, but not to the laboratory scatter";
-    if (cause->gap_after <= d.noise_floor) {
-      std::ostringstream others;
-      others.precision(3);
-      for (const SummaryCandidate& c : d.ranking)
-        if (&c != &*cause && c.qualifies && c.gap_after <= d.noise_floor && c.effect.find('+') == std::string::npos) {
-          d.also_closes.push_back(c.effect);
-          others << (d.also_closes.size() > 1 ? ", " : "") << c.effect << " (AIC +" << c.aic - cause->aic << ")";
-        }
-      if (!d.also_closes.empty())
-        d.reason += "; so does " + others.str() + ": the laboratory's scatter does not tell them apart";
-    }
+    if (cause->gap_after <= d.noise_floor)
+      d.reason += evidence::also_closing(d.ranking, *cause, d.noise_floor, "AIC",
+                                         [](const SummaryCandidate& c) { return c.aic; }, &d.also_closes);
   }
   d.best_model = d.ranking.empty() ? d.sim
                                     : (cause != d.ranking.end() ? *cause : d.ranking.front()).curve;

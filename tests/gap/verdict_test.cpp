@@ -157,3 +157,35 @@ TEST(GapVerdict, AnEffectThatAlsoClosesTheGapIsNamedBesideTheCause) {
 
 }  // namespace
 }  // namespace dtwire::gap
+
+#include "../../gap/src/evidence.hpp"
+
+namespace dtwire::gap {
+namespace {
+
+// The rule behind `also_closes`, as the summary-figure diagnosis applies it to its candidates:
+// qualifying singles under the floor other than the cause; a pair, a candidate above the floor
+// or one that does not qualify is not named.
+TEST(GapVerdict, AlsoClosingNamesQualifyingSinglesUnderTheFloorOnly) {
+  struct Candidate {
+    std::string effect;
+    bool qualifies;
+    double gap_after, aic;
+  };
+  const std::vector<Candidate> ranking = {{"dt_weakening", true, 0.5, 2.0},   {"sw_softening", true, 0.8, 6.5},
+                                          {"a+b", true, 0.3, 1.0},           {"mesh_distortion", true, 1.2, 9.0},
+                                          {"edge_sliding", false, 0.4, 3.0}, {"slack_state", true, 0.9, 4.0}};
+  std::vector<std::string> names;
+  const std::string text = evidence::also_closing(ranking, ranking[0], 1.0, "AIC",
+                                                  [](const Candidate& c) { return c.aic; }, &names);
+  EXPECT_EQ(names, (std::vector<std::string>{"sw_softening", "slack_state"}));
+  EXPECT_EQ(text, "; so does sw_softening (AIC +4.5), slack_state (AIC +2): the laboratory's scatter does not tell "
+                  "them apart");
+  names.clear();
+  EXPECT_EQ(evidence::also_closing(ranking, ranking[0], 0.6, "AIC", [](const Candidate& c) { return c.aic; }, &names),
+            "");
+  EXPECT_TRUE(names.empty());
+}
+
+}  // namespace
+}  // namespace dtwire::gap
