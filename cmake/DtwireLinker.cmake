@@ -1,0 +1,27 @@
+# The linker. Every target that uses deal.II links about 200 shared libraries (Trilinos, PETSc,
+# OpenCASCADE, ...); GNU ld (bfd) reads them in about 16 s per executable, lld in 0.5 s and gold in
+# 1.4 s (docs/validation.md, "Build time"), and the build links some thirty executables.
+# DTWIRE_LINKER names one (lld, gold, bfd); empty takes the first of lld, gold that links here.
+include(CheckLinkerFlag)
+set(DTWIRE_LINKER "" CACHE STRING "Linker passed as -fuse-ld= (lld, gold, bfd); empty: the first of lld, gold that works")
+if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+  if(DTWIRE_LINKER)
+    check_linker_flag(CXX "-fuse-ld=${DTWIRE_LINKER}" DTWIRE_LINKER_WORKS)
+    if(NOT DTWIRE_LINKER_WORKS)
+      message(FATAL_ERROR "DTWIRE_LINKER=${DTWIRE_LINKER}: the compiler cannot link with -fuse-ld=${DTWIRE_LINKER}")
+    endif()
+    set(_dtwire_linker ${DTWIRE_LINKER})
+  else()
+    check_linker_flag(CXX "-fuse-ld=lld" DTWIRE_HAVE_LLD)
+    check_linker_flag(CXX "-fuse-ld=gold" DTWIRE_HAVE_GOLD)
+    if(DTWIRE_HAVE_LLD)
+      set(_dtwire_linker lld)
+    elseif(DTWIRE_HAVE_GOLD)
+      set(_dtwire_linker gold)
+    endif()
+  endif()
+  if(_dtwire_linker)
+    add_link_options(-fuse-ld=${_dtwire_linker})
+    message(STATUS "dtwire: linking with ${_dtwire_linker}")
+  endif()
+endif()
