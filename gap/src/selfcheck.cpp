@@ -72,13 +72,12 @@ std::vector<double> draw_params(const std::string& effect, const ForceCurve& sim
   }
   if (effect == "gauge_length") return {either_side(rng, range, 1.0, 0.05)};
   if (effect == "ductile_damage") {
-    // The plausible range is the damage the test shows at its end (catalogue); the parameter is
-    // the damage at the model's end, beyond the test's end, within its fit bound.
-    const double total = sim.u.back();
+    // The magnitude is the damage the test shows at its end (the law ends there, run_trial);
+    // the growth exponent is drawn across its whole range (linear to strongly accelerating).
     const double onset = uniform(rng, 0.2, 0.6) * end_m;
-    const double shown = toward_edge(rng, 0.05, range.plausible_upper);
-    const double x = (end_m - onset) / (total - onset);
-    return {onset * 1e3, std::min(range.upper, shown / (x * x))};
+    const ParameterSpec growth = find_effect(effect).parameters(curve_scale(sim)).at(2);
+    return {onset * 1e3, toward_edge(rng, 0.05, range.plausible_upper),
+            uniform(rng, growth.plausible_lower, growth.plausible_upper)};
   }
   if (effect == "strain_rate") {
     // Half the trials change the rate during the test (issue 51), at 20-60 % of what it shows.
@@ -103,9 +102,10 @@ SelfcheckTrial trial_of(const Base& base, const std::vector<std::string>& effect
 SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effects,
                          std::mt19937& rng, unsigned seed, std::vector<ForceCurve>& labs_out) {
   const ForceCurve& sim = base.curve;
-  const CurveScale scale = curve_scale(sim);
+  CurveScale scale = curve_scale(sim);
   const double end_fraction = uniform(rng, base.min_end_fraction, 1.0);
   const double end_sim = end_fraction * sim.u.back();
+  scale.test_end_m = end_sim;  // where an effect that grows along the test (damage) is judged
   double visible_peak = 0.0;
   std::size_t last = 0;
   for (std::size_t i = 0; i < sim.size() && sim.u[i] <= end_sim; ++i) {

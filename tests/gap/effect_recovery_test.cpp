@@ -63,7 +63,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"grip_slip", {1500.0, 4.0, 0.3}},  // stick-slip steps of 0.3 mm
                       Case{"initial_slack", {0.8, 60.0}},
                       Case{"gauge_length", {1.15}},
-                      Case{"ductile_damage", {8.0, 0.3}},
+                      Case{"ductile_damage", {8.0, 0.3, 2.0}},
+                      Case{"ductile_damage", {8.0, 0.3, 1.0}},   // Lemaitre's linear growth
+                      Case{"ductile_damage", {8.0, 0.3, 3.5}},   // coalescence accelerating
                       Case{"strain_rate", {1.08}}),
     [](const ::testing::TestParamInfo<Case>& param_info) {
       return param_info.param.effect + "_" + std::to_string(param_info.index);

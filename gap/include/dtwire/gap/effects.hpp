@@ -80,10 +80,6 @@ struct EffectSpec {
   // costliest first, so that it does not run alone at the end).
   double relative_run_cost = 1.0;
   std::function<std::vector<ParameterSpec>(const CurveScale&)> parameters;
-  // The magnitude as the test shows it, which the plausible range of parameter `magnitude` is
-  // stated for (unset: the parameter itself), and its name for the verdict.
-  std::function<double(const std::vector<double>&, const CurveScale&)> shown_magnitude;
-  std::string shown_name;
   std::function<ForceCurve(const ForceCurve&, const std::vector<double>&, const CurveScale&)> apply;
 };
 
