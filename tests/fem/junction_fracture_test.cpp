@@ -83,24 +83,23 @@ double last_force_of(const fs::path& curve) {
   return comma == std::string::npos ? NAN : std::stod(last.substr(comma + 1, last.find(',', comma + 1) - comma - 1));
 }
 
-TEST(JunctionFracture, TheAsMadeTwistBreaksAtTheJunctionAtTheLaboratorysForce) {
-  const std::string log = run("dt/dt_tension.prm", "as_made", dt_mesh + " --set 'As made/Forming history=true'");
-  const Failure f = failure_of(log);
+// One test for both DT runs: the as-made run is the longest in the suite (about 2 min), so the
+// comparison with the tight twist reuses it rather than forming the twist a second time.
+TEST(JunctionFracture, TheAsMadeTwistBreaksAtTheJunctionAtTheLaboratorysForceAndTheTightOneIsStronger) {
+  const std::string as_made = run("dt/dt_tension.prm", "as_made", dt_mesh + " --set 'As made/Forming history=true'");
+  const Failure f = failure_of(as_made);
   ASSERT_TRUE(f.found);
   EXPECT_EQ(f.place, "junction");
-  const double peak = peak_force_of(log);
+  const double peak = peak_force_of(as_made);
   EXPECT_NEAR(peak, 5000.0, 500.0);
   EXPECT_LT(last_force_of(work_directory() / "as_made" / "curve.csv"), 0.9 * peak);
   // Within one wire diameter of a twist end (z = 0 or 40 mm).
   EXPECT_LT(std::min(std::abs(f.z_mm), std::abs(f.z_mm - 40.0)), 2.7);
-}
 
-TEST(JunctionFracture, TheFormingHistoryIsWhatWeakensTheJunction) {
-  const std::string as_made = run("dt/dt_tension.prm", "as_made_2", dt_mesh + " --set 'As made/Forming history=true'");
   const std::string tight = run("dt/dt_tension.prm", "tight", dt_mesh);
   ASSERT_TRUE(failure_of(tight).found);
   // Measured: 5.64 kN tight against 4.98 kN as made (13 %), both cracking at the same fibre.
-  EXPECT_GT(peak_force_of(tight), 1.05 * peak_force_of(as_made));
+  EXPECT_GT(peak_force_of(tight), 1.05 * peak);
 }
 
 TEST(JunctionFracture, TheSingleWireKeepsItsPeakAndBreaksPastIt) {
