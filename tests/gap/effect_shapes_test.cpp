@@ -263,8 +263,8 @@ TEST(GapEffectShapes, ARateJumpBetweenTwoStartsIsFound) {
   EXPECT_NEAR(rate->fitted.at(0).params.at(3), 6.4, 0.5);
 }
 
-// A late exponential damage, D = 0.44 (exp(4x) - 1)/(exp(4) - 1) after its onset, on the Voce wire
-// (two specimens broken apart; a record of the independent selfcheck, `--trials 20 --seed 17`,
+// A late exponential damage, D proportional to exp(4x) - 1 after its onset, on the Voce wire (two
+// specimens broken apart; a record of the independent selfcheck, `--trials 20 --seed 17`,
 // trial 47; tests/gap/data/late_damage). While the law ended at the simulation's end with its
 // damage there bounded at 0.95, and grew as the square, it could not reach the test's end
 // steeply enough (0.95 at the bound, onset 0): a gauge scale of 0.78 took the rest and the
