@@ -1,4 +1,6 @@
 #include <csignal>
+#include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -9,5 +11,10 @@ int main(int argc, char** argv) {
   // which the writer reports with the file's name and exit code 1, instead of the default
   // SIGXFSZ that kills the process (and a campaign's steps inherit this).
   std::signal(SIGXFSZ, SIG_IGN);
+  // The runs a fit or a propagation starts are this binary's, whatever name it was copied to
+  // (calibrate::dtwire_executable reads the variable; one the user set wins).
+  std::error_code error;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (!error) setenv("DTWIRE_EXECUTABLE", self.c_str(), 0);
   return dtwire::app::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
 }
