@@ -99,6 +99,18 @@ SelfcheckTrial trial_of(const Base& base, const std::vector<std::string>& effect
   return t;
 }
 
+std::string injected_text(const std::vector<AppliedEffect>& injected, const CurveScale& scale) {
+  std::ostringstream s;
+  s.precision(4);
+  for (std::size_t e = 0; e < injected.size(); ++e) {
+    const auto specs = injected[e].effect->parameters(scale);
+    s << (e ? "; " : "") << injected[e].effect->name << ":";
+    for (std::size_t k = 0; k < specs.size() && k < injected[e].params.size(); ++k)
+      s << (k ? ", " : " ") << specs[k].name << "=" << injected[e].params[k];
+  }
+  return s.str();
+}
+
 SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effects,
                          std::mt19937& rng, unsigned seed, std::vector<ForceCurve>& labs_out) {
   const ForceCurve& sim = base.curve;
@@ -130,6 +142,7 @@ SelfcheckTrial run_trial(const Base& base, const std::vector<std::string>& effec
   labs_out = {lab};
   const Diagnosis d = diagnose({lab}, sim, options);
   SelfcheckTrial t = trial_of(base, effects);
+  t.injected = injected_text(injected, scale);
   t.predicted = d.cause;
   t.gap_before = d.gap_before;
   t.noise_floor = d.noise_floor;
@@ -227,6 +240,7 @@ Curve as_csv_curve(const ForceCurve& c, const SelfcheckTrial& t, const std::stri
   out.set_metadata("source", "gap selfcheck: " + role + (c.source.empty() ? "" : " (" + c.source + ")"));
   out.set_metadata("selfcheck_truth", t.truth);
   if (!t.shape.empty()) out.set_metadata("selfcheck_shape", t.shape);
+  if (!t.injected.empty()) out.set_metadata("selfcheck_injected", t.injected);
   out.set_metadata("selfcheck_base", t.base);
   return out;
 }
@@ -373,6 +387,7 @@ nlohmann::json selfcheck_json(const SelfcheckResult& r) {
                         {"noise_floor", t.noise_floor}, {"shrink", t.shrink}};
     if (t.parameter_error >= 0) j["parameter_error"] = t.parameter_error;
     if (!t.shape.empty()) j["shape"] = t.shape;
+    if (!t.injected.empty()) j["injected"] = t.injected;
     trials.push_back(j);
   }
   std::map<std::string, std::map<std::string, int>> matrix;

@@ -131,6 +131,7 @@ TEST(GapSelfcheck, TrialsBelowTheNoiseFloorAreScoredApart) {
 #include "dtwire/core/csv.hpp"
 #include "dtwire/gap/diagnosis.hpp"
 #include "dtwire/gap/force_curve.hpp"
+#include "dtwire/gap/synthetic_curves.hpp"
 
 namespace dtwire::gap {
 namespace {
@@ -160,6 +161,29 @@ TEST(GapSelfcheck, WrittenCurvesReproduceTheTrial) {
   const Diagnosis d = diagnose(labs, load_force_curve(trial / "sim.csv", si), again);
   EXPECT_NEAR(d.gap_before, r.trials[0].gap_before, 1e-12 * r.trials[0].gap_before);
   EXPECT_EQ(d.cause, r.trials[0].predicted);
+  std::filesystem::remove_all(dir);
+}
+
+// The fitted family's files name what was put in, so a miss can be judged against its truth.
+TEST(GapSelfcheck, WrittenCurvesOfTheFittedFamilyNameTheInjectedParameters) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "dtwire_selfcheck_injected_test";
+  std::filesystem::remove_all(dir);
+  SelfcheckOptions options;
+  options.trials = 1;
+  options.pair_trials = 0;
+  options.none_trials = 0;
+  options.effects = {"machine_compliance"};
+  options.curves_dir = dir;
+  const SelfcheckResult r = run_selfcheck(options);
+  ASSERT_EQ(r.trials.size(), 1u);
+  const std::string injected = read_csv(dir / "trial_001_machine_compliance" / "lab_1.csv").metadata("selfcheck_injected");
+  EXPECT_EQ(injected, r.trials[0].injected);
+  const std::string prefix = "machine_compliance: compliance_mm_per_kN=";
+  ASSERT_EQ(injected.rfind(prefix, 0), 0u) << injected;
+  const double value = std::stod(injected.substr(prefix.size()));
+  const ParameterSpec range = find_effect("machine_compliance").parameters(curve_scale(voce_tension_curve())).at(0);
+  EXPECT_GE(value, range.plausible_lower);
+  EXPECT_LE(value, range.plausible_upper);
   std::filesystem::remove_all(dir);
 }
 

@@ -35,6 +35,7 @@ struct SelfcheckTrial {
   std::string base;       // base model
   std::string truth;      // injected effect(s), "none" or "a+b"
   std::string shape;      // independent family: the physical form of each injected effect
+  std::string injected;   // fitted family: each injected effect's parameters, "name: p=v, ..."
   std::string predicted;  // diagnosed cause
   double gap_before = 0.0;
   double noise_floor = 0.0;
