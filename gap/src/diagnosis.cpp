@@ -411,14 +411,26 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
     evidence::demote_weak_pairs(ranking, singles, single_gap);
     parsimony::apply(ranking, fits, singles, ctx.problem, rng);
   }
-  // A magnitude fitted beyond its range's edge by no more than the data can tell (the edge leaves
-  // the gap within 0.3 x the noise-only area of the fit's) is the edge, not implausible: a real
-  // set-up at the edge of the range fits a little beyond it half the time.
-  const auto edge_fits = [&](const RankedEffect& r) {
-    for (const AppliedEffect& a : r.fitted)
+  // A magnitude fitted beyond its range's edge by no more than the data can tell is the edge,
+  // not implausible: a real set-up at the edge of the range fits a little beyond it half the
+  // time. The test is the misfit's profile (Bates & Watts 1988, ch. 6): each such magnitude held
+  // at its edge, every other parameter refitted (a pair's partner takes up what it can); the
+  // edge fits if that leaves the gap within 0.3 x the noise-only area of the free fit's, the
+  // reduction below which no effect counts as one.
+  const auto edge_fits = [&](std::size_t index) {
+    const RankedEffect& r = ranking[index];
+    std::vector<const EffectSpec*> effects;
+    std::vector<HeldParameter> held;
+    for (std::size_t k = 0; k < r.fitted.size(); ++k) {
+      const AppliedEffect& a = r.fitted[k];
       if (a.effect->needs_model) return false;  // no extra model run for this
-    const auto at_edge = record_models(ctx.problem, magnitudes_at_edge(r.fitted, ctx.problem.scale));
-    return mean_gap(at_edge, ctx.problem) - r.gap_after <= kMinimumReduction * ctx.noise_area;
+      effects.push_back(a.effect);
+      for (const BeyondRange& b : magnitudes_beyond_range({a}, ctx.problem.scale))
+        held.push_back({k, -1, a.effect->magnitude, b.value > a.effect->neutral ? b.plausible_upper : b.plausible_lower});
+    }
+    const EffectFit at_edge = fit_effects(ctx.problem, effects, {params_of(r)}, 0, rng, held);
+    return mean_gap(record_models(ctx.problem, at_edge.effects), ctx.problem) - r.gap_after <=
+           kMinimumReduction * ctx.noise_area;
   };
   evidence::mark_implausible(ranking, {ctx.problem.scale}, edge_fits);
   std::sort(ranking.begin(), ranking.end(),

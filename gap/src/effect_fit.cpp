@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 
 #include "dtwire/lsq/least_squares.hpp"
 
@@ -13,6 +14,7 @@ namespace {
 // A least-squares problem on a flat parameter vector: `residuals` gives sqrt(w) r for it.
 struct FlatObjective {
   std::vector<ParameterSpec> specs;
+  std::vector<std::optional<double>> held;  // per spec: the value the fit holds it at, if any
   std::size_t count = 0;
   std::function<std::vector<double>(const std::vector<double>&)> residuals;
   double sse(const std::vector<double>& flat) const {
@@ -22,8 +24,8 @@ struct FlatObjective {
   }
 };
 
-// The engine's problem on the continuous parameters, the grid ones held at their values in
-// `held` (a start's or a grid trial's).
+// The engine's problem on the continuous parameters, the grid ones and those the objective
+// holds at their values in `held` (a start's or a grid trial's).
 struct ContinuousProblem {
   const FlatObjective& objective;
   std::vector<double> held;
@@ -32,7 +34,7 @@ struct ContinuousProblem {
 
   ContinuousProblem(const FlatObjective& o, std::vector<double> held_values) : objective(o), held(std::move(held_values)) {
     for (std::size_t j = 0; j < objective.specs.size(); ++j)
-      if (objective.specs[j].grid.empty()) free.push_back(j);
+      if (objective.specs[j].grid.empty() && !objective.held[j]) free.push_back(j);
     problem.parameter_count = free.size();
     problem.residual_count = objective.count;
     problem.difference_step = 1e-4;  // curves are piecewise linear: a step above the kinks' scale
@@ -85,7 +87,7 @@ std::vector<double> solve_continuous(const FlatObjective& objective, const std::
 // Each grid value of each grid parameter in turn, the continuous parameters refitted for it.
 std::vector<double> search_grid(const FlatObjective& objective, std::vector<double> flat) {
   for (std::size_t j = 0; j < objective.specs.size(); ++j) {
-    if (objective.specs[j].grid.empty()) continue;
+    if (objective.specs[j].grid.empty() || objective.held[j]) continue;
     double best = objective.sse(flat);
     std::vector<double> best_flat = flat;
     for (double v : objective.specs[j].grid) {
@@ -105,7 +107,8 @@ std::vector<double> search_grid(const FlatObjective& objective, std::vector<doub
 
 // The starts given, then the plausible centre, the basic forms, the effects switched off (`neutral`) and random
 // plausible values, so the fit can always fall back to the bare simulation; starts with the
-// same grid values are one multi-start solve. The best answer is refined on the grid.
+// same grid values are one multi-start solve. The best answer is refined on the grid. A held
+// parameter keeps its value in every start.
 std::vector<double> minimise(const FlatObjective& objective, std::vector<std::vector<double>> starts,
                              const std::vector<double>& neutral, std::size_t random_starts,
                              std::mt19937& rng) {
@@ -134,6 +137,11 @@ std::vector<double> minimise(const FlatObjective& objective, std::vector<std::ve
       flat.push_back(s.grid.empty() ? s.plausible_lower + unit(rng) * s.width() : 0.0);
     starts.push_back(flat);
   }
+  const auto hold = [&](std::vector<double>& flat) {
+    for (std::size_t j = 0; j < flat.size() && j < objective.held.size(); ++j)
+      if (objective.held[j]) flat[j] = *objective.held[j];
+  };
+  for (auto& start : starts) hold(start);
   std::map<std::vector<double>, std::vector<std::vector<double>>> by_grid_values;
   std::vector<std::vector<double>> order;  // grid-value sets in the order first met
   for (const auto& start : starts) {
@@ -145,6 +153,7 @@ std::vector<double> minimise(const FlatObjective& objective, std::vector<std::ve
     by_grid_values[grid_values].push_back(start);
   }
   std::vector<double> best = neutral;
+  hold(best);
   double best_sse = INFINITY;
   for (const auto& grid_values : order) {
     const std::vector<double> flat = solve_continuous(objective, by_grid_values[grid_values]);
@@ -251,7 +260,7 @@ EffectFit evaluate_fit(const FitProblem& problem, std::vector<AppliedEffect> eff
 
 EffectFit fit_effects(const FitProblem& problem, const std::vector<const EffectSpec*>& effects,
                       std::vector<std::vector<std::vector<double>>> starts,
-                      std::size_t random_starts, std::mt19937& rng) {
+                      std::size_t random_starts, std::mt19937& rng, const std::vector<HeldParameter>& held) {
   std::vector<JointEffect> joint;
   for (const EffectSpec* e : effects) joint.push_back({e, {0}, 1});
   std::vector<std::vector<std::vector<std::vector<double>>>> joint_starts;
@@ -259,8 +268,10 @@ EffectFit fit_effects(const FitProblem& problem, const std::vector<const EffectS
     joint_starts.emplace_back();
     for (const auto& p : start) joint_starts.back().push_back({p});
   }
-  const JointFit fit = fit_joint({problem}, joint, joint_starts, random_starts, rng);
-  return evaluate_fit(problem, fit.per_problem.front());
+  const JointFit fit = fit_joint({problem}, joint, joint_starts, random_starts, rng, held);
+  EffectFit out = evaluate_fit(problem, fit.per_problem.front());
+  out.parameter_count = fit.parameter_count;
+  return out;
 }
 
 JointFit evaluate_joint(const std::vector<FitProblem>& problems,
@@ -277,7 +288,7 @@ JointFit evaluate_joint(const std::vector<FitProblem>& problems,
 
 JointFit fit_joint(const std::vector<FitProblem>& problems, const std::vector<JointEffect>& effects,
                    const std::vector<std::vector<std::vector<std::vector<double>>>>& starts,
-                   std::size_t random_starts, std::mt19937& rng) {
+                   std::size_t random_starts, std::mt19937& rng, const std::vector<HeldParameter>& held) {
   const CurveScale& scale = problems.front().scale;  // parameter layout only (sizes, grids)
   const JointLayout layout = joint_layout(effects, scale);
   FlatObjective objective;
@@ -294,6 +305,11 @@ JointFit fit_joint(const std::vector<FitProblem>& problems, const std::vector<Jo
                     objective.specs.begin() + static_cast<std::ptrdiff_t>(layout.offset[k][static_cast<std::size_t>(b)]));
           break;
         }
+  objective.held.resize(objective.specs.size());
+  for (const HeldParameter& h : held)
+    for (std::size_t b = 0; b < layout.offset.at(h.effect).size(); ++b)
+      if (h.block < 0 || static_cast<std::size_t>(h.block) == b)
+        objective.held.at(layout.offset[h.effect][b] + h.parameter) = h.value;
   objective.residuals = [&](const std::vector<double>& flat) {
     const auto applied = per_problem(layout, effects, flat, problems.size());
     std::vector<double> r;
@@ -317,7 +333,8 @@ JointFit fit_joint(const std::vector<FitProblem>& problems, const std::vector<Jo
     for (std::size_t offset : layout.offset[k]) neutral[offset + effects[k].effect->magnitude] = effects[k].effect->neutral;
   const std::vector<double> best = minimise(objective, flat_starts, neutral, random_starts, rng);
   JointFit out = evaluate_joint(problems, per_problem(layout, effects, best, problems.size()));
-  out.parameter_count = static_cast<int>(objective.specs.size());
+  out.parameter_count = static_cast<int>(
+      std::count_if(objective.held.begin(), objective.held.end(), [](const std::optional<double>& h) { return !h; }));
   for (std::size_t k = 0; k < effects.size(); ++k) {
     out.blocks.emplace_back();
     for (int b = 0; b < effects[k].blocks; ++b) out.blocks.back().push_back(block_of(layout, effects, best, k, b));

@@ -436,14 +436,6 @@ std::vector<BeyondRange> magnitudes_beyond_range(const std::vector<AppliedEffect
   return out;
 }
 
-std::vector<AppliedEffect> magnitudes_at_edge(std::vector<AppliedEffect> effects, const CurveScale& scale) {
-  for (AppliedEffect& a : effects)
-    for (const BeyondRange& b : magnitudes_beyond_range({a}, scale)) {
-      a.params.at(a.effect->magnitude) = b.value > a.effect->neutral ? b.plausible_upper : b.plausible_lower;
-    }
-  return effects;
-}
-
 bool magnitudes_plausible(const std::vector<AppliedEffect>& effects, const CurveScale& scale) {
   return magnitudes_beyond_range(effects, scale).empty();
 }

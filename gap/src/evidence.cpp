@@ -69,8 +69,9 @@ void demote_weak_pairs(std::vector<RankedEffect>& ranking, std::size_t first_pai
 }
 
 void mark_implausible(std::vector<RankedEffect>& ranking, const std::vector<CurveScale>& scales,
-                      const std::function<bool(const RankedEffect&)>& edge_fits) {
-  for (RankedEffect& r : ranking) {
+                      const std::function<bool(std::size_t index)>& edge_fits) {
+  for (std::size_t i = 0; i < ranking.size(); ++i) {
+    RankedEffect& r = ranking[i];
     std::vector<BeyondRange> beyond;
     if (r.fitted_by_mode.empty()) {
       beyond = magnitudes_beyond_range(r.fitted, scales.at(0));
@@ -79,7 +80,7 @@ void mark_implausible(std::vector<RankedEffect>& ranking, const std::vector<Curv
         for (const BeyondRange& b : magnitudes_beyond_range(r.fitted_by_mode[m].second, scales.at(m)))
           beyond.push_back(b);
     }
-    if (beyond.empty() || (edge_fits && edge_fits(r))) continue;
+    if (beyond.empty() || (edge_fits && edge_fits(i))) continue;
     r.implausible = true;
     r.beyond_range = beyond;
     r.qualifies_but_implausible = r.qualifies;

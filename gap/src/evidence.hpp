@@ -60,10 +60,11 @@ void demote_weak_pairs(std::vector<RankedEffect>& ranking, std::size_t first_pai
 // Marks the candidates whose magnitude is beyond its plausible range (issue 37: never the
 // cause), keeping whether they met every other rule of a cause. `scales` are the problems'
 // scales, one per mode of `fitted_by_mode` (or one for `fitted`).
-// `edge_fits` (optional): whether the candidate at its range's edge fits as well, within the
-// noise; such a candidate is not implausible (its magnitude is the edge within what the data tell).
+// `edge_fits` (optional): whether candidate `index` with its beyond-range magnitudes held at the
+// range's edge fits as well, within the noise; such a candidate is not implausible (its magnitude
+// is the edge within what the data tell).
 void mark_implausible(std::vector<RankedEffect>& ranking, const std::vector<CurveScale>& scales,
-                      const std::function<bool(const RankedEffect&)>& edge_fits = {});
+                      const std::function<bool(std::size_t index)>& edge_fits = {});
 
 // The cause and the verdict's three cases (issue 51) from a ranking sorted by score: the
 // top-scored qualifying candidate is the cause; else the top-scored candidate that met every

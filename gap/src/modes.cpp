@@ -368,7 +368,28 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
   }
   std::vector<CurveScale> scales;
   for (const FitProblem& problem : cb.problems) scales.push_back(problem.scale);
-  evidence::mark_implausible(ranking, scales);
+  // As in one mode (diagnose): a magnitude beyond its range is the edge when, held there and
+  // every other parameter refitted over the modes, the gap stays within 0.3 x the noise area.
+  const auto edge_fits = [&](std::size_t index) {
+    const std::vector<JointEffect>& effects = fitted_effects[index];
+    const JointFit& fit = fits[index];
+    std::vector<HeldParameter> held;
+    for (std::size_t k = 0; k < effects.size(); ++k) {
+      if (effects[k].effect->needs_model) return false;  // no extra model run for this
+      for (int b = 0; b < effects[k].blocks; ++b) {
+        const auto& block_of = effects[k].block_of;
+        const auto g = static_cast<std::size_t>(std::find(block_of.begin(), block_of.end(), b) - block_of.begin());
+        const AppliedEffect applied{effects[k].effect, fit.blocks[k][static_cast<std::size_t>(b)]};
+        for (const BeyondRange& beyond : magnitudes_beyond_range({applied}, scales.at(g)))
+          held.push_back({k, b, effects[k].effect->magnitude,
+                          beyond.value > effects[k].effect->neutral ? beyond.plausible_upper : beyond.plausible_lower});
+      }
+    }
+    const JointFit at_edge = fit_joint(cb.problems, effects, {fit.blocks}, 0, rng, held);
+    return rank_combined(cb, effects, at_edge, mode_names, c.gap_before).gap_after - ranking[index].gap_after <=
+           kMinimumReduction * noise_area;
+  };
+  evidence::mark_implausible(ranking, scales, edge_fits);
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });
   c.ranking = ranking;

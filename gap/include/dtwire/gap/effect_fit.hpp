@@ -33,12 +33,22 @@ std::vector<ForceCurve> record_models(const FitProblem& problem, const std::vect
 // Fitted residual vector and weighted SSE for given parameters.
 EffectFit evaluate_fit(const FitProblem& problem, std::vector<AppliedEffect> effects);
 
+// A parameter the fit holds at `value` while it fits the rest (the misfit's profile there):
+// parameter `parameter` of effect `effect` (indices into the fit's effects), in its block
+// `block` of a joint fit (-1: every block).
+struct HeldParameter {
+  std::size_t effect = 0;
+  int block = -1;
+  std::size_t parameter = 0;
+  double value = 0.0;
+};
+
 // Fits `effects` (starting values: each start is a full parameter vector per effect; the
 // plausible-range centre and random plausible values are added). Grid parameters are searched
 // over their grid around the continuous fit.
 EffectFit fit_effects(const FitProblem& problem, const std::vector<const EffectSpec*>& effects,
                       std::vector<std::vector<std::vector<double>>> starts, std::size_t random_starts,
-                      std::mt19937& rng);
+                      std::mt19937& rng, const std::vector<HeldParameter>& held = {});
 
 // Joint fit over several problems (e.g. one per loading mode). An effect has `blocks` parameter
 // sets; `block_of[p]` is the set used on problem p, or -1 where the effect does not apply. One
@@ -54,7 +64,7 @@ struct JointFit {
   std::vector<std::vector<std::vector<double>>> blocks; // [effect][block] fitted parameters
   double weighted_sse = 0.0;     // summed over problems
   std::vector<double> residual;  // stacked in problem order
-  int parameter_count = 0;
+  int parameter_count = 0;       // the fitted ones (held parameters not counted)
 };
 
 JointFit evaluate_joint(const std::vector<FitProblem>& problems,
@@ -64,6 +74,6 @@ JointFit evaluate_joint(const std::vector<FitProblem>& problems,
 // off and `random_starts` random plausible values are added.
 JointFit fit_joint(const std::vector<FitProblem>& problems, const std::vector<JointEffect>& effects,
                    const std::vector<std::vector<std::vector<std::vector<double>>>>& starts,
-                   std::size_t random_starts, std::mt19937& rng);
+                   std::size_t random_starts, std::mt19937& rng, const std::vector<HeldParameter>& held = {});
 
 }  // namespace dtwire::gap

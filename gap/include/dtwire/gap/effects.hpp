@@ -123,9 +123,6 @@ struct BeyondRange {
 };
 // The magnitudes of `effects` that lie beyond their plausible range (empty when none).
 std::vector<BeyondRange> magnitudes_beyond_range(const std::vector<AppliedEffect>& effects, const CurveScale& scale);
-// `effects` with every magnitude beyond its range brought to the range's edge (a shown
-// magnitude by scaling its parameter).
-std::vector<AppliedEffect> magnitudes_at_edge(std::vector<AppliedEffect> effects, const CurveScale& scale);
 
 // 1 inside the plausible range, falling linearly to 0.2 at the fit bounds; product over params.
 double plausibility(const EffectSpec& effect, const std::vector<double>& params,
