@@ -127,6 +127,34 @@ TEST(GapModes, SpecimenEffectSharesOneValueOverTheModes) {
   EXPECT_NEAR(r.fitted_by_mode[0].second.front().params[0], injected, 0.1 * (injected - 1.0));
 }
 
+// A specimen effect on its range's edge (a flow stress 15 % above the model's, the rate's
+// plausible upper end) fits a little beyond the edge on this noise; held at the edge and refitted
+// over both modes it fits as well, so the joint fit names it the cause, as one mode does
+// (docs/gap.md, "Plausible ranges and their sources").
+TEST(GapModes, ASpecimenEffectOnItsRangesEdgeIsTheCauseOverTheModes) {
+  const ForceCurve tension = voce_tension_curve();
+  const CurveScale scale = curve_scale(tension);
+  const EffectSpec& rate = find_effect("strain_rate");
+  const double edge = rate.parameters(scale).at(rate.magnitude).plausible_upper;
+  const ForceCurve with = apply_effects(tension, {{&rate, {edge}}}, scale);
+  const double sigma = 0.004 * scale.peak_force_N;
+  std::vector<ModeInput> inputs(2);
+  inputs[0].mode = "tension";
+  inputs[0].labs = {noisy(with, 8, sigma, "t1")};
+  inputs[0].sim = tension;
+  inputs[1].mode = "compression";
+  inputs[1].labs = {noisy(compression_of(with), 9, sigma, "c1")};
+  inputs[1].sim = compression_of(tension);
+  DiagnosisOptions options;
+  options.effects = {"machine_compliance", "strain_rate"};
+  options.try_pairs = false;
+  const MultiModeDiagnosis d = diagnose_modes(inputs, options);
+  const RankedEffect& r = entry(d.combined, "strain_rate");
+  ASSERT_GT(r.fitted_by_mode.at(0).second.front().params[0], edge) << "the case is a fit beyond the edge";
+  EXPECT_FALSE(r.implausible);
+  EXPECT_EQ(d.combined.cause, "strain_rate") << d.combined.reason;
+}
+
 // Stand-in FE runs per mode: the imperfection scale s lowers the force by 1 / (1 + 0.05 (s - 1))
 // in tension and by 1 / (1 + 0.1 (s - 1)) in compression (a crooked column loses more).
 ModelRunner stand_in_fe(bool compression, int* runs) {
