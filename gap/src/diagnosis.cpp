@@ -429,6 +429,7 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
         held.push_back({k, -1, a.effect->magnitude, b.value > a.effect->neutral ? b.plausible_upper : b.plausible_lower});
     }
     const EffectFit at_edge = fit_effects(ctx.problem, effects, {params_of(r)}, 0, rng, held);
+    if (!magnitudes_plausible(at_edge.effects, ctx.problem.scale)) return false;  // the partner left its range
     return mean_gap(record_models(ctx.problem, at_edge.effects), ctx.problem) - r.gap_after <=
            kMinimumReduction * ctx.noise_area;
   };

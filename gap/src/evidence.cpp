@@ -80,7 +80,11 @@ void mark_implausible(std::vector<RankedEffect>& ranking, const std::vector<Curv
         for (const BeyondRange& b : magnitudes_beyond_range(r.fitted_by_mode[m].second, scales.at(m)))
           beyond.push_back(b);
     }
-    if (beyond.empty() || (edge_fits && edge_fits(i))) continue;
+    if (beyond.empty()) continue;
+    if (edge_fits && edge_fits(i)) {
+      r.at_range_edge = beyond;
+      continue;
+    }
     r.implausible = true;
     r.beyond_range = beyond;
     r.qualifies_but_implausible = r.qualifies;
@@ -125,6 +129,13 @@ void decide(Diagnosis& d, bool testable) {
     d.cause = cause->effect;
     d.reason = cause->gap_after <= d.noise_floor ? "closes the gap to the noise floor"
                                                  : "reduces the gap most, but not to the noise floor";
+    for (const BeyondRange& b : cause->at_range_edge) {
+      std::ostringstream edge;
+      edge.precision(3);
+      edge << "; its " << b.parameter << " of " << b.value << " is the edge of [" << b.plausible_lower << ", "
+           << b.plausible_upper << "] within what the data tell";
+      d.reason += edge.str();
+    }
     if (cause->gap_after <= d.noise_floor)
       d.reason += also_closing(d.ranking, *cause, d.noise_floor, "dAICc", [](const RankedEffect& r) { return r.aicc; },
                                &d.also_closes);

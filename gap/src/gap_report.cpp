@@ -110,6 +110,7 @@ nlohmann::json diagnosis_json(const Diagnosis& d) {
       ranking.back()["model_runs"] = r.model_runs;
       ranking.back()["model_seconds"] = r.model_seconds;
     }
+    if (!r.at_range_edge.empty()) ranking.back()["at_plausible_edge"] = beyond_range_json(r.at_range_edge);
     if (r.implausible) {
       ranking.back()["beyond_plausible_range"] = beyond_range_json(r.beyond_range);
       ranking.back()["qualifies_but_implausible"] = r.qualifies_but_implausible;

@@ -386,6 +386,8 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
       }
     }
     const JointFit at_edge = fit_joint(cb.problems, effects, {fit.blocks}, 0, rng, held);
+    for (std::size_t g = 0; g < cb.problems.size(); ++g)
+      if (!magnitudes_plausible(at_edge.per_problem[g], scales[g])) return false;  // the partner left its range
     return rank_combined(cb, effects, at_edge, mode_names, c.gap_before).gap_after - ranking[index].gap_after <=
            kMinimumReduction * noise_area;
   };

@@ -248,6 +248,16 @@ TEST(GapVerdict, AMagnitudeJustPastItsRangeIsTheEdgeWhenThePartnerTakesUpTheRest
   const ParameterSpec magnitude = fitted_damage.effect->parameters(curve_scale(d.sim)).at(fitted_damage.effect->magnitude);
   EXPECT_GT(fitted_damage.params.at(fitted_damage.effect->magnitude), magnitude.plausible_upper) << "the case is one beyond the edge";
   EXPECT_LT(fitted_damage.params.at(fitted_damage.effect->magnitude), 1.1 * magnitude.plausible_upper);
+  // The verdict says so, in the text and the JSON.
+  ASSERT_EQ(pair.at_range_edge.size(), 1u);
+  EXPECT_EQ(pair.at_range_edge.front().parameter, "damage_at_test_end_1");
+  EXPECT_NE(d.reason.find("its damage_at_test_end_1 of 0.51"), std::string::npos) << d.reason;
+  EXPECT_NE(d.reason.find("is the edge of [0.02, 0.5] within what the data tell"), std::string::npos) << d.reason;
+  const nlohmann::json j = diagnosis_json(d);
+  bool listed = false;
+  for (const auto& r : j.at("ranking"))
+    if (r.at("effect") == d.cause) listed = r.at("at_plausible_edge")[0].at("parameter") == "damage_at_test_end_1";
+  EXPECT_TRUE(listed);
 }
 
 }  // namespace

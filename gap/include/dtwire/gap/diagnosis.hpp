@@ -57,6 +57,9 @@ struct RankedEffect {
   // the candidate met every other rule of a cause (then the verdict names it, issue 51).
   std::vector<BeyondRange> beyond_range;
   bool qualifies_but_implausible = false;
+  // Magnitudes fitted past their range's edge by no more than the data tell (held at the edge,
+  // the rest refitted, the fit is as good): the candidate stays plausible and says so.
+  std::vector<BeyondRange> at_range_edge;
   int search_points = 0;   // pairs with a model-only effect: points of the bounded search
   // Candidates with a model-only effect: values run by its search (each at most one model run;
   // cached runs are free) and the search's wall time.
