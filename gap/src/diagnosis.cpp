@@ -420,18 +420,23 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
   const auto edge_fits = [&](std::size_t index) {
     const RankedEffect& r = ranking[index];
     std::vector<const EffectSpec*> effects;
-    std::vector<HeldParameter> held;
-    for (std::size_t k = 0; k < r.fitted.size(); ++k) {
-      const AppliedEffect& a = r.fitted[k];
+    for (const AppliedEffect& a : r.fitted) {
       if (a.effect->needs_model) return false;  // no extra model run for this
       effects.push_back(a.effect);
-      for (const BeyondRange& b : magnitudes_beyond_range({a}, ctx.problem.scale))
-        held.push_back({k, -1, a.effect->magnitude, b.value > a.effect->neutral ? b.plausible_upper : b.plausible_lower});
     }
-    const EffectFit at_edge = fit_effects(ctx.problem, effects, {params_of(r)}, 0, rng, held);
-    if (!magnitudes_plausible(at_edge.effects, ctx.problem.scale)) return false;  // the partner left its range
-    return mean_gap(record_models(ctx.problem, at_edge.effects), ctx.problem) - r.gap_after <=
-           kMinimumReduction * ctx.noise_area;
+    // A partner pushed past its own edge by the refit is held at that edge too, and the fit
+    // repeated: at most once per effect.
+    std::vector<HeldParameter> held;
+    std::vector<AppliedEffect> at_edge = r.fitted;
+    for (std::size_t round = 0; round < effects.size(); ++round) {
+      for (std::size_t k = 0; k < at_edge.size(); ++k)
+        for (const BeyondRange& b : magnitudes_beyond_range({at_edge[k]}, ctx.problem.scale))
+          held.push_back({k, -1, effects[k]->magnitude, b.value > effects[k]->neutral ? b.plausible_upper : b.plausible_lower});
+      at_edge = fit_effects(ctx.problem, effects, {params_of(r)}, 0, rng, held).effects;
+      if (magnitudes_plausible(at_edge, ctx.problem.scale)) break;
+    }
+    return magnitudes_plausible(at_edge, ctx.problem.scale) &&
+           mean_gap(record_models(ctx.problem, at_edge), ctx.problem) - r.gap_after <= kMinimumReduction * ctx.noise_area;
   };
   evidence::mark_implausible(ranking, {ctx.problem.scale}, edge_fits);
   std::sort(ranking.begin(), ranking.end(),

@@ -372,24 +372,34 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
   // every other parameter refitted over the modes, the gap stays within 0.3 x the noise area.
   const auto edge_fits = [&](std::size_t index) {
     const std::vector<JointEffect>& effects = fitted_effects[index];
-    const JointFit& fit = fits[index];
+    for (const JointEffect& e : effects)
+      if (e.effect->needs_model) return false;  // no extra model run for this
+    // Each block's magnitudes beyond their range held at the edge, on the scale of the first
+    // mode the block applies to; a partner pushed past its own edge is held too, and the fit
+    // repeated (at most once per effect).
+    const auto plausible = [&](const JointFit& f) {
+      for (std::size_t g = 0; g < cb.problems.size(); ++g)
+        if (!magnitudes_plausible(f.per_problem[g], scales[g])) return false;
+      return true;
+    };
     std::vector<HeldParameter> held;
-    for (std::size_t k = 0; k < effects.size(); ++k) {
-      if (effects[k].effect->needs_model) return false;  // no extra model run for this
-      for (int b = 0; b < effects[k].blocks; ++b) {
-        const auto& block_of = effects[k].block_of;
-        const auto g = static_cast<std::size_t>(std::find(block_of.begin(), block_of.end(), b) - block_of.begin());
-        const AppliedEffect applied{effects[k].effect, fit.blocks[k][static_cast<std::size_t>(b)]};
-        for (const BeyondRange& beyond : magnitudes_beyond_range({applied}, scales.at(g)))
-          held.push_back({k, b, effects[k].effect->magnitude,
-                          beyond.value > effects[k].effect->neutral ? beyond.plausible_upper : beyond.plausible_lower});
-      }
+    JointFit at_edge = fits[index];
+    for (std::size_t round = 0; round < effects.size(); ++round) {
+      for (std::size_t k = 0; k < effects.size(); ++k)
+        for (int b = 0; b < effects[k].blocks; ++b) {
+          const auto& block_of = effects[k].block_of;
+          const auto g = static_cast<std::size_t>(std::find(block_of.begin(), block_of.end(), b) - block_of.begin());
+          const AppliedEffect applied{effects[k].effect, at_edge.blocks[k][static_cast<std::size_t>(b)]};
+          for (const BeyondRange& beyond : magnitudes_beyond_range({applied}, scales.at(g)))
+            held.push_back({k, b, effects[k].effect->magnitude,
+                            beyond.value > effects[k].effect->neutral ? beyond.plausible_upper : beyond.plausible_lower});
+        }
+      at_edge = fit_joint(cb.problems, effects, {fits[index].blocks}, 0, rng, held);
+      if (plausible(at_edge)) break;
     }
-    const JointFit at_edge = fit_joint(cb.problems, effects, {fit.blocks}, 0, rng, held);
-    for (std::size_t g = 0; g < cb.problems.size(); ++g)
-      if (!magnitudes_plausible(at_edge.per_problem[g], scales[g])) return false;  // the partner left its range
-    return rank_combined(cb, effects, at_edge, mode_names, c.gap_before).gap_after - ranking[index].gap_after <=
-           kMinimumReduction * noise_area;
+    return plausible(at_edge) && rank_combined(cb, effects, at_edge, mode_names, c.gap_before).gap_after -
+                                         ranking[index].gap_after <=
+                                     kMinimumReduction * noise_area;
   };
   evidence::mark_implausible(ranking, scales, edge_fits);
   std::sort(ranking.begin(), ranking.end(),
