@@ -260,5 +260,24 @@ TEST(GapVerdict, AMagnitudeJustPastItsRangeIsTheEdgeWhenThePartnerTakesUpTheRest
   EXPECT_TRUE(listed);
 }
 
+// Both magnitudes of a pair on their edges (`gap selfcheck --family fitted --seed 11
+// --pair-trials 16`, trial 9; tests/gap/data/pair_both_at_edges): a gauge scale of 1.5 and a grip
+// slip of 10 mm/kN. The pair fits a slip of 10.1; held at 10, the refit pushes the gauge past
+// 1.5, so the gauge is held at its edge too and the fit repeated: the pair is the cause. With
+// the partner's new magnitude refused instead of held, the verdict read `none`.
+TEST(GapVerdict, APartnerPushedPastItsEdgeIsHeldThereToo) {
+  const std::string data = std::string(DTWIRE_SOURCE_DIR) + "/tests/gap/data/pair_both_at_edges/";
+  const CurveConversion si;
+  DiagnosisOptions options;
+  options.effects = {"gauge_length", "grip_slip", "machine_compliance"};
+  const Diagnosis d = diagnose({load_force_curve(data + "lab_1.csv", si)}, load_force_curve(data + "sim.csv", si), options);
+  ASSERT_EQ(d.cause, "gauge_length+grip_slip") << d.reason;
+  const RankedEffect& pair = entry(d, d.cause);
+  EXPECT_FALSE(pair.implausible);
+  EXPECT_LE(pair.gap_after, d.noise_floor);
+  ASSERT_FALSE(pair.at_range_edge.empty());
+  EXPECT_EQ(pair.at_range_edge.front().parameter, "slip_mm_per_kN");
+}
+
 }  // namespace
 }  // namespace dtwire::gap
