@@ -136,6 +136,36 @@ ForceCurve densified(const ForceCurve& c) {
   return out;
 }
 
+// A pair with one member at its neutral value is the other effect alone, found by the pair's
+// wider search: that single is refitted from the pair's values and keeps the better fit, so
+// that a single stuck in a local minimum does not leave its own better fit to the pair (the
+// independent selfcheck's adiabatic rate softening, seed 13 trial 36, read as damage + rate
+// with the damage at 0).
+void refit_singles_from_pairs(const Context& ctx, std::vector<EffectFit>& fits, std::vector<RankedEffect>& ranking,
+                              std::size_t singles) {
+  const auto at_neutral = [&](const AppliedEffect& a) {
+    const ParameterSpec spec = a.effect->parameters(ctx.problem.scale).at(a.effect->magnitude);
+    return std::abs(a.params.at(a.effect->magnitude) - a.effect->neutral) <= 1e-6 * spec.width();
+  };
+  std::mt19937 unused;  // no random starts
+  for (std::size_t p = singles; p < fits.size(); ++p) {
+    if (fits[p].effects.size() != 2) continue;
+    for (std::size_t m = 0; m < 2; ++m) {
+      const AppliedEffect& off = fits[p].effects[m];
+      const AppliedEffect& on = fits[p].effects[1 - m];
+      if (off.effect->needs_model || on.effect->needs_model || !at_neutral(off)) continue;
+      for (std::size_t s = 0; s < singles; ++s) {
+        if (fits[s].effects.size() != 1 || fits[s].effects.front().effect != on.effect) continue;
+        EffectFit refit = fit_effects(ctx.problem, {on.effect}, {{on.params}}, 0, unused);
+        if (refit.weighted_sse < fits[s].weighted_sse) {
+          fits[s] = std::move(refit);
+          ranking[s] = rank_entry(ctx, fits[s]);
+        }
+      }
+    }
+  }
+}
+
 std::vector<double> centre_of(const EffectSpec& e, const CurveScale& scale) {
   std::vector<double> p;
   for (const auto& s : e.parameters(scale)) p.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
@@ -389,7 +419,6 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
     std::sort(order.begin(), order.end(),
               [&](std::size_t a, std::size_t b) { return ranking[a].gap_after < ranking[b].gap_after; });
     order.resize(std::min<std::size_t>(order.size(), 6));
-    const double single_gap = best_single->gap_after;
     const std::size_t singles = ranking.size();
     for (std::size_t a = 0; a < order.size(); ++a)
       for (std::size_t b = a + 1; b < order.size(); ++b) {
@@ -407,6 +436,9 @@ Diagnosis diagnose(const std::vector<ForceCurve>& labs_in, const ForceCurve& sim
           ranking.back().model_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
         }
       }
+    refit_singles_from_pairs(ctx, fits, ranking, singles);
+    double single_gap = INFINITY;
+    for (std::size_t s = 0; s < singles; ++s) single_gap = std::min(single_gap, ranking[s].gap_after);
     score_ranking(ranking, fits, ctx, baseline_mse, d);
     evidence::demote_weak_pairs(ranking, singles, single_gap);
     parsimony::apply(ranking, fits, singles, ctx.problem, rng);

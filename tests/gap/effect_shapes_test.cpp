@@ -288,5 +288,24 @@ TEST(GapEffectShapes, ALateDamageIsOneEffectNotAPair) {
   EXPECT_GT(damage->fitted.at(0).params.at(2), 2.0) << "a late damage grows faster than the square";
 }
 
+// An adiabatic softening of the flow stress (two specimens; a record of the independent
+// selfcheck, `--effects strain_rate --trials 60 --seed 13`, trial 36; tests/gap/data/
+// rate_not_a_pair). The single rate fit stopped in a local minimum (factor 0.95, gap twice the
+// floor) while the pair with the damage found the rate's better fit (factor 0.86) with the
+// damage at 0, switched off: the pair was read as the cause. A pair with one member at its
+// neutral value is the other effect alone: the single is refitted from the pair's values.
+TEST(GapEffectShapes, APairWithOneMemberSwitchedOffIsTheOtherAlone) {
+  const std::string data = std::string(DTWIRE_SOURCE_DIR) + "/tests/gap/data/rate_not_a_pair/";
+  const CurveConversion si;
+  const std::vector<ForceCurve> labs = {load_force_curve(data + "lab_1.csv", si), load_force_curve(data + "lab_2.csv", si)};
+  DiagnosisOptions options;
+  options.effects = {"strain_rate", "ductile_damage", "gauge_length"};
+  const Diagnosis d = diagnose(labs, load_force_curve(data + "sim.csv", si), options);
+  EXPECT_EQ(d.cause, "strain_rate") << d.reason;
+  const auto rate = std::find_if(d.ranking.begin(), d.ranking.end(), [](const RankedEffect& r) { return r.effect == "strain_rate"; });
+  ASSERT_NE(rate, d.ranking.end());
+  EXPECT_LE(rate->gap_after, d.noise_floor);
+}
+
 }  // namespace
 }  // namespace dtwire::gap
