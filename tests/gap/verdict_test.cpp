@@ -226,6 +226,16 @@ TEST(GapVerdict, AHeldMagnitudeKeepsItsValueAndTheRestAreRefitted) {
   EXPECT_GT(held_low.weighted_sse, 2.0 * at_truth.weighted_sse);
 }
 
+// A selfcheck record of one laboratory curve (tests/gap/data/NAME: lab_1.csv, sim.csv) diagnosed
+// over `effects`.
+Diagnosis diagnose_record(const std::string& name, const std::vector<std::string>& effects) {
+  const std::string data = std::string(DTWIRE_SOURCE_DIR) + "/tests/gap/data/" + name + "/";
+  const CurveConversion si;
+  DiagnosisOptions options;
+  options.effects = effects;
+  return diagnose({load_force_curve(data + "lab_1.csv", si)}, load_force_curve(data + "sim.csv", si), options);
+}
+
 // A pair the fitted selfcheck drew (`gap selfcheck --family fitted --seed 7`, trial 83; tests/
 // gap/data/pair_at_edge, the injected parameters in the lab file's header): a damage of 0.5 at
 // the test's end, the plausible range's edge, and a frame compliance of 0.227 mm/kN, 27 x the
@@ -234,11 +244,7 @@ TEST(GapVerdict, AHeldMagnitudeKeepsItsValueAndTheRestAreRefitted) {
 // compliance left as fitted it was refused (over the whole catalogue the verdict read `none`,
 // "needs a damage_at_test_end_1 of 0.512"; over these three effects, `ductile_damage` alone).
 TEST(GapVerdict, AMagnitudeJustPastItsRangeIsTheEdgeWhenThePartnerTakesUpTheRest) {
-  const std::string data = std::string(DTWIRE_SOURCE_DIR) + "/tests/gap/data/pair_at_edge/";
-  const CurveConversion si;
-  DiagnosisOptions options;
-  options.effects = {"ductile_damage", "machine_compliance", "initial_slack"};
-  const Diagnosis d = diagnose({load_force_curve(data + "lab_1.csv", si)}, load_force_curve(data + "sim.csv", si), options);
+  const Diagnosis d = diagnose_record("pair_at_edge", {"ductile_damage", "machine_compliance", "initial_slack"});
   ASSERT_EQ(d.cause, "ductile_damage+machine_compliance") << d.reason;
   EXPECT_EQ(d.verdict, "cause");
   const RankedEffect& pair = entry(d, d.cause);
@@ -266,11 +272,7 @@ TEST(GapVerdict, AMagnitudeJustPastItsRangeIsTheEdgeWhenThePartnerTakesUpTheRest
 // 1.5, so the gauge is held at its edge too and the fit repeated: the pair is the cause. With
 // the partner's new magnitude refused instead of held, the verdict read `none`.
 TEST(GapVerdict, APartnerPushedPastItsEdgeIsHeldThereToo) {
-  const std::string data = std::string(DTWIRE_SOURCE_DIR) + "/tests/gap/data/pair_both_at_edges/";
-  const CurveConversion si;
-  DiagnosisOptions options;
-  options.effects = {"gauge_length", "grip_slip", "machine_compliance"};
-  const Diagnosis d = diagnose({load_force_curve(data + "lab_1.csv", si)}, load_force_curve(data + "sim.csv", si), options);
+  const Diagnosis d = diagnose_record("pair_both_at_edges", {"gauge_length", "grip_slip", "machine_compliance"});
   ASSERT_EQ(d.cause, "gauge_length+grip_slip") << d.reason;
   const RankedEffect& pair = entry(d, d.cause);
   EXPECT_FALSE(pair.implausible);
