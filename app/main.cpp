@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   // SIGXFSZ that kills the process (and a campaign's steps inherit this).
   std::signal(SIGXFSZ, SIG_IGN);
   // The runs a fit or a propagation starts are this binary's, whatever name it was copied to
-  // (calibrate::dtwire_executable reads the variable; one the user set wins).
+  // (calibrate::dtwire_executable takes a binary named dtwire itself, else this variable; for
+  // a copy under another name a value the user set is kept).
   std::error_code error;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", error);
   if (!error) setenv("DTWIRE_EXECUTABLE", self.c_str(), 0);
