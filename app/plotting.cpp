@@ -1,6 +1,7 @@
 #include "plotting.hpp"
 
 #include <cstdlib>
+#include <filesystem>
 
 #include "dtwire/core/error.hpp"
 #include "data_path.hpp"
@@ -21,6 +22,17 @@ std::string find_python_with_matplotlib() {
     if (std::system(probe.c_str()) == 0) return candidate;
   }
   return "";
+}
+
+void require_plotting(const std::string& script, const std::string& flag) {
+  if (find_python_with_matplotlib().empty())
+    throw InputError(flag, "plotting needs python3 with matplotlib (Debian: python3-matplotlib); none found. "
+                           "Install it, or run without the plot");
+  const std::filesystem::path path = data_path("scripts/" + script);
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(flag, "the plot script " + path.string() +
+                               " is missing (dtwire reads its scripts from share/dtwire beside its binary, or from "
+                               "$DTWIRE_DATA_DIR: set it to the source tree), or run without the plot");
 }
 
 void run_plot_script(const std::string& script, const std::vector<std::string>& arguments) {

@@ -10,6 +10,11 @@ namespace dtwire::app {
 // imports matplotlib first; empty if none does.
 std::string find_python_with_matplotlib();
 
+// Refuses, before any work, a plot that cannot be drawn: no interpreter with matplotlib, or no
+// scripts/<script> in the data folder (a binary copied out of its build or install tree). Throws
+// InputError naming `flag` (the option that asks for the plot) and how to go on.
+void require_plotting(const std::string& script, const std::string& flag);
+
 // Runs scripts/<script> with the arguments. Throws ComputationError if no interpreter has
 // matplotlib or the script fails.
 void run_plot_script(const std::string& script, const std::vector<std::string>& arguments);

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "../cli.hpp"
+#include "../plotting.hpp"
 #include "dtwire/calibrate/band_statistics.hpp"
 #include "dtwire/calibrate/propagation.hpp"
 #include "dtwire/core/error.hpp"
@@ -208,6 +209,7 @@ void linearise(PropagationResult& r, const std::vector<TagFit>& fits, const dem:
 
 int run_propagate(const PropagateOptions& o) {
   const auto start = std::chrono::steady_clock::now();
+  if (!o.no_plot) require_plotting("plot_band.py", "band.png (dem propagate draws it; --no-plot skips it)");
   dem::RunInput input = dem::read_run_input(o.file, o.set_entries);
   if (input.tool != "platter" && input.tool != "strip_tension")
     throw InputError(o.file, "dem propagate needs a punch (tool.kind = \"platter\") or a strip tension "

@@ -62,6 +62,10 @@ void print_strip_summary(const dem::RunInput& input, const dem::RunSummary& s, c
 }
 
 int run_dem_run(const RunCommandOptions& o) {
+  if (!o.plot.empty()) {
+    require_plotting("plot_punch.py", "--plot");
+    require_plotting("plot_curves.py", "--plot");
+  }
   dem::RunInput input = dem::read_run_input(o.file, o.set_entries);
   for (const std::string& entry : o.set_params) {
     const auto equals = entry.find('=');

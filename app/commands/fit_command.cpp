@@ -98,6 +98,7 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--points", options->points, "With --synthesize: at most this many rows per curve")
       ->check(CLI::Range(3, 100000));
   commands.add(command, [options] {
+    if (options->plot && options->synthesize.empty()) require_plotting("plot_fit.py", "--plot");
     if (!options->synthesize.empty()) {
       calibrate::FitReadOptions read;
       read.read_targets = false;

@@ -182,6 +182,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       throw InputError("--lab-summary", "give either --lab curves or --lab-summary figures, not both");
     if (options->sims.empty() && options->models.empty())
       throw InputError("--sim", "give the simulated curve (or --model)");
+    if (!options->plot.empty() && options->lab_summary.empty()) require_plotting("plot_gap.py", "--plot");
     std::vector<std::string> effects;
     try {
       for (const auto& name : split_names(options->effects)) {

@@ -49,6 +49,7 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
       ->capture_default_str();
   command->add_option("--plot-y", options->plot_y, "Quantity on the plot's y axis")->capture_default_str();
   commands.add(command, [options] {
+    if (!options->plot.empty()) require_plotting("plot_curves.py", "--plot");
     fem::RunOptions run;
     run.parameter_file = options->file;
     run.output_directory = options->out.empty()

@@ -288,5 +288,16 @@ case_ "unknown feature 'force_at_-420mm_N'" gap --lab-summary force_at_-420mm_N=
 case_ "force_at_45mm_N: the simulated curve reaches only 30" gap --lab-summary force_at_45mm_N=2000:100 --sim sim.csv --mode tension --json beyond.json
 total=$((total + 1))
 if [ ! -e beyond.json ]; then pass=$((pass + 1)); else echo "FAIL: beyond.json written by a refused diagnosis"; fi
+# A plot that cannot be drawn (a binary without its scripts: an empty data folder) is refused
+# before any run, not after the tables are written.
+mkdir -p no_data
+export DTWIRE_DATA_DIR=$work/no_data
+case_ "band.png (dem propagate draws it; --no-plot skips it): the plot script $work/no_data/scripts/plot_band.py is missing" dem propagate "$src/experiments/dem/strip_tension_thesis.toml" --params-fit "sw=$thesis" -o band_out
+case_ "--plot: the plot script $work/no_data/scripts/plot_curves.py is missing" run "$prm" --plot sw.png $out
+case_ "--plot: the plot script" dem run "$src/experiments/dem/strip_tension_thesis.toml" --plot strip.png -o plot_out -q
+case_ "--plot: the plot script" gap --lab sim.csv --sim sim.csv --mode tension --plot gap.png
+unset DTWIRE_DATA_DIR
+total=$((total + 1))
+if [ ! -e band_out ] && [ ! -e plot_out ]; then pass=$((pass + 1)); else echo "FAIL: a refused plot left an output folder"; fi
 echo "hostile inputs: $pass of $total cases refused as the input contract says"
 [ $pass -eq $total ]
