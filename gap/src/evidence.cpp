@@ -68,6 +68,15 @@ void demote_weak_pairs(std::vector<RankedEffect>& ranking, std::size_t first_pai
     }
 }
 
+std::string at_edge_text(const std::vector<BeyondRange>& at_edge) {
+  std::ostringstream edge;
+  edge.precision(3);
+  for (const BeyondRange& b : at_edge)
+    edge << "; its " << b.parameter << " of " << b.value << " is the edge of [" << b.plausible_lower << ", "
+         << b.plausible_upper << "] within what the data tell";
+  return edge.str();
+}
+
 void mark_implausible(std::vector<RankedEffect>& ranking, const std::vector<CurveScale>& scales,
                       const std::function<bool(std::size_t index)>& edge_fits) {
   for (std::size_t i = 0; i < ranking.size(); ++i) {
@@ -129,13 +138,7 @@ void decide(Diagnosis& d, bool testable) {
     d.cause = cause->effect;
     d.reason = cause->gap_after <= d.noise_floor ? "closes the gap to the noise floor"
                                                  : "reduces the gap most, but not to the noise floor";
-    for (const BeyondRange& b : cause->at_range_edge) {
-      std::ostringstream edge;
-      edge.precision(3);
-      edge << "; its " << b.parameter << " of " << b.value << " is the edge of [" << b.plausible_lower << ", "
-           << b.plausible_upper << "] within what the data tell";
-      d.reason += edge.str();
-    }
+    d.reason += at_edge_text(cause->at_range_edge);
     if (cause->gap_after <= d.noise_floor)
       d.reason += also_closing(d.ranking, *cause, d.noise_floor, "dAICc", [](const RankedEffect& r) { return r.aicc; },
                                &d.also_closes);

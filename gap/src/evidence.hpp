@@ -30,6 +30,10 @@ std::string also_closing(const std::vector<Candidate>& ranking, const Candidate&
   return names->empty() ? std::string() : "; so does " + others.str() + ": the laboratory's scatter does not tell them apart";
 }
 
+// The reason's addition for a cause whose magnitudes were fitted just past their ranges' edges
+// ("; its damage_at_test_end_1 of 0.512 is the edge of [0.02, 0.5] within what the data tell").
+std::string at_edge_text(const std::vector<BeyondRange>& at_edge);
+
 // Names joined with '+' in alphabetical order ("a+b" for a pair).
 std::string joined_name(std::vector<std::string> names);
 

@@ -28,16 +28,22 @@ std::vector<double> features_of(const ForceCurve& c, const std::vector<SummaryFe
 
 // Curve-mode effect: bounded least squares on the feature z-scores (the lsq engine, central
 // differences), from the plausible centre, the neutral value and two random starts; the
-// answer only if it beats the neutral value.
+// answer only if it beats the neutral value. `held_magnitude`: the magnitude kept at this value
+// (the edge rule), the other parameters fitted.
 std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& scale,
                                      const EffectSpec& effect, const std::vector<SummaryFeature>& lab,
-                                     std::mt19937& rng) {
+                                     std::mt19937& rng, std::optional<double> held_magnitude = std::nullopt) {
   // Shape parameters cannot be told apart by a few features: held at the basic form.
   auto specs = effect.parameters(scale);
   std::vector<std::size_t> free;
+  const auto hold = [](ParameterSpec& s, double value) {
+    s.lower = s.upper = s.plausible_lower = s.plausible_upper = value;
+  };
   for (std::size_t j = 0; j < specs.size(); ++j) {
     if (specs[j].shape_neutral)
-      specs[j].lower = specs[j].upper = specs[j].plausible_lower = specs[j].plausible_upper = *specs[j].shape_neutral;
+      hold(specs[j], *specs[j].shape_neutral);
+    else if (held_magnitude && j == effect.magnitude)
+      hold(specs[j], *held_magnitude);
     else
       free.push_back(j);
   }
@@ -46,7 +52,7 @@ std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& sc
   for (const auto& s : specs) centre.push_back(s.grid.empty() ? 0.5 * (s.plausible_lower + s.plausible_upper) : 0.0);
   starts.push_back(centre);
   std::vector<double> neutral = centre;
-  neutral[effect.magnitude] = effect.neutral;
+  if (!held_magnitude) neutral[effect.magnitude] = effect.neutral;
   starts.push_back(neutral);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int k = 0; k < 2; ++k) {
@@ -60,6 +66,7 @@ std::vector<double> fit_curve_effect(const ForceCurve& sim, const CurveScale& sc
     for (std::size_t k = 0; k < free.size(); ++k) p[free[k]] = specs[free[k]].from_scaled(x[k]);
     return p;
   };
+  if (free.empty()) return value_of({});
   lsq::Problem problem;
   problem.parameter_count = free.size();
   problem.residual_count = lab.size();
@@ -258,6 +265,32 @@ bool closes_enough(const SummaryCandidate& c, const SummaryDiagnosis& d) {
   return d.gap_before > d.noise_floor && c.shrink >= kSummaryMinimumShrink;
 }
 
+// A curve-mode magnitude fitted past its plausible range's edge is the edge when the features,
+// refitted with it held there, stay within what the laboratory's sds tell: the sum of squared
+// z-scores rises by at most 1, the one-sigma profile interval of one parameter with known sd
+// (Bates and Watts 1988, ch. 6), as the curve mode's rule judges its profile against the noise.
+// Model-only effects are searched within their ranges; a pair's model-only partner keeps its
+// value (no further model run: the test is then stricter than the profile). Such a candidate is
+// not implausible and keeps its fitted values; `at_range_edge` names the magnitude.
+void judge_range_edge(SummaryCandidate& c, const SummaryDiagnosis& d, const CurveScale& scale, std::mt19937& rng) {
+  if (!c.implausible) return;
+  const AppliedEffect& curve_member = c.fitted.back();
+  if (curve_member.effect->needs_model) return;
+  if (c.fitted.size() > 1 && c.model_curve.size() == 0) return;
+  for (const BeyondRange& b : c.beyond_range)
+    if (b.effect != curve_member.effect->name) return;
+  const BeyondRange& beyond = c.beyond_range.front();
+  const double edge = beyond.value > beyond.plausible_upper ? beyond.plausible_upper : beyond.plausible_lower;
+  const ForceCurve& base = c.fitted.size() == 1 ? d.sim : c.model_curve;
+  const std::vector<double> held = fit_curve_effect(base, scale, *curve_member.effect, d.lab, rng, edge);
+  const double held_gap = summary_gap(d.lab, features_of(apply_effects(base, {{curve_member.effect, held}}, scale), d.lab));
+  const double figures = static_cast<double>(d.lab.size());
+  if (figures * (held_gap * held_gap - c.gap_after * c.gap_after) > 1.0) return;
+  c.at_range_edge = c.beyond_range;
+  c.beyond_range.clear();
+  c.implausible = false;
+}
+
 bool single_qualifies(SummaryCandidate& c, const SummaryDiagnosis& d) {
   c.qualifies_but_implausible = closes_enough(c, d) && c.implausible;
   return closes_enough(c, d) && c.plausibility >= 0.5 && !c.implausible;
@@ -289,12 +322,14 @@ std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryC
   const AppliedEffect& other = fa.effect->needs_model ? fb : fa;
   SummaryCandidate c;
   std::map<std::vector<double>, std::pair<std::vector<AppliedEffect>, ForceCurve>> tried;
+  std::map<std::vector<double>, ForceCurve> model_curves;  // before the curve-mode partner
   const auto evaluate = [&](const std::vector<double>& x) {
     std::vector<AppliedEffect> effects = {{model.effect, {x[0]}}};
     if (both_model) effects.push_back({other.effect, {x[1]}});
     ForceCurve curve = oriented(runner(effects));
     validate_force_curve(curve);
     if (!both_model) {
+      model_curves[x] = curve;
       effects.push_back({other.effect, fit_curve_effect(curve, scale, *other.effect, lab, rng)});
       curve = apply_effects(curve, {effects.back()}, scale);
     }
@@ -319,6 +354,7 @@ std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryC
   if (!tried.count(s.best)) return std::nullopt;  // no point beats the singles: the pair adds nothing
   c.fitted = tried[s.best].first;
   c.curve = tried[s.best].second;
+  if (!both_model) c.model_curve = model_curves[s.best];
   std::vector<std::string> names = {fa.effect->name, fb.effect->name};
   c.effect = evidence::joined_name(names);
   return c;
@@ -419,6 +455,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     }
     c.curve = model;
     assess(c, d, scale);
+    judge_range_edge(c, d, scale, rng);
     c.qualifies = single_qualifies(c, d);
     d.ranking.push_back(c);
   }
@@ -448,6 +485,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
         if (!pair) continue;
         SummaryCandidate c = *pair;
         assess(c, d, scale);
+        judge_range_edge(c, d, scale, rng);
         if (const AppliedEffect* alone = sole_active_member(c)) {
           // Not a pair: the single effect's better point replaces its own search's answer.
           const auto single = std::find_if(d.ranking.begin(), d.ranking.begin() + static_cast<std::ptrdiff_t>(singles),
@@ -460,6 +498,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
           better.runs += c.runs;
           if (alone->effect->needs_model) better.samples.push_back({alone->params, c.features});
           assess(better, d, scale);
+          judge_range_edge(better, d, scale, rng);
           better.qualifies = single_qualifies(better, d);
           *single = better;
           continue;
@@ -517,6 +556,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     d.cause = cause->effect;
     d.reason = cause->gap_after <= d.noise_floor ? "brings the features within the laboratory scatter"
                                                  : "reduces the gap most, but not to the laboratory scatter";
+    d.reason += evidence::at_edge_text(cause->at_range_edge);
     if (cause->gap_after <= d.noise_floor)
       d.reason += evidence::also_closing(d.ranking, *cause, d.noise_floor, "AIC",
                                          [](const SummaryCandidate& c) { return c.aic; }, &d.also_closes);
@@ -579,6 +619,7 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
                        {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility}, {"implausible", c.implausible},
                        {"aic", c.aic}, {"parameters", c.parameters},
                        {"features_after", c.features}, {"fe_runs", c.runs}, {"qualifies", c.qualifies}});
+    if (!c.at_range_edge.empty()) ranking.back()["at_plausible_edge"] = beyond_range_json(c.at_range_edge);
     if (c.implausible) {
       ranking.back()["beyond_plausible_range"] = beyond_range_json(c.beyond_range);
       ranking.back()["qualifies_but_implausible"] = c.qualifies_but_implausible;
@@ -625,7 +666,8 @@ std::string summary_markdown(const SummaryDiagnosis& d) {
     << "|---|---|---|---|---|---|---|\n";
   const CurveScale scale = curve_scale(d.sim);
   for (const SummaryCandidate& c : d.ranking) {
-    s << "| " << c.effect << (c.implausible ? " (implausible)" : "") << " | ";
+    s << "| " << c.effect << (c.implausible ? " (implausible)" : !c.at_range_edge.empty() ? " (at its range's edge)" : "")
+      << " | ";
     for (const auto& [name, value] : named_params(c, scale)) s << name << " " << value << " ";
     s << "| ";
     for (double f : c.features) s << f << " ";

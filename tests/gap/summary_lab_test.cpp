@@ -346,6 +346,35 @@ TEST(GapSummaryLab, APairOnThreeFiguresOrFewerIsNeverTheCause) {
   EXPECT_EQ(two.cause.find('+'), std::string::npos) << two.cause;
 }
 
+// The edge rule in summary mode (issue 51): a rate factor of 1.16 on the stand-in's peak and
+// residual, each known to 2 %, is the edge of its range [0.85, 1.15] within what the figures tell
+// (held at 1.15 the squared z-scores rise by 0.37, under the one-sigma profile's 1), and is the
+// cause, said so; a factor of 1.20 (a rise of 5.6) stays beyond the range.
+TEST(GapSummaryLab, AMagnitudeJustPastItsRangeIsTheEdgeWithinTheFiguresSds) {
+  const ForceCurve sim = stand_in_column(1.0);
+  const auto lab_at = [&](double factor) {
+    const double peak = factor * curve_feature(sim, "peak_force_N");
+    const double residual = factor * curve_feature(sim, "residual_force_N");
+    return std::vector<SummaryFeature>{{"peak_force_N", peak, 0.02 * peak}, {"residual_force_N", residual, 0.02 * residual}};
+  };
+  SummaryOptions options;
+  options.effects = {"strain_rate"};
+  const SummaryDiagnosis near = diagnose_summary(sim, lab_at(1.16), options);
+  ASSERT_EQ(near.cause, "strain_rate") << near.reason;
+  EXPECT_NEAR(near.ranking.front().fitted.front().params.front(), 1.16, 0.005);
+  EXPECT_NE(near.reason.find("its stress_factor_1 of 1.16 is the edge of [0.85, 1.15] within what the data tell"),
+            std::string::npos)
+      << near.reason;
+  const nlohmann::json near_json = summary_json(near);
+  ASSERT_TRUE(near_json["ranking"][0].contains("at_plausible_edge")) << near_json.dump(1);
+  EXPECT_FALSE(near_json["ranking"][0]["implausible"].get<bool>());
+
+  const SummaryDiagnosis far = diagnose_summary(sim, lab_at(1.20), options);
+  EXPECT_EQ(far.cause, "none") << far.reason;
+  EXPECT_EQ(far.verdict, "beyond_plausible_range") << far.reason;
+  EXPECT_NE(far.reason.find("outside [0.85, 1.15]"), std::string::npos) << far.reason;
+}
+
 // --jobs (issue 38): the model-only searches side by side give the serial diagnosis, the runs
 // going to the runner from more than one thread at once.
 TEST(GapSummaryLab, SearchesSideBySideGiveTheSerialDiagnosis) {

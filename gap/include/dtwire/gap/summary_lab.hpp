@@ -75,6 +75,11 @@ struct SummaryCandidate {
   bool qualifies = false;
   bool implausible = false;  // a magnitude fitted outside its plausible range: never the cause
   std::vector<BeyondRange> beyond_range;  // which magnitudes, with their ranges
+  // Magnitudes fitted just past their ranges' edges that the features, refitted with them held
+  // at the edge, still allow (then not implausible; the fitted values are kept).
+  std::vector<BeyondRange> at_range_edge;
+  // A pair with a curve-mode partner: its model run's curve, before the partner is applied.
+  ForceCurve model_curve;
   bool qualifies_but_implausible = false;  // met every rule of a cause but the plausible range
 };
 
