@@ -375,6 +375,39 @@ TEST(GapSummaryLab, AMagnitudeJustPastItsRangeIsTheEdgeWithinTheFiguresSds) {
   EXPECT_NE(far.reason.find("outside [0.85, 1.15]"), std::string::npos) << far.reason;
 }
 
+// The same rule for a pair's curve-mode partner: the stand-in column with an imperfection of 3
+// (a model-only effect, searched by runs) and a rate factor of 1.155 (refitted on each run's
+// curve, fitted past 1.15) is the pair, the factor the edge within the four figures' 2 % (held at
+// 1.15 on the pair's model curve, the imperfection kept at its run); a factor of 1.165 is 1.4
+// sds of the four figures past it and stays beyond.
+TEST(GapSummaryLab, APairsCurveModePartnerJustPastItsRangeIsTheEdge) {
+  const EffectSpec& rate = find_effect("strain_rate");
+  const ForceCurve column = stand_in_column(3.0);
+  const auto lab_at = [&](double factor) {
+    const ForceCurve truth = apply_effects(column, {{&rate, {factor, 0.0, 0.0, 0.0}}}, curve_scale(column));
+    std::vector<SummaryFeature> lab;
+    for (const char* name : {"peak_force_N", "residual_force_N", "force_at_0.6mm_N", "force_at_1.4mm_N"}) {
+      const double value = curve_feature(truth, name);
+      lab.push_back({name, value, 0.02 * value});
+    }
+    return lab;
+  };
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection", "strain_rate"};
+  options.model = [](const std::vector<AppliedEffect>& effects) { return stand_in_column(effects.front().params.front()); };
+  options.model_runs = 8;
+  const SummaryDiagnosis d = diagnose_summary(stand_in_column(1.0), lab_at(1.155), options);
+  ASSERT_EQ(d.cause, "geometry_imperfection+strain_rate") << d.reason;
+  EXPECT_NE(d.reason.find("is the edge of [0.85, 1.15] within what the data tell"), std::string::npos) << d.reason;
+  const nlohmann::json json = summary_json(d);
+  ASSERT_TRUE(json["ranking"][0].contains("at_plausible_edge")) << json.dump(1);
+  const SummaryDiagnosis far = diagnose_summary(stand_in_column(1.0), lab_at(1.165), options);
+  EXPECT_NE(far.cause, "geometry_imperfection+strain_rate") << far.reason;
+  const auto pair = std::find_if(far.ranking.begin(), far.ranking.end(), [](const SummaryCandidate& c) { return c.fitted.size() == 2; });
+  ASSERT_NE(pair, far.ranking.end());
+  EXPECT_TRUE(pair->implausible);
+}
+
 // --jobs (issue 38): the model-only searches side by side give the serial diagnosis, the runs
 // going to the runner from more than one thread at once.
 TEST(GapSummaryLab, SearchesSideBySideGiveTheSerialDiagnosis) {
