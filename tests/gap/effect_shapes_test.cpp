@@ -307,5 +307,25 @@ TEST(GapEffectShapes, APairWithOneMemberSwitchedOffIsTheOtherAlone) {
   EXPECT_LE(rate->gap_after, d.noise_floor);
 }
 
+// The same record with the selfcheck's own seed for the trial (13 + 36): there the pairs found the
+// rate's better fit with a gauge of 0.889 beside it, not switched off, and the trial read
+// `gauge_length+strain_rate`; the single rate fit, started only at the factor 1 where the misfit
+// is flat in the shape parameters, stopped at 0.95 (gap 0.0082, twice the floor). Starts at the
+// factor range's edges reach the adiabatic basin (0.86, the gain lost to the end) alone.
+TEST(GapEffectShapes, AFadingRateGainIsFoundByTheSingleFitFromTheFactorsEdges) {
+  const std::string data = std::string(DTWIRE_SOURCE_DIR) + "/tests/gap/data/rate_not_a_pair/";
+  const CurveConversion si;
+  const std::vector<ForceCurve> labs = {load_force_curve(data + "lab_1.csv", si), load_force_curve(data + "lab_2.csv", si)};
+  DiagnosisOptions options;
+  options.seed = 49;
+  const Diagnosis d = diagnose(labs, load_force_curve(data + "sim.csv", si), options);
+  EXPECT_EQ(d.cause, "strain_rate") << d.reason;
+  const auto rate = std::find_if(d.ranking.begin(), d.ranking.end(), [](const RankedEffect& r) { return r.effect == "strain_rate"; });
+  ASSERT_NE(rate, d.ranking.end());
+  EXPECT_LE(rate->gap_after, d.noise_floor);
+  EXPECT_NEAR(rate->fitted.at(0).params.at(0), 0.86, 0.02);  // the stress factor at the start
+  EXPECT_GT(rate->fitted.at(0).params.at(1), 0.8);           // the gain lost by the end
+}
+
 }  // namespace
 }  // namespace dtwire::gap
