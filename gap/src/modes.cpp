@@ -336,36 +336,6 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
   };
   rescore();
 
-  // Pairs, when no single effect brings the gap down to the noise floor; pairs with a model-only
-  // effect by the bounded search (at most options.model_runs points each).
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < ranking.size(); ++i) order.push_back(i);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return ranking[a].gap_after < ranking[b].gap_after; });
-  double single_gap = INFINITY;
-  for (const RankedEffect& r : ranking) single_gap = std::min(single_gap, r.gap_after);
-  if (options.try_pairs && c.gap_before > c.noise_floor && single_gap > 1.5 * c.noise_floor) {
-    order.resize(std::min(order.size(), kCombinedPairCandidates));
-    const std::size_t first_pair = ranking.size();
-    for (std::size_t a = 0; a < order.size(); ++a)
-      for (std::size_t b = a + 1; b < order.size(); ++b) {
-        const std::vector<JointEffect> pair = {singles[order[a]], singles[order[b]]};
-        int points = 0;
-        if (pair[0].effect->needs_model || pair[1].effect->needs_model) {
-          if (options.model_runs == 0) continue;
-          fits.push_back(model_pair(cb, pair, fits[order[a]], fits[order[b]], options.model_runs, rng, &points));
-        } else {
-          const std::vector<Start> starts = {{fits[order[a]].blocks[0], fits[order[b]].blocks[0]}};
-          fits.push_back(fit_joint(cb.problems, pair, starts, 1, rng));
-        }
-        fitted_effects.push_back(pair);
-        ranking.push_back(rank_combined(cb, pair, fits.back(), mode_names, c.gap_before));
-        ranking.back().search_points = points;
-      }
-    rescore();
-    evidence::demote_weak_pairs(ranking, first_pair, single_gap);
-    parsimony::apply_joint(ranking, fits, fitted_effects, first_pair, cb.problems, cb.curves, rng);
-  }
   std::vector<CurveScale> scales;
   for (const FitProblem& problem : cb.problems) scales.push_back(problem.scale);
   // As in one mode (diagnose): a magnitude beyond its range is the edge when, held there and
@@ -401,6 +371,46 @@ Diagnosis combine(const std::vector<ModeInput>& inputs, const std::vector<ModeDi
                                          ranking[index].gap_after <=
                                      kMinimumReduction * noise_area;
   };
+  // As in one mode: the best gap of a single that can be the cause (its magnitudes within their
+  // ranges in every mode, or at an edge within what the data tell) decides whether pairs are
+  // searched and sets the bar they must clear.
+  const auto within_ranges = [&](const RankedEffect& r) {
+    for (std::size_t m = 0; m < r.fitted_by_mode.size(); ++m)
+      if (!magnitudes_beyond_range(r.fitted_by_mode[m].second, scales.at(m)).empty()) return false;
+    return r.fitted_by_mode.empty() ? magnitudes_beyond_range(r.fitted, scales.at(0)).empty() : true;
+  };
+  double single_gap = INFINITY;
+  for (std::size_t i = 0; i < ranking.size(); ++i)
+    if (ranking[i].gap_after < single_gap && (within_ranges(ranking[i]) || edge_fits(i))) single_gap = ranking[i].gap_after;
+
+  // Pairs, when no such single brings the gap down to 1.5 x the noise floor; pairs with a
+  // model-only effect by the bounded search (at most options.model_runs points each).
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < ranking.size(); ++i) order.push_back(i);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return ranking[a].gap_after < ranking[b].gap_after; });
+  if (options.try_pairs && c.gap_before > c.noise_floor && single_gap > 1.5 * c.noise_floor) {
+    order.resize(std::min(order.size(), kCombinedPairCandidates));
+    const std::size_t first_pair = ranking.size();
+    for (std::size_t a = 0; a < order.size(); ++a)
+      for (std::size_t b = a + 1; b < order.size(); ++b) {
+        const std::vector<JointEffect> pair = {singles[order[a]], singles[order[b]]};
+        int points = 0;
+        if (pair[0].effect->needs_model || pair[1].effect->needs_model) {
+          if (options.model_runs == 0) continue;
+          fits.push_back(model_pair(cb, pair, fits[order[a]], fits[order[b]], options.model_runs, rng, &points));
+        } else {
+          const std::vector<Start> starts = {{fits[order[a]].blocks[0], fits[order[b]].blocks[0]}};
+          fits.push_back(fit_joint(cb.problems, pair, starts, 1, rng));
+        }
+        fitted_effects.push_back(pair);
+        ranking.push_back(rank_combined(cb, pair, fits.back(), mode_names, c.gap_before));
+        ranking.back().search_points = points;
+      }
+    rescore();
+    evidence::demote_weak_pairs(ranking, first_pair, single_gap);
+    parsimony::apply_joint(ranking, fits, fitted_effects, first_pair, cb.problems, cb.curves, rng);
+  }
   evidence::mark_implausible(ranking, scales, edge_fits);
   std::sort(ranking.begin(), ranking.end(),
             [](const RankedEffect& a, const RankedEffect& b) { return a.score > b.score; });

@@ -464,9 +464,12 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
   // single's gap by 20 %; else its score is divided by 10. On three figures or fewer the pair's
   // two parameters leave AICc no figure to judge it by (n <= k + 1): it is searched and ranked,
   // never the cause (two effects fitted to three numbers reproduce almost any three).
+  // Only singles that can be the cause count: one that matches the figures only beyond its
+  // range neither spares the pairs their search nor sets their bar (as in curve mode).
   const std::size_t singles = d.ranking.size();
   double best_gap = INFINITY, best_aic = INFINITY;
   for (const SummaryCandidate& c : d.ranking) {
+    if (c.implausible) continue;
     best_gap = std::min(best_gap, c.gap_after);
     best_aic = std::min(best_aic, c.aic);
   }
@@ -507,6 +510,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
       }
     // A pair is judged against the best single, as the singles stand after every pair's search.
     for (std::size_t i = 0; i < singles; ++i) {
+      if (d.ranking[i].implausible) continue;
       best_gap = std::min(best_gap, d.ranking[i].gap_after);
       best_aic = std::min(best_aic, d.ranking[i].aic);
     }

@@ -266,6 +266,25 @@ TEST(GapVerdict, AMagnitudeJustPastItsRangeIsTheEdgeWhenThePartnerTakesUpTheRest
   EXPECT_TRUE(listed);
 }
 
+// A single that closes the gap only beyond its range does not stand in for a plausible pair
+// (`gap selfcheck --family fitted --seed 11 --pair-trials 16`, trial 7; tests/gap/data/
+// slip_and_rate_pair, the injected parameters in the lab file's header): a grip slip of 10 mm/kN,
+// its range's edge, with a rate factor of 0.853, 28 x the floor. The slip alone explains 96 % of
+// the gap with 50 mm/kN; that single left the gap under 1.5 x the floor, so no pair was tried and
+// the verdict read "no cause within the plausible ranges". Judged by the singles that can be the
+// cause, the pairs are searched and the slip + rate pair is the cause.
+TEST(GapVerdict, ASingleBeyondItsRangeDoesNotSpareThePairsTheirSearch) {
+  const Diagnosis d = diagnose_record("slip_and_rate_pair", {"grip_slip", "strain_rate", "ductile_damage"});
+  ASSERT_EQ(d.cause, "grip_slip+strain_rate") << d.reason;
+  const RankedEffect& slip = entry(d, "grip_slip");
+  EXPECT_TRUE(slip.implausible);
+  EXPECT_LT(slip.gap_after, 1.5 * d.noise_floor) << "the case is one where the implausible single came close";
+  const RankedEffect& pair = entry(d, d.cause);
+  EXPECT_LE(pair.gap_after, d.noise_floor);
+  for (const AppliedEffect& a : pair.fitted)
+    if (a.effect->name == "strain_rate") EXPECT_NEAR(a.params.at(0), 0.853, 0.03);
+}
+
 // Both magnitudes of a pair on their edges (`gap selfcheck --family fitted --seed 11
 // --pair-trials 16`, trial 9; tests/gap/data/pair_both_at_edges): a gauge scale of 1.5 and a grip
 // slip of 10 mm/kN. The pair fits a slip of 10.1; held at 10, the refit pushes the gauge past
