@@ -408,6 +408,36 @@ TEST(GapSummaryLab, APairsCurveModePartnerJustPastItsRangeIsTheEdge) {
   EXPECT_TRUE(pair->implausible);
 }
 
+// A single that matches the figures only beyond its range does not spare the pairs their search
+// (as in curve mode, GapVerdict.ASingleBeyondItsRangeDoesNotSpareThePairsTheirSearch): a stand-in
+// whose imperfection s raises every force by 5 % x (s - 1), at s = 3 with a rate factor of 1.15
+// (x 1.265 in all); the rate alone needs 1.265, beyond [0.85, 1.15]; the imperfection alone
+// reaches x 1.15 at its range's end 4. The pair, both within their ranges, is the cause.
+TEST(GapSummaryLab, ASingleBeyondItsRangeDoesNotSpareThePairsTheirSearch) {
+  const auto column = [](double s) {
+    ForceCurve c = stand_in_column(1.0);
+    for (double& f : c.f) f *= 1.0 + 0.05 * (s - 1.0);
+    return c;
+  };
+  const EffectSpec& rate = find_effect("strain_rate");
+  const ForceCurve truth = apply_effects(column(3.0), {{&rate, {1.15, 0.0, 0.0, 0.0}}}, curve_scale(column(3.0)));
+  std::vector<SummaryFeature> lab;
+  for (const char* name : {"peak_force_N", "residual_force_N", "force_at_0.6mm_N", "force_at_1.4mm_N"}) {
+    const double value = curve_feature(truth, name);
+    lab.push_back({name, value, 0.02 * value});
+  }
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection", "strain_rate"};
+  options.model = [&](const std::vector<AppliedEffect>& effects) { return column(effects.front().params.front()); };
+  options.model_runs = 6;
+  const SummaryDiagnosis d = diagnose_summary(column(1.0), lab, options);
+  const auto alone = std::find_if(d.ranking.begin(), d.ranking.end(), [](const SummaryCandidate& c) { return c.effect == "strain_rate"; });
+  ASSERT_NE(alone, d.ranking.end());
+  EXPECT_TRUE(alone->implausible);
+  EXPECT_LT(alone->gap_after, d.noise_floor) << "the case is one where the implausible single matches";
+  EXPECT_EQ(d.cause, "geometry_imperfection+strain_rate") << d.reason;
+}
+
 // --jobs (issue 38): the model-only searches side by side give the serial diagnosis, the runs
 // going to the runner from more than one thread at once.
 TEST(GapSummaryLab, SearchesSideBySideGiveTheSerialDiagnosis) {
