@@ -37,6 +37,15 @@ std::string scale_entry(const dem::LinkSetInput& set, dem::LinkTag tag, const st
          number_text(factor * (own == set.scales.end() ? 1.0 : own->second));
 }
 
+// The SW set's bending stiffness values that the run input can scale (a scale must name a value
+// of the set).
+std::vector<std::string> sw_bending_values(const dem::LinkSetInput& set) {
+  std::vector<std::string> values;
+  for (const char* name : {"EI_Nm2_per_deg_convention", "bending_stiffness_Nm_per_rad"})
+    if (set.parameters.count(name)) values.push_back(name);
+  return values;
+}
+
 std::string file_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::ostringstream text;
@@ -76,13 +85,16 @@ std::string dem_effect_unsupported(const std::string& effect, const dem::RunInpu
     if (strip) return "a strip tension has no initial sag";
     return base.wall_below > 0.0 ? "the input already settles slack onto a wall (boundary.wall_below_m)" : "";
   }
-  if (effect == "dt_weakening" || effect == "sw_softening") {
+  if (effect == "dt_weakening" || effect == "sw_softening" || effect == "sw_bending") {
     const dem::LinkTag tag = effect == "dt_weakening" ? dem::LinkTag::DoubleTwist : dem::LinkTag::SingleWire;
     const dem::LinkSetInput* set = link_set(base, tag);
     if (!set) return "the input has no " + dem::link_tag_name(tag) + " links";
     if (!strength_law(set->law))
-      return "scales the thesis/macro3d values (N0_N, Nult_N, EA_N); the " + dem::link_tag_name(tag) +
+      return "scales the thesis/macro3d values (N0_N, Nult_N, EA_N, EI); the " + dem::link_tag_name(tag) +
              " links use the " + set->law + " law";
+    if (effect == "sw_bending" && sw_bending_values(*set).empty())
+      return "the " + dem::link_tag_name(tag) + " set gives no bending stiffness (EI_Nm2_per_deg_convention, "
+             "bending_stiffness_Nm_per_rad)";
     return "";
   }
   if (effect == "discretisation") {
@@ -136,6 +148,11 @@ std::vector<std::string> dem_effect_entries(const dem::RunInput& base, const std
       entries.push_back(scale_entry(set, dem::LinkTag::SingleWire, "EA_N", p));
       if (set.parameters.count("axial_stiffness_N_per_m"))
         entries.push_back(scale_entry(set, dem::LinkTag::SingleWire, "axial_stiffness_N_per_m", p));
+    } else if (name == "sw_bending") {
+      // The thesis law's bending stiffness, or a macro3d set's own SI one (sw_bending_values).
+      const dem::LinkSetInput& set = *link_set(base, dem::LinkTag::SingleWire);
+      for (const std::string& value : sw_bending_values(set))
+        entries.push_back(scale_entry(set, dem::LinkTag::SingleWire, value, p));
     }
   }
   return entries;

@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -35,7 +36,15 @@ struct MeshTrial {
   std::string truth;  // the effect the diagnosis should find, or "none"
   std::string form;   // how it was put in, against what the diagnosis fits
   std::vector<std::string> set;  // `dem run --set` entries of the trial's "laboratory" run
+  // Catalogue effects that are another side of the same change (a crimp softens the wire both
+  // axially and in bending): naming one of them names the change too.
+  std::vector<std::string> also_right = {};
 };
+
+bool named(const MeshTrial& trial, const std::string& cause) {
+  return cause == trial.truth ||
+         std::find(trial.also_right.begin(), trial.also_right.end(), cause) != trial.also_right.end();
+}
 
 // Laboratory scatter of each figure, as a fraction of its value.
 constexpr double kScatter = 0.05;
@@ -57,8 +66,8 @@ std::vector<MeshTrial> mesh_trials() {
        {"boundary.pretension_strain=0.0", "boundary.wall_below_m=0.12", "dynamics.settle_s=40.0"}},
       {"dt_unravelling", "dt_weakening", "DT N0 x 0.75, Nult x 0.6, W2 x 0.6; fitted as one factor on N0, Nult, W1 and W2",
        {"links.dt.scale.N0_N=0.75", "links.dt.scale.Nult_N=0.6", "links.dt.scale.W2_J=0.6"}},
-      {"sw_crimp", "sw_softening", "SW EA x 0.15 and EI x 0.5; fitted as a factor on EA alone",
-       {"links.sw.scale.EA_N=0.15", "links.sw.scale.EI_Nm2_per_deg_convention=0.5"}},
+      {"sw_crimp", "sw_softening", "SW EA x 0.15 and EI x 0.5; fitted as a factor on EA or on EI alone",
+       {"links.sw.scale.EA_N=0.15", "links.sw.scale.EI_Nm2_per_deg_convention=0.5"}, {"sw_bending"}},
       {"none", "none", "the model itself, its figures moved by half a standard deviation", {}}};
 }
 
@@ -163,18 +172,20 @@ void add_gap_mesh_selfcheck_command(CLI::App& gap_command, CommandSet& commands)
         none_right += d.cause == "none";
       } else {
         ++singles;
-        found += d.cause == trial.truth;
+        found += named(trial, d.cause);
         spurious_pairs += d.cause.find('+') != std::string::npos;
         if (d.gap_before > d.noise_floor) {
           ++singles_above;
-          found_above += d.cause == trial.truth;
+          found_above += named(trial, d.cause);
         } else {
           below_read_none += d.cause == "none";
         }
       }
-      table << "| " << trial.name << " | " << trial.form << " | " << trial.truth << " | " << d.cause << " | "
+      std::string truth = trial.truth;
+      for (const std::string& also : trial.also_right) truth += " or " + also;
+      table << "| " << trial.name << " | " << trial.form << " | " << truth << " | " << d.cause << " | "
             << d.gap_before << " | " << shrink << " |\n";
-      trials.push_back({{"trial", trial.name}, {"truth", trial.truth}, {"form", trial.form}, {"set", trial.set},
+      trials.push_back({{"trial", trial.name}, {"truth", trial.truth}, {"also_right", trial.also_right}, {"form", trial.form}, {"set", trial.set},
                         {"diagnosed", d.cause}, {"reason", d.reason}, {"gap_before", d.gap_before}, {"shrink", shrink},
                         {"diagnosis", gap::summary_json(d)}});
     }

@@ -329,6 +329,13 @@ std::vector<EffectSpec> make_catalogue() {
       {"sw_softening", "softer single wires (crimp: each wire bent through its twists and slanted): the SW "
        "links' axial stiffness scaled",
        {"sw_stiffness_factor_1", 0.01, 1.0, 0.05, 1.0, {}, {}, {}}, 1.0},
+      // The thesis's discretisation studies (Previtali, ch. 3.4) bracket a two-node wire's bending
+      // between none (study 2, Thoeni et al. 2013) and an equivalent beam's (study 3, Li and Zhao
+      // 2018), the set's own: plausible down to 0.05, not 0, since a net without bending takes
+      // no shape of its own in the slack state (docs/dem_engine.md, the WirePM punch).
+      {"sw_bending", "single wires that bend more easily than their set says (crimp, a two-node wire's "
+       "bending between none and an equivalent beam's): the SW links' bending stiffness scaled",
+       {"sw_bending_factor_1", 0.01, 1.0, 0.05, 1.0, {}, {}, {}}, 1.0},
       {"discretisation", "three nodes per wire with bending stiffness instead of two (Previtali, ch. 3.4, "
        "study 1)",
        {"nodes_per_wire", 2.0, 3.0, 2.0, 3.0, {2.0, 3.0}, {}, {}}, 2.0,

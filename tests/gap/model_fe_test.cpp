@@ -210,7 +210,8 @@ TEST(GapModelPrm, UnsupportedEffectsAreNamedWithTheirReason) {
   EXPECT_EQ(model.unsupported.count("residual_stress"), 0u);
   EXPECT_NE(model.unsupported.at("wire_friction").find("Wire contact"), std::string::npos);
   // The panel's effects (distortion, edge sliding, ...) have no .prm form and say so.
-  for (const char* mesh_effect : {"mesh_distortion", "edge_sliding", "slack_state", "dt_weakening", "sw_softening", "discretisation"})
+  for (const char* mesh_effect :
+       {"mesh_distortion", "edge_sliding", "slack_state", "dt_weakening", "sw_softening", "sw_bending", "discretisation"})
     EXPECT_NE(model.unsupported.at(mesh_effect).find("DEM panel model"), std::string::npos) << mesh_effect;
 }
 
