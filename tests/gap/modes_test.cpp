@@ -9,6 +9,7 @@
 
 #include "../../gap/src/independent/independent_effects.hpp"
 #include "dtwire/core/error.hpp"
+#include "dtwire/gap/force_curve.hpp"
 #include "dtwire/gap/loading_mode.hpp"
 #include "dtwire/gap/modes.hpp"
 #include "dtwire/gap/synthetic_curves.hpp"
@@ -317,6 +318,35 @@ TEST(GapModes, CombinedPairMustBeatTheSingleOnHeldOutDataAcrossTheModes) {
   EXPECT_LT(pair.against_single.heldout_error_pair, kPairHeldOutRatio * pair.against_single.heldout_error_single);
   const auto j = nlohmann::json::parse(multimode_json(two).dump());
   EXPECT_TRUE(j.at("ranking")[0].contains("against_single"));
+}
+
+// The pair-search rule over several modes (issue 51): only singles that can be the cause (within
+// their ranges, or at an edge within the data) decide whether pairs are searched. The verdict
+// test's pair (tests/gap/data/slip_and_rate_pair: grip slip 10 mm/kN, its range's edge, with a
+// rate factor of 0.853) given as a tension and as a cyclic test, the two modes where grip slip acts
+// (one slip per mode, one rate for the wire). The slip alone closes the gap to under 1.5 x the
+// floor with 50 mm/kN, beyond its range; counted, it spared the pairs their search and the verdict
+// read none.
+TEST(GapModes, ASingleBeyondItsRangeDoesNotSpareThePairsTheirSearchAcrossTheModes) {
+  const std::string data = std::string(DTWIRE_SOURCE_DIR) + "/tests/gap/data/slip_and_rate_pair/";
+  const CurveConversion si;
+  const ForceCurve lab = load_force_curve(data + "lab_1.csv", si);
+  const ForceCurve sim = load_force_curve(data + "sim.csv", si);
+  std::vector<ModeInput> modes(2);
+  modes[0].mode = "tension";
+  modes[1].mode = "cyclic";
+  for (ModeInput& m : modes) {
+    m.labs = {lab};
+    m.sim = sim;
+  }
+  DiagnosisOptions options;
+  options.effects = {"grip_slip", "strain_rate", "ductile_damage"};
+  const Diagnosis d = diagnose_modes(modes, options).combined;
+  ASSERT_EQ(d.cause, "grip_slip+strain_rate") << d.reason;
+  const RankedEffect& slip = entry(d, "grip_slip");
+  EXPECT_TRUE(slip.implausible);
+  EXPECT_LT(slip.gap_after, 1.5 * d.noise_floor) << "the case is one where the implausible single came close";
+  EXPECT_LE(entry(d, d.cause).gap_after, d.noise_floor);
 }
 
 TEST(GapModes, ModeFromMetadataThenChannelsThenSign) {
