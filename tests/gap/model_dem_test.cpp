@@ -25,6 +25,27 @@ const fs::path kPunch = fs::path(DTWIRE_SOURCE_DIR) / "experiments/dem/gap_selfc
 
 gap::AppliedEffect effect(const std::string& name, double value) { return {&gap::find_effect(name), {value}}; }
 
+// The "laboratory" run's punch figures with the mesh selfcheck's 5 % scatter, diagnosed on the
+// model with `effects` (no pairs, at most `runs` DEM runs each).
+gap::SummaryDiagnosis diagnose_punch(const SimulationModel& model, const gap::ForceCurve& base,
+                                     const gap::ForceCurve& lab_curve, const std::vector<std::string>& figures,
+                                     const std::vector<std::string>& effects, std::size_t runs) {
+  std::vector<gap::SummaryFeature> lab;
+  for (const std::string& name : figures) {
+    const double value = gap::curve_feature(lab_curve, name);
+    lab.push_back({name, value, 0.05 * value});
+  }
+  gap::SummaryOptions diagnosis;
+  for (const gap::EffectSpec& e : gap::effect_catalogue())
+    if (!gap::effect_applies(e, "punch")) diagnosis.inapplicable[e.name] = "not a punch effect";
+  diagnosis.model = model.run;
+  diagnosis.model_unsupported = model.unsupported;
+  diagnosis.model_runs = runs;
+  diagnosis.effects = effects;
+  diagnosis.try_pairs = false;
+  return gap::diagnose_summary(base, lab, diagnosis);
+}
+
 class GapDemModel : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -109,20 +130,9 @@ TEST_F(GapDemModel, FindsADistortionDrawnPerLinkAndReusesItsRuns) {
   lab_options.set.push_back("links.sw.distortion_seed=11");
   lab_options.set.push_back("links.dt.distortion_seed=12");
   const gap::ForceCurve lab_curve = make_dem_model(toml, lab_options).run({});
-  std::vector<gap::SummaryFeature> lab;
-  for (const char* name : {"peak_force_N", "peak_displacement_mm"}) {
-    const double value = gap::curve_feature(lab_curve, name);
-    lab.push_back({name, value, 0.05 * value});
-  }
-  gap::SummaryOptions diagnosis;
-  for (const gap::EffectSpec& e : gap::effect_catalogue())
-    if (!gap::effect_applies(e, "punch")) diagnosis.inapplicable[e.name] = "not a punch effect";
-  diagnosis.model = model.run;
-  diagnosis.model_unsupported = model.unsupported;
-  diagnosis.model_runs = 5;
-  diagnosis.effects = {"mesh_distortion", "edge_sliding", "dt_weakening", "sw_softening"};  // slack: 30 s a run
-  diagnosis.try_pairs = false;
-  const gap::SummaryDiagnosis d = gap::diagnose_summary(base, lab, diagnosis);
+  const gap::SummaryDiagnosis d =
+      diagnose_punch(model, base, lab_curve, {"peak_force_N", "peak_displacement_mm"},
+                     {"mesh_distortion", "edge_sliding", "dt_weakening", "sw_softening"}, 5);  // slack: 30 s a run
   EXPECT_GT(d.gap_before, 2.0);
   ASSERT_EQ(d.cause, "mesh_distortion") << d.reason;
   const double lambda_u = d.ranking.front().fitted.front().params.front();
@@ -146,20 +156,9 @@ TEST_F(GapDemModel, ACrimpThatHalvesTheBendingIsReadAsTheBending) {
   DemModelOptions lab_options = options;
   lab_options.set = {"links.sw.scale.EA_N=0.15", "links.sw.scale.EI_Nm2_per_deg_convention=0.5"};
   const gap::ForceCurve lab_curve = make_dem_model(toml, lab_options).run({});
-  std::vector<gap::SummaryFeature> lab;
-  for (const char* name : {"onset_displacement_mm", "peak_force_N", "peak_displacement_mm"}) {
-    const double value = gap::curve_feature(lab_curve, name);
-    lab.push_back({name, value, 0.05 * value});  // the selfcheck's 5 % scatter
-  }
-  gap::SummaryOptions diagnosis;
-  for (const gap::EffectSpec& e : gap::effect_catalogue())
-    if (!gap::effect_applies(e, "punch")) diagnosis.inapplicable[e.name] = "not a punch effect";
-  diagnosis.model = model.run;
-  diagnosis.model_unsupported = model.unsupported;
-  diagnosis.model_runs = 4;
-  diagnosis.effects = {"sw_softening", "sw_bending"};
-  diagnosis.try_pairs = false;
-  const gap::SummaryDiagnosis d = gap::diagnose_summary(base, lab, diagnosis);
+  const gap::SummaryDiagnosis d =
+      diagnose_punch(model, base, lab_curve, {"onset_displacement_mm", "peak_force_N", "peak_displacement_mm"},
+                     {"sw_softening", "sw_bending"}, 4);
   EXPECT_GT(d.gap_before, 3.0) << "the crimp moves the figures well beyond the scatter";
   ASSERT_EQ(d.cause, "sw_bending") << d.reason;
   EXPECT_GT(d.ranking.front().shrink, 0.5);
