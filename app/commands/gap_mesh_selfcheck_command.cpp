@@ -185,9 +185,9 @@ void add_gap_mesh_selfcheck_command(CLI::App& gap_command, CommandSet& commands)
       for (const std::string& also : trial.also_right) truth += " or " + also;
       table << "| " << trial.name << " | " << trial.form << " | " << truth << " | " << d.cause << " | "
             << d.gap_before << " | " << shrink << " |\n";
-      trials.push_back({{"trial", trial.name}, {"truth", trial.truth}, {"also_right", trial.also_right}, {"form", trial.form}, {"set", trial.set},
-                        {"diagnosed", d.cause}, {"reason", d.reason}, {"gap_before", d.gap_before}, {"shrink", shrink},
-                        {"diagnosis", gap::summary_json(d)}});
+      trials.push_back({{"trial", trial.name}, {"truth", trial.truth}, {"also_right", trial.also_right},
+                        {"form", trial.form}, {"set", trial.set}, {"diagnosed", d.cause}, {"reason", d.reason},
+                        {"gap_before", d.gap_before}, {"shrink", shrink}, {"diagnosis", gap::summary_json(d)}});
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     const double top1 = singles ? static_cast<double>(found) / singles : 0.0;
