@@ -41,19 +41,28 @@ std::string thesis_value(const std::string& key, const std::string& tool, const 
 
 std::optional<FigureBand> figure_band(const std::vector<BandEvidence>& bands, const std::string& label,
                                       const std::string& tool, const std::string& key) {
+  // Rank of a band by the header's order: 4 converged sampled, 3 converged emulated, 2 sampled, 1 linearised.
   std::optional<FigureBand> found;
+  int found_rank = 0;
+  const auto offer = [&](FigureBand band, int rank) {
+    if (rank > found_rank) found = band, found_rank = rank;
+  };
   for (const BandEvidence& b : bands) {
     if (b.label != label || !b.summary.is_object() || b.summary.value("tool", "") != tool) continue;
     for (const json& f : b.summary.value("figures", json::array())) {
       if (f.value("key", "") != key) continue;
       const json sampled = f.value("sampled", json::object());
       const json linearised = f.value("linearised", json::object());
-      if (sampled.value("count", 0) > 0 && has_number(sampled, "q05") && has_number(sampled, "q95")) {
-        if (!found || !found->sampled) found = FigureBand{sampled["q05"].get<double>(), sampled["q95"].get<double>(), true, true, b.step};
-      } else if (!found && has_number(linearised, "q05") && has_number(linearised, "q95")) {
-        found = FigureBand{linearised["q05"].get<double>(), linearised["q95"].get<double>(), false,
-                           !linearised.contains("not_valid"), b.step};
-      }
+      const json emulated = f.contains("emulated") && f["emulated"].is_object() ? f["emulated"].value("band", json::object()) : json::object();
+      if (sampled.value("count", 0) > 0 && has_number(sampled, "q05") && has_number(sampled, "q95"))
+        offer(FigureBand{sampled["q05"].get<double>(), sampled["q95"].get<double>(), true, false, true, b.step},
+              f.value("converged", false) ? 4 : 2);
+      if (f.value("emulator_converged", false) && has_number(emulated, "q05") && has_number(emulated, "q95"))
+        offer(FigureBand{emulated["q05"].get<double>(), emulated["q95"].get<double>(), false, true, true, b.step}, 3);
+      if (has_number(linearised, "q05") && has_number(linearised, "q95"))
+        offer(FigureBand{linearised["q05"].get<double>(), linearised["q95"].get<double>(), false, false,
+                         !linearised.contains("not_valid"), b.step},
+              1);
     }
   }
   return found;
@@ -101,6 +110,13 @@ std::string band_markdown(const std::string& label, const std::vector<BandEviden
         const json& s = f["sampled"];
         md << number(s.value("q05", NAN)) << " - " << number(s.value("q95", NAN)) << " | sampled, " << s.value("count", 0)
            << " runs of " << samples.value("drawn", 0) << " drawn, " << (f.value("converged", false) ? "converged" : "**not converged**");
+        if (f.contains("emulated") && f["emulated"].is_object()) {
+          const json& e = f["emulated"];
+          const json band = e.value("band", json::object());
+          md << "; emulated " << number(band.value("q05", NAN)) << " - " << number(band.value("q95", NAN)) << " (Gaussian process on "
+             << e.value("training_runs", 0) << " runs, leave-one-out Q^2 " << number(e.value("loo_q_squared", NAN), 2) << ", "
+             << (f.value("emulator_converged", false) ? "converged" : "**not converged**") << ")";
+        }
         if (f.contains("linearised"))
           md << "; linearised " << number(f["linearised"].value("q05", NAN)) << " - " << number(f["linearised"].value("q95", NAN));
       } else if (f.contains("linearised") && f["linearised"].contains("not_valid")) {

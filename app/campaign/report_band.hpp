@@ -24,14 +24,16 @@ struct BandEvidence {
 struct FigureBand {
   double q05 = 0.0, q95 = 0.0;
   bool sampled = false;  // the sampled quantiles; false: the linearised value -+ 1.645 sd
+  bool emulated = false;  // the converged band of the emulator trained on the sampled runs
   bool valid = true;     // false: a linearised band that reaches 0 (propagate's "not_valid")
   std::string step;      // the `dem propagate` step that gave it
 };
 
 // The band of `key` (a headline figure of propagation_runs.hpp, e.g. "peak_force_N") for set
 // `label` from the band steps whose run is `tool` ("platter" or "strip_tension": both report a
-// displacement_at_peak_mm): a sampled band before a linearised one (it carries the response's
-// curvature); nullopt when no step bands the figure.
+// displacement_at_peak_mm): a converged sampled band, else a converged emulated one, else a
+// sampled one, else a linearised one (a sampled band carries the response's curvature);
+// nullopt when no step bands the figure.
 std::optional<FigureBand> figure_band(const std::vector<BandEvidence>& bands, const std::string& label,
                                       const std::string& tool, const std::string& key);
 

@@ -52,7 +52,7 @@ std::string band_suffix(const std::vector<BandEvidence>& bands, const std::strin
   std::ostringstream s;
   if (!band->valid) return " [5-95 %: linearised band not valid (reaches 0): sample it]";
   s << std::fixed << std::setprecision(decimals) << " [5-95 %: " << band->q05 * scale << " - " << band->q95 * scale
-    << (band->sampled ? "" : ", linearised") << "]";
+    << (band->sampled ? "" : band->emulated ? ", emulated" : ", linearised") << "]";
   return s.str();
 }
 

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -21,6 +22,7 @@
 #include "dtwire/calibrate/propagation.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/dem/run.hpp"
+#include "propagation_emulator.hpp"
 #include "propagation_outputs.hpp"
 #include "propagation_runs.hpp"
 
@@ -36,6 +38,8 @@ struct PropagateOptions {
   std::size_t batch = 10;
   double tolerance = 0.1;
   bool linearised = false;
+  bool emulator = false;
+  std::size_t emulated_sets = 10000;
   std::uint64_t seed = 1;
   unsigned jobs = 1;
   std::string cache;
@@ -229,6 +233,8 @@ int run_propagate(const PropagateOptions& o) {
   }
   if (requested == 0 && o.samples != "auto" && !o.linearised)
     throw InputError("--samples", "0 samples and no --linearised: nothing to propagate");
+  if (o.emulator && requested == 0 && o.samples != "auto")
+    throw InputError("--emulator", "the emulator learns from sampled runs: give --samples auto or a count of at least twice the parameter count");
   if (!(o.tolerance > 0.0 && o.tolerance < 1.0)) throw InputError("--band-tolerance", "expected a fraction in (0, 1)");
 
   PropagationResult r;
@@ -239,7 +245,7 @@ int run_propagate(const PropagateOptions& o) {
   r.tolerance = o.tolerance;
   r.requested = requested;
   r.max_samples = o.samples == "auto" ? o.max_samples : requested;
-  r.mode = o.samples == "auto" ? "sampled until the band converges" : requested > 0 ? "fixed sample count" : "linearised only";
+  r.mode = o.samples == "auto" ? (o.emulator ? "sampled until the emulated band converges" : "sampled until the band converges") : requested > 0 ? "fixed sample count" : "linearised only";
   r.figures = headline_figures(input.tool);
   for (const TagFit& t : fits) {
     if (!t.fit.coordinates_recorded)
@@ -259,6 +265,9 @@ int run_propagate(const PropagateOptions& o) {
     }
   }
   const std::size_t n = r.parameters.size();
+  if (o.emulator && requested > 0 && requested < 2 * n)
+    throw InputError("--samples", "--emulator learns from at least twice the parameter count of runs (" + std::to_string(2 * n) +
+                                      " for these " + std::to_string(n) + " parameters), found " + std::to_string(requested));
   r.coordinate_covariance.assign(n, std::vector<double>(n, 0.0));
   for (const TagFit& t : fits)
     for (std::size_t a = 0; a < t.fit.parameters.size(); ++a)
@@ -285,6 +294,28 @@ int run_propagate(const PropagateOptions& o) {
   if (o.linearised) {
     std::cout << "dem propagate: linearised band, one run per parameter\n" << std::flush;
     linearise(r, fits, input, runner, o.jobs, scratch);
+  }
+  // The emulator's sets: drawn once from samplers of their own (the runs' draws stay those of a
+  // call without --emulator), the same for every batch so that the band's moves are the
+  // emulator's, not the draws'.
+  std::vector<std::vector<double>> emulated_points;
+  if (o.emulator) {
+    r.emulator = true;
+    r.emulated_sets = o.emulated_sets;
+    r.emulator_minimum_training = emulator_minimum_training(r);
+    std::cout << "dem propagate: drawing the emulator's " << o.emulated_sets << " sets\n" << std::flush;
+    std::vector<std::unique_ptr<calibrate::ParameterSampler>> samplers;
+    for (const TagFit& t : fits) samplers.push_back(std::make_unique<calibrate::ParameterSampler>(t.fit, o.seed + 1000 + samplers.size()));
+    for (std::size_t s = 0; s < o.emulated_sets; ++s) {
+      std::vector<double> all(n);
+      for (std::size_t k = 0; k < fits.size(); ++k) {
+        const TagFit& t = fits[k];
+        const auto check = [&](const std::vector<double>& v) { return law_accepts(input, t, parameter_file_text(t, v), scratch); };
+        const std::vector<double> own = samplers[k]->draw(check);
+        std::copy(own.begin(), own.end(), all.begin() + static_cast<long>(t.offset));
+      }
+      emulated_points.push_back(emulator_coordinates(r, all));
+    }
   }
 
   // Sampling in batches; after each, the band's convergence (band_statistics.hpp).
@@ -320,14 +351,43 @@ int run_propagate(const PropagateOptions& o) {
       r.converged[f] = !values.empty() && calibrate::band_converged(row.figures.back(), o.tolerance);
       all_converged = all_converged && (values.empty() || r.converged[f]);
     }
+    if (o.emulator) {
+      // One emulator per figure, side by side with --jobs (each reads r only).
+      std::vector<std::future<std::optional<EmulatedFigure>>> emulators;
+      for (std::size_t f = 0; f < r.figures.size(); ++f)
+        emulators.push_back(std::async(o.jobs > 1 ? std::launch::async : std::launch::deferred,
+                                       [&r, &emulated_points, &o, f] { return emulate_figure(r, f, emulated_points, o.seed); }));
+      for (std::size_t f = 0; f < r.figures.size(); ++f) {
+        try {
+          row.emulated.push_back(emulators[f].get());
+        } catch (const ComputationError& e) {
+          row.emulated.emplace_back();
+          r.notes.push_back(std::to_string(row.count) + " sets: no emulator of " + r.figures[f].key + " (" + e.what() + ")");
+        }
+      }
+    }
     r.convergence.push_back(row);
     std::cout << "dem propagate: " << row.count << " sets drawn";
-    for (std::size_t f = 0; f < r.figures.size(); ++f)
+    for (std::size_t f = 0; f < r.figures.size(); ++f) {
       std::cout << "; " << r.figures[f].key << " 5-95 % [" << row.figures[f].q05 << ", " << row.figures[f].q95 << "]";
+      if (o.emulator && row.emulated[f])
+        std::cout << " emulated [" << row.emulated[f]->band.with_error.q05 << ", " << row.emulated[f]->band.with_error.q95
+                  << "] (Q2 " << row.emulated[f]->q_squared << ")";
+    }
     std::cout << "\n" << std::flush;
+    if (o.emulator) {
+      r.emulator_converged = emulator_converged(r, o.tolerance);
+      all_converged = true;
+      for (std::size_t f = 0; f < r.figures.size(); ++f)
+        all_converged = all_converged && (figure_values(r, f).empty() || r.emulator_converged[f]);
+    }
     if (o.samples == "auto" && all_converged) break;
   }
   if (!r.convergence.empty()) r.band = r.convergence.back().figures;
+  if (o.emulator && !r.convergence.empty()) {
+    r.emulated = r.convergence.back().emulated;
+    r.emulator_converged = emulator_converged(r, o.tolerance);
+  }
   for (const TagFit& t : fits) r.accepted += t.sampler->accepted(), r.refused += t.sampler->refused();
   std::error_code ignored;
   std::filesystem::remove(scratch, ignored);
@@ -358,6 +418,11 @@ void add_dem_propagate_command(CLI::App& dem, CommandSet& commands) {
   c->add_option("--band-tolerance", o->tolerance,
                 "Converged when 2 x the bootstrap standard error of each band end <= this fraction of the band's width (default 0.1)");
   c->add_flag("--linearised", o->linearised, "Also the linearised band J C J^T and the derivatives: one run per parameter");
+  c->add_flag("--emulator", o->emulator,
+              "Also the emulated band: a Gaussian-process emulator of each figure trained on the runs after each batch, "
+              "predicting it on --emulated-sets more sets; with --samples auto the sampling stops once the emulated band "
+              "converges");
+  c->add_option("--emulated-sets", o->emulated_sets, "Sets the emulator predicts (default 10000)")->check(CLI::Range(100, 10000000));
   c->add_option("--seed", o->seed, "Seed of the draws (default 1; recorded)");
   c->add_option("--jobs", o->jobs, "DEM runs side by side (one thread each; default 1)")->check(CLI::Range(1, 256));
   c->add_option("--cache", o->cache, "Run folders, reused by later calls (default OUT/runs)");

@@ -47,6 +47,16 @@ json statistics_json(const calibrate::BandStatistics& s) {
           {"q05_standard_error", s.q05_standard_error}, {"q95_standard_error", s.q95_standard_error}};
 }
 
+json emulated_json(const PropagationResult& r, const EmulatedFigure& e) {
+  json scales = json::object();
+  for (std::size_t i = 0; i < r.parameters.size() && i < e.length_scales.size(); ++i) scales[r.parameters[i].name] = e.length_scales[i];
+  return {{"training_runs", e.training}, {"band", statistics_json(e.band.with_error)},
+          {"band_of_means", statistics_json(e.band.of_means)}, {"loo_q_squared", e.q_squared},
+          {"loo_share_within_2sd", e.share_within_two_sd}, {"noise_sd", e.noise_sd},
+          {"emulated_quantity", e.logarithmic ? "ln figure (Q^2 and noise_sd of ln f)" : "figure"},
+          {"length_scales_in_sampled_spreads", scales}};
+}
+
 // The band of the whole curve: every successful set's y interpolated on a common x grid (0 to the
 // smallest final x of the sets), then the 5, 50 and 95 % quantiles point by point.
 Curve curve_band(const PropagationResult& r) {
@@ -100,6 +110,10 @@ void write_summary(const PropagationResult& r, const std::filesystem::path& out)
       entry["sampled"] = statistics_json(r.band[f]);
       entry["converged"] = static_cast<bool>(r.converged[f]);
     }
+    if (r.emulator) {
+      entry["emulated"] = f < r.emulated.size() && r.emulated[f] ? emulated_json(r, *r.emulated[f]) : json(nullptr);
+      entry["emulator_converged"] = f < r.emulator_converged.size() && r.emulator_converged[f];
+    }
     if (r.linearised) {
       const double sd = (*r.linearised)[f].sd;
       const double q05 = r.base_figures[f] - calibrate::kNormal95 * sd;
@@ -123,7 +137,10 @@ void write_summary(const PropagationResult& r, const std::filesystem::path& out)
   json convergence = json::array();
   for (const ConvergenceRow& row : r.convergence) {
     json by_figure = json::object();
-    for (std::size_t f = 0; f < r.figures.size(); ++f) by_figure[r.figures[f].key] = statistics_json(row.figures[f]);
+    for (std::size_t f = 0; f < r.figures.size(); ++f) {
+      by_figure[r.figures[f].key] = statistics_json(row.figures[f]);
+      if (f < row.emulated.size() && row.emulated[f]) by_figure[r.figures[f].key]["emulated"] = statistics_json(row.emulated[f]->band.with_error);
+    }
     convergence.push_back({{"sets_drawn", row.count}, {"figures", by_figure}});
   }
   std::size_t failed = 0;
@@ -139,6 +156,10 @@ void write_summary(const PropagationResult& r, const std::filesystem::path& out)
                             {"drawn", r.sample_values.size()}, {"failed", failed}, {"failures", failures},
                             {"converged", all_converged}, {"draws_accepted", r.accepted}, {"draws_refused", r.refused}}},
                {"convergence", convergence}, {"notes", r.notes},
+               {"emulator", r.emulator ? json{{"emulated_sets", r.emulated_sets}, {"minimum_training_runs", r.emulator_minimum_training},
+                                              {"convergence_rule", "each end of the emulated band moved by <= band_tolerance x its width over each of the last two batches"},
+                                              {"method", "Gaussian process, Matern 5/2 per parameter, nugget; hyperparameters by leave-one-out cross-validation"}}
+                                       : json(nullptr)},
                {"runs", {{"dem_runs", r.runs_done}, {"cache_hits", r.cache_hits}}}, {"wall_seconds", r.wall_seconds},
                {"tool_version", version_string()}};
   write_file_atomically(out / "summary.json", [&](std::ostream& os) { os << root.dump(2) << "\n"; });
@@ -165,11 +186,21 @@ void write_convergence(const PropagationResult& r, const std::filesystem::path& 
     os << "sets_drawn_1";
     for (const HeadlineFigure& f : r.figures)
       for (const char* s : {"mean", "sd", "q05", "q95", "q05_se", "q95_se"}) os << "," << f.key << "__" << s;
+    if (r.emulator)
+      for (const HeadlineFigure& f : r.figures)
+        for (const char* s : {"emulated_q05", "emulated_q95", "emulator_q2"}) os << "," << f.key << "__" << s;
     os << "\n" << std::setprecision(8);
     for (const ConvergenceRow& row : r.convergence) {
       os << row.count;
       for (const calibrate::BandStatistics& b : row.figures)
         os << "," << b.mean << "," << b.sd << "," << b.q05 << "," << b.q95 << "," << b.q05_standard_error << "," << b.q95_standard_error;
+      if (r.emulator)
+        for (std::size_t f = 0; f < r.figures.size(); ++f) {
+          if (f < row.emulated.size() && row.emulated[f])
+            os << "," << row.emulated[f]->band.with_error.q05 << "," << row.emulated[f]->band.with_error.q95 << "," << row.emulated[f]->q_squared;
+          else
+            os << ",,,";
+        }
       os << "\n";
     }
   });
@@ -234,6 +265,39 @@ void write_report(const PropagationResult& r, const std::filesystem::path& out, 
       md << "- " << r.figures[f].label << ": linearised " << fixed(lin_width, 3) << " " << r.figures[f].unit << ", sampled "
          << fixed(width, 3) << " (ratio " << fixed(width > 0 ? lin_width / width : std::nan(""), 3) << "); centre of the sampled band "
          << fixed(0.5 * (r.band[f].q05 + r.band[f].q95)) << " against the fitted set's " << fixed(r.base_figures[f]) << "\n";
+    }
+  }
+  if (r.emulator) {
+    md << "\n## Emulated band\n\nA Gaussian-process emulator of each figure (Matern 5/2 per parameter with a nugget for the "
+          "run-to-run scatter; hyperparameters by leave-one-out cross-validation) trained on the sets run, predicting the "
+          "figure on " << r.emulated_sets << " sets drawn from the same distribution; the band includes the emulator's own "
+          "error. A figure positive in every run is emulated as its logarithm (its band stays positive). Q^2: leave-one-out coefficient of determination (1: exact; 0: no better than the mean); within 2 sd: share "
+          "of the runs the emulator trained without predicts within twice its sd (about 0.95 when its error is right). "
+          "Converged: each end moved by at most " << r.tolerance << " x the width over each of the last two batches, from "
+       << r.emulator_minimum_training << " runs on.\n\n"
+       << "The last column reads the emulator as a sensitivity: the parameters with the shortest length scales (in "
+          "sampled spreads; a figure changes markedly within one length scale, and hardly over the spread beyond about "
+          "3).\n\n"
+       << "| figure | emulated 5-95 % | mean +- sd | of the means alone | runs | Q^2 | within 2 sd | noise sd | converged | shortest length scales |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|\n";
+    for (std::size_t f = 0; f < r.figures.size(); ++f) {
+      md << "| " << r.figures[f].label << " (" << r.figures[f].unit << ") | ";
+      if (f < r.emulated.size() && r.emulated[f]) {
+        const EmulatedFigure& e = *r.emulated[f];
+        md << fixed(e.band.with_error.q05) << " - " << fixed(e.band.with_error.q95) << " | " << fixed(e.band.with_error.mean) << " +- "
+           << fixed(e.band.with_error.sd, 3) << " | " << fixed(e.band.of_means.q05) << " - " << fixed(e.band.of_means.q95) << " | "
+           << e.training << " | " << fixed(e.q_squared, 3) << " | " << fixed(e.share_within_two_sd, 2) << " | " << fixed(e.noise_sd, 3)
+           << (e.logarithmic ? " (of ln f)" : "") << " | " << (f < r.emulator_converged.size() && r.emulator_converged[f] ? "yes" : "no")
+           << " | ";
+        std::vector<std::size_t> order(std::min(e.length_scales.size(), r.parameters.size()));
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return e.length_scales[a] < e.length_scales[b]; });
+        for (std::size_t k = 0; k < std::min<std::size_t>(3, order.size()); ++k)
+          md << (k ? ", " : "") << r.parameters[order[k]].name << " " << fixed(e.length_scales[order[k]], 2);
+        md << " |\n";
+      } else {
+        md << "- (fewer than " << r.emulator_minimum_training << " runs with the figure) | - | - | - | - | - | - | - | - |\n";
+      }
     }
   }
   md << "\nConvergence rule: after each batch, twice the bootstrap standard error of each band end (5 % and 95 %) "

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "dtwire/calibrate/band_statistics.hpp"
+#include "dtwire/calibrate/emulator.hpp"
 #include "dtwire/core/curve.hpp"
 #include "propagation_runs.hpp"
 
@@ -31,9 +32,20 @@ struct LinearisedFigure {
   double sd = 0.0;
 };
 
+// One figure's band from the Gaussian-process emulator trained on the runs so far
+// (propagation_emulator.hpp).
+struct EmulatedFigure {
+  std::size_t training = 0;  // runs it was trained on
+  calibrate::EmulatedBand band;
+  bool logarithmic = false;  // trained on ln f (every run's figure > 0); Q^2 and noise sd of ln f
+  double q_squared = 0.0, share_within_two_sd = 0.0, noise_sd = 0.0;
+  std::vector<double> length_scales;  // per parameter, in its sampled spread
+};
+
 struct ConvergenceRow {
   std::size_t count = 0;
   std::vector<calibrate::BandStatistics> figures;
+  std::vector<std::optional<EmulatedFigure>> emulated;  // per figure; empty without --emulator
 };
 
 struct PropagationResult {
@@ -56,6 +68,12 @@ struct PropagationResult {
   std::vector<calibrate::BandStatistics> band;  // at the last row
   std::vector<bool> converged;
   std::optional<std::vector<LinearisedFigure>> linearised;
+  // --emulator: the emulated band after the last batch, whether it converged (its ends moved by
+  // at most tolerance x its width over each of the last two batches), and the emulated sets.
+  bool emulator = false;
+  std::size_t emulated_sets = 0, emulator_minimum_training = 0;
+  std::vector<std::optional<EmulatedFigure>> emulated;
+  std::vector<bool> emulator_converged;
   std::size_t accepted = 0, refused = 0;
   int runs_done = 0, cache_hits = 0;
   double wall_seconds = 0.0;

@@ -5,7 +5,10 @@
 1. A fit whose only fitted parameter has zero variance: every drawn set is the fitted set, so the
    band is known exactly (both ends at the fitted set's figure, sd 0) and one DEM run serves all
    (the cache); that run's figures equal a plain `dem run --set-params` of the same file.
-2. Bad input exits 2 naming the file and field, or the option, before any run.
+2. The same with --emulator and --samples auto: the emulator of a constant figure is that
+   constant, so the emulated band is exactly the fitted set's figure and converges after three
+   batches (its ends do not move); the files carry its columns.
+3. Bad input exits 2 naming the file and field, or the option, before any run.
 
 usage: dem_propagate_test.py DTWIRE SOURCE_DIR WORK_DIR
 """
@@ -60,6 +63,22 @@ def main():
     direct_summary = json.load(open(os.path.join(direct, "summary.json")))
     assert direct_summary["strength_per_width_kN_per_m"] == strength["fitted_set"], (direct_summary, strength)
 
+    emulated = os.path.join(work, "emulated")
+    run = subprocess.run([dtwire, "dem", "propagate", strip, *short, "--params-fit", f"sw={fit_file}",
+                          "--samples", "auto", "--batch", "2", "--emulator", "--emulated-sets", "500", "--jobs", "2",
+                          "--no-plot", "-o", emulated], capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout + run.stderr
+    summary = json.load(open(os.path.join(emulated, "summary.json")))
+    for figure in summary["figures"]:
+        e = figure["emulated"]
+        assert e["band"]["q05"] == e["band"]["q95"] == figure["fitted_set"], figure
+        assert figure["emulator_converged"], figure
+    assert summary["samples"]["drawn"] == 8, summary["samples"]  # emulated from 4 runs on (at least 3): rows 4, 6, 8
+    assert summary["emulator"]["emulated_sets"] == 500, summary["emulator"]
+    header = open(os.path.join(emulated, "convergence.csv")).readline()
+    assert "strength_per_width_kN_per_m__emulated_q05" in header, header
+    assert "## Emulated band" in open(os.path.join(emulated, "report.md")).read()
+
     # Bad input: exit 2, the file and field (or the option) named, nothing run.
     bad = dict(fit)
     bad["parameters"] = [dict(p) for p in parameters]
@@ -72,6 +91,8 @@ def main():
         (["--params-fit", f"wall={fit_file}"], ["--params-fit", "sw, dt or selvedge"]),
         (["--params-fit", f"sw={fit_file}", "--samples", "many"], ["--samples"]),
         (["--params-fit", f"sw={fit_file}", "--samples", "0"], ["--samples", "--linearised"]),
+        (["--params-fit", f"sw={fit_file}", "--samples", "0", "--linearised", "--emulator"], ["--emulator", "sampled runs"]),
+        (["--params-fit", f"sw={fit_file}", "--samples", "1", "--emulator"], ["--samples", "twice the parameter count"]),
     ]
     for extra, words in cases:
         r = subprocess.run([dtwire, "dem", "propagate", strip, *extra, "-o", os.path.join(work, "refused")],
@@ -79,7 +100,7 @@ def main():
         assert r.returncode == 2, (extra, r.returncode, r.stderr)
         for w in words:
             assert w in r.stderr, (extra, w, r.stderr)
-    print("dem propagate: exact band of a zero-variance fit, one run for four sets, 5 refusals: ok")
+    print("dem propagate: exact band of a zero-variance fit, one run for four sets, its emulated band, 7 refusals: ok")
 
 
 if __name__ == "__main__":

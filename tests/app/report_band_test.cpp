@@ -57,6 +57,39 @@ TEST(ReportBand, TheRecommendedSetsFiguresWithTheirBandAndReferences) {
   EXPECT_NE(missing.find("(no result: blocked)"), std::string::npos) << missing;
 }
 
+// A step that trained an emulator: its band is named beside the runs'; the mesh-scale band takes
+// a converged runs' band first, then a converged emulated one, then the runs' band.
+TEST(ReportBand, AnEmulatedBandIsShownAndTakenWhereItConvergedAndTheRunsDidNot) {
+  json summary = band_summary(true);
+  json& strength = summary["figures"][0];
+  strength["converged"] = false;
+  strength["emulated"] = {{"training_runs", 50}, {"loo_q_squared", 0.993}, {"band", {{"q05", 41.4}, {"q95", 61.7}}}};
+  strength["emulator_converged"] = true;
+  const std::vector<BandEvidence> bands = {{"dem_strip_nm_sampled", "section + N-M fit", "done", summary, {}}};
+  const std::string md = band_markdown("section + N-M fit", bands, json(), json());
+  EXPECT_NE(md.find("**not converged**; emulated 41.4 - 61.7 (Gaussian process on 50 runs, leave-one-out Q^2 0.99, converged)"),
+            std::string::npos)
+      << md;
+  std::optional<FigureBand> band = figure_band(bands, "section + N-M fit", "strip_tension", "strength_per_width_kN_per_m");
+  ASSERT_TRUE(band);
+  EXPECT_TRUE(band->emulated);
+  EXPECT_EQ(band->q05, 41.4);
+
+  summary["figures"][0]["converged"] = true;  // the runs' own band converged: it is taken
+  band = figure_band({{"dem_strip_nm_sampled", "section + N-M fit", "done", summary, {}}}, "section + N-M fit", "strip_tension",
+                     "strength_per_width_kN_per_m");
+  ASSERT_TRUE(band);
+  EXPECT_TRUE(band->sampled);
+  EXPECT_EQ(band->q05, 66.9);
+
+  summary["figures"][0]["converged"] = false;  // neither converged: the runs' band
+  summary["figures"][0]["emulator_converged"] = false;
+  band = figure_band({{"dem_strip_nm_sampled", "section + N-M fit", "done", summary, {}}}, "section + N-M fit", "strip_tension",
+                     "strength_per_width_kN_per_m");
+  ASSERT_TRUE(band);
+  EXPECT_TRUE(band->sampled);
+}
+
 // The mesh-scale table's punch cells of a set carry the band of its punch propagation (sampled
 // before linearised), in the table's units (kN, m); a strip band's displacement_at_peak_mm (the
 // same key) does not reach the punch's column, and another set's figures stay bare.
