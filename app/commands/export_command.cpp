@@ -25,6 +25,7 @@ struct ExportOptions {
   std::string wire_type;
   std::size_t steps = 2000;
   std::string out;
+  bool beam_shear = false;  // every macro-element set gets beam_shear = 1 (docs/dem_laws.md, "Shear spring")
 };
 
 bool is_wirepm_set(const dem::ParameterSet& set) {
@@ -74,6 +75,18 @@ int run_export_command(const ExportOptions& o) {
     const Curve backbone = dem::read_backbone_csv(o.backbone);
     for (dem::ParameterSet& set : sets) dem::add_backbone(set, backbone);
   }
+  if (o.beam_shear)
+    for (std::size_t index = 0; index < sets.size(); ++index) {
+      dem::ParameterSet& set = sets[index];
+      if (is_wirepm_set(set) || !(set.has("EA_N") || set.has("axial_stiffness_N_per_m")))
+        throw InputError(source[index], "wire type '" + set.wire_type +
+                                            "': --beam-shear applies to macro-element sets (thesis, macro3d), and this "
+                                            "one has no bending spring");
+      if (set.has("shear_stiffness_N_per_m"))
+        throw InputError(source[index], "wire type '" + set.wire_type +
+                                            "': the set gives shear_stiffness_N_per_m; --beam-shear would replace it");
+      set.set("beam_shear", 1.0);
+    }
   // Every set is checked by the law the DEM driver would build from it (the same checks as
   // `dtwire dem driver` and the C ABI) before anything is written: a refused set leaves no export.
   for (std::size_t index = 0; index < sets.size(); ++index) {
@@ -101,6 +114,7 @@ int run_export_command(const ExportOptions& o) {
   if (!o.backbone.empty()) inputs.emplace_back(o.backbone);
   std::string command_line = "dtwire export";
   for (const std::string& file : o.params) command_line += " --params " + file;
+  if (o.beam_shear) command_line += " --beam-shear";
   const Provenance provenance = make_provenance(command_line, inputs);
   // Everything goes to a fresh folder moved into place at the end: an earlier export's files
   // (e.g. a set this parameter file no longer has) never sit beside this one's.
@@ -160,6 +174,9 @@ void add_export_command(CLI::App& root, CommandSet& commands) {
       ->capture_default_str()
       ->check(CLI::Range(1, 100000000));
   command->add_option("--out", options->out, "Output directory")->required();
+  command->add_flag("--beam-shear", options->beam_shear,
+                    "Give every macro-element set the slender beam's shear spring, 12 EI / L^3 (beam_shear = 1), "
+                    "instead of the PFC7 plugin's EA / 2.6");
   commands.add(command, [options] { return run_export_command(*options); });
 }
 

@@ -92,6 +92,12 @@ std::string pfc7_macroelement_commands(const std::vector<ParameterSet>& sets, co
     }
     s << "  range " << group.range << "\n"
       << "contact group '" << group.name << "' range " << group.range << "\n";
+    // The plugin's shear spring is k_EA / 2.6 whatever the set says (docs/dem_laws.md, "Shear spring").
+    const bool beam_shear = values.count("beam_shear") && values.at("beam_shear") == 1.0;
+    if (beam_shear || values.count("shear_stiffness_N_per_m"))
+      s << "; NOTE: this set asks for " << (beam_shear ? "the slender beam's shear spring (beam_shear = 1)"
+                                                      : "shear_stiffness_N_per_m " + number(values.at("shear_stiffness_N_per_m")))
+        << "; the plugin has no such property and uses me_ea / 2.6, so PFC7 runs this set with the plugin's spring\n";
     ++written;
   }
   if (written == 0) throw std::invalid_argument("no thesis macro-element set (single_wire or double_twist with every plugin property)");

@@ -15,14 +15,14 @@ const char* const kBondGeometry[] = {"reference_length_m"};
 const char* const kThesis[] = {"D_m", "EA_N", "EI_Nm2_per_deg_convention", "N0_N", "Nult_N", "Nc_N",
                                "m_f", "beta_f", "k_F", "k_M", "m_g", "alpha_g", "beta_g",
                                "W1_J", "W2_J", "alpha_d", "slide_a", "slide_b", "rk_tolerance",
-                               "damage_scales_forces", "break_plastic_strain"};
+                               "damage_scales_forces", "break_plastic_strain", "shear_stiffness_N_per_m",
+                               "beam_shear"};
 
 // macro3d reads its own SI names and also a thesis set (converted on construction).
 const char* const kMacro3dOwn[] = {"k_F_per_m", "k_M_per_rad", "axial_stiffness_N_per_m",
-                                   "bending_stiffness_Nm_per_rad", "shear_stiffness_N_per_m",
-                                   "torsion_stiffness_Nm_per_rad", "rotation_flow_scale",
-                                   "damage_moment_work_weight", "shear_strength_N", "implicit_return",
-                                   "bending_axial_coupling", "moment_hardening_ratio"};
+                                   "bending_stiffness_Nm_per_rad", "torsion_stiffness_Nm_per_rad",
+                                   "rotation_flow_scale", "damage_moment_work_weight", "shear_strength_N",
+                                   "implicit_return", "bending_axial_coupling", "moment_hardening_ratio"};
 
 const char* const kParallelBond[] = {"E_Pa", "poisson_1", "G_Pa", "diameter_m", "length_m",
                                      "tensile_strength_Pa", "shear_strength_Pa"};

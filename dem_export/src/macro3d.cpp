@@ -67,9 +67,7 @@ Macro3dLaw::Macro3dLaw(const ParameterMap& given) {
 
   stiffness_.axial = positive_parameter(p, law_name, "axial_stiffness_N_per_m");
   stiffness_.moment = positive_parameter(p, law_name, "bending_stiffness_Nm_per_rad");
-  shear_stiffness_ = detail::checked(
-      law_name, "shear_stiffness_N_per_m",
-      optional_parameter(p, "shear_stiffness_N_per_m", stiffness_.axial / (2.0 * (1.0 + poisson_ratio))));
+  shear_stiffness_ = detail::read_shear_stiffness(p, given, law_name, stiffness_.axial, stiffness_.moment);
   torsion_stiffness_ = detail::checked(
       law_name, "torsion_stiffness_Nm_per_rad",
       optional_parameter(p, "torsion_stiffness_Nm_per_rad", stiffness_.moment / (1.0 + poisson_ratio)));

@@ -47,9 +47,11 @@ ThesisMacroElement::ThesisMacroElement(const ParameterMap& p) {
   stiffness_.axial = positive_parameter(p, law_name, "EA_N");
   stiffness_.moment = positive_parameter(p, law_name, "EI_Nm2_per_deg_convention");
   // Plugin: kEA_shear = kEA / (2 (1 + 0.3)); torque per degree = kEA_shear / A * 2 I with
-  // I = EI A / EA, i.e. 2 EI kEA_shear / EA.
-  shear_stiffness_ = stiffness_.axial / (2.0 * (1.0 + poisson_ratio));
-  torsion_stiffness_ = 2.0 * stiffness_.moment * shear_stiffness_ / stiffness_.axial;
+  // I = EI A / EA, i.e. 2 EI kEA_shear / EA. The shear spring may be given or the beam's instead
+  // (read_shear_stiffness); the torsion stays the plugin's.
+  const double plugin_shear = stiffness_.axial / (2.0 * (1.0 + poisson_ratio));
+  shear_stiffness_ = detail::read_shear_stiffness(p, p, law_name, stiffness_.axial, stiffness_.moment * degrees_per_radian);
+  torsion_stiffness_ = 2.0 * stiffness_.moment * plugin_shear / stiffness_.axial;
   plastic_.Ny = surface_.N0;
 }
 

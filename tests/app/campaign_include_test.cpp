@@ -111,9 +111,12 @@ TEST(CampaignSplit, TheStudyRunsEveryDefaultStepAsTheDefaultDoes) {
       if (const std::string label = label_of_command(step.command); !label.empty()) found.insert(label);
     return found;
   };
-  EXPECT_EQ(labels(main), (std::set<std::string>{"thesis published", "section + N-M fit"}));
+  // The recommended and published sets, each also with the beam's shear spring (its strips).
+  EXPECT_EQ(labels(main), (std::set<std::string>{"thesis published", "section + N-M fit", "thesis published, beam shear spring",
+                                                 "section + N-M fit, beam shear spring"}));
   EXPECT_EQ(labels(study), (std::set<std::string>{"thesis published", "WirePM published", "straight-wire fit", "as-made fit",
-                                                  "section fit", "section + N-M fit"}));
+                                                  "section fit", "section + N-M fit", "thesis published, beam shear spring",
+                                                  "section + N-M fit, beam shear spring"}));
   // Its one DT fit and the SW fit of the recommended set; the export of every format.
   const auto has = [&](const Campaign& c, const std::string& name) {
     return std::any_of(c.steps.begin(), c.steps.end(), [&](const CampaignStep& s) { return s.name == name; });

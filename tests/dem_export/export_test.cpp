@@ -177,6 +177,22 @@ TEST(Pfc7Commands, ThesisSetsReadBackToEveryValueUnderThePluginsNames) {
   EXPECT_NEAR(commands.at(2).at("rgap"), 0.04 - 2.7e-3, 1e-15);
 }
 
+// The plugin has no shear-spring property: a set asking for another spring is written with the
+// plugin's properties and a note that PFC7 runs it with me_ea / 2.6 (docs/dem_laws.md, "Shear spring").
+TEST(Pfc7Commands, ASetWithTheBeamsShearSpringIsWrittenWithANoteThatThePluginCannotCarryIt) {
+  std::vector<ParameterSet> sets = read_parameter_file(kData + "macroelement_thesis_params.json");
+  for (ParameterSet& set : sets) set.set("beam_shear", 1.0);
+  const std::string text = pfc7_macroelement_commands(sets, make_provenance("test"));
+  std::size_t notes = 0;
+  for (std::size_t at = text.find("NOTE: this set asks for the slender beam's shear spring"); at != std::string::npos;
+       at = text.find("NOTE: this set asks for the slender beam's shear spring", at + 1))
+    ++notes;
+  EXPECT_EQ(notes, 2u);
+  const auto commands = read_pfc7_macroelement_commands(text);
+  EXPECT_EQ(commands.at(1).at("me_ea"), 1.6e7);
+  EXPECT_EQ(commands.at(1).count("beam_shear"), 0u);
+}
+
 TEST(Pfc7Commands, OtherLawsAreLeftOutAndNoThesisSetIsAnError) {
   ParameterSet wirepm;
   wirepm.wire_type = "single_wire";

@@ -11,7 +11,8 @@
 // Parameters (SI, radians):
 //   D_m, axial_stiffness_N_per_m, bending_stiffness_Nm_per_rad, N0_N, Nult_N, Nc_N, m_f, beta_f,
 //   k_F_per_m, k_M_per_rad, m_g, alpha_g, beta_g, W1_J, W2_J, alpha_d
-//   optional: shear_stiffness_N_per_m (default axial / (2 (1 + 0.3))),
+//   optional: shear_stiffness_N_per_m (default axial / (2 (1 + 0.3))) or beam_shear (1: the
+//             slender beam's 12 bending / L^2 with L the bond's reference_length_m; default 0),
 //             torsion_stiffness_Nm_per_rad (default bending / (1 + 0.3)),
 //             rotation_flow_scale (default 1), damage_moment_work_weight (default 1),
 //             shear_strength_N (resultant shear force that breaks the bond; default none),

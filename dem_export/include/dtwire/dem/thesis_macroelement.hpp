@@ -14,7 +14,9 @@
 //   beyond W1 the axial force and moment are d times the effective ones, default; 0: as the PFC7
 //   plugin, which tracks d but transmits the undamaged forces until the bond is deleted at d <= 0.01),
 //   break_plastic_strain (0: off, default; else the bond also breaks when |u_p| reaches it times
-//   reference_length_m, a wire's ductility).
+//   reference_length_m, a wire's ductility), shear_stiffness_N_per_m (default the plugin's
+//   EA_N / 2.6) or beam_shear (1: the slender beam's 12 EI / L^3 from the bending spring and
+//   reference_length_m; default 0).
 #include "dtwire/dem/contact_law.hpp"
 #include "dtwire/dem/detail/macroelement_damage.hpp"
 #include "dtwire/dem/detail/macroelement_integrator.hpp"
