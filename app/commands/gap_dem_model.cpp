@@ -97,6 +97,21 @@ std::string dem_effect_unsupported(const std::string& effect, const dem::RunInpu
              "bending_stiffness_Nm_per_rad)";
     return "";
   }
+  if (effect == "beam_shear") {
+    bool all_beam = true;
+    for (const dem::LinkTag tag : {dem::LinkTag::SingleWire, dem::LinkTag::DoubleTwist}) {
+      const dem::LinkSetInput* set = link_set(base, tag);
+      if (!set) return "the input has no " + dem::link_tag_name(tag) + " links";
+      if (!strength_law(set->law))
+        return "sets the macro-element's shear spring (thesis, macro3d); the " + dem::link_tag_name(tag) +
+               " links use the " + set->law + " law";
+      if (set->parameters.count("shear_stiffness_N_per_m"))
+        return "the " + dem::link_tag_name(tag) + " set gives its own shear_stiffness_N_per_m";
+      const auto beam = set->parameters.find("beam_shear");
+      all_beam = all_beam && beam != set->parameters.end() && beam->second == 1.0;
+    }
+    return all_beam ? "the input's sets already have the beam's shear spring (beam_shear = 1)" : "";
+  }
   if (effect == "discretisation") {
     if (base.mesh.nodes_per_wire == 3) return "the input already has three nodes per wire (mesh.nodes_per_wire = 3)";
     for (const dem::LinkTag tag : {dem::LinkTag::SingleWire, dem::LinkTag::DoubleTwist})
@@ -127,6 +142,11 @@ std::vector<std::string> dem_effect_entries(const dem::RunInput& base, const std
     } else if (name == "discretisation") {
       // Searched on {2, 3}: 2 is the input's own two-node mesh.
       if (p >= 2.5) entries.push_back("mesh.nodes_per_wire=3");
+    } else if (name == "beam_shear") {
+      // Searched on {0, 1}: 0 is the input's own spring.
+      if (p >= 0.5)
+        for (const dem::LinkTag tag : {dem::LinkTag::SingleWire, dem::LinkTag::DoubleTwist})
+          entries.push_back("links." + dem::link_tag_name(tag) + ".parameters.beam_shear=1");
     } else if (name == "slack_state") {
       if (p <= 0.0) continue;
       entries.push_back("boundary.pretension_strain=0.0");

@@ -336,6 +336,11 @@ std::vector<EffectSpec> make_catalogue() {
       {"sw_bending", "single wires that bend more easily than their set says (crimp, a two-node wire's "
        "bending between none and an equivalent beam's): the SW links' bending stiffness scaled",
        {"sw_bending_factor_1", 0.01, 1.0, 0.05, 1.0, {}, {}, {}}, 1.0},
+      // The bonds' shear spring: the PFC7 plugin's EA / 2.6 (a short bar's) or the slender beam's
+      // 12 EI / L^3 (Przemieniecki 1968), both in use (docs/dem_laws.md, "Shear spring").
+      {"beam_shear", "the bonds' shear spring the slender wire's 12 EI / L^3 (each wire bends between its nodes) "
+       "instead of the PFC7 plugin's EA / 2.6: 0 the plugin's, 1 the beam's",
+       {"beam_shear_1", 0.0, 1.0, 0.0, 1.0, {0.0, 1.0}, {}, {}}, 0.0},
       {"discretisation", "three nodes per wire with bending stiffness instead of two (Previtali, ch. 3.4, "
        "study 1)",
        {"nodes_per_wire", 2.0, 3.0, 2.0, 3.0, {2.0, 3.0}, {}, {}}, 2.0,

@@ -63,7 +63,7 @@ TEST_F(GapDemModel, EachEffectIsSwitchedOnThroughTheRunInput) {
   const auto entries = dem_effect_entries(
       base, {effect("mesh_distortion", 0.1), effect("edge_sliding", 1.0), effect("slack_state", 80.0),
              effect("dt_weakening", 0.6), effect("sw_softening", 0.2), effect("sw_bending", 0.4),
-             effect("discretisation", 3.0)});
+             effect("discretisation", 3.0), effect("beam_shear", 1.0)});
   const dem::RunInput edited = dem::read_run_input(toml, entries);  // the entries are valid input
   EXPECT_EQ(base.mesh.nodes_per_wire, 2);
   EXPECT_EQ(edited.mesh.nodes_per_wire, 3);
@@ -90,11 +90,14 @@ TEST_F(GapDemModel, EachEffectIsSwitchedOnThroughTheRunInput) {
   EXPECT_NEAR(sw.at("EI_Nm2_per_deg_convention"), 0.4 * ei, 1e-9 * ei);
   EXPECT_DOUBLE_EQ(sw.at("N0_N"), sw_base.at("N0_N"));
   EXPECT_DOUBLE_EQ(dt.at("EI_Nm2_per_deg_convention"), dt_base.at("EI_Nm2_per_deg_convention"));
+  EXPECT_EQ(sw.count("beam_shear"), 1u);
+  EXPECT_EQ(base.link_sets.at(dem::LinkTag::SingleWire).parameters.count("beam_shear"), 0u);
+  EXPECT_DOUBLE_EQ(dt.at("beam_shear"), 1.0);
   // Neutral values change nothing.
   EXPECT_TRUE(dem_effect_entries(base, {effect("mesh_distortion", 0.0), effect("edge_sliding", 0.0),
                                         effect("slack_state", 0.0), effect("dt_weakening", 1.0),
                                         effect("sw_softening", 1.0), effect("sw_bending", 1.0),
-                                        effect("discretisation", 2.0)}).empty());
+                                        effect("discretisation", 2.0), effect("beam_shear", 0.0)}).empty());
 }
 
 TEST_F(GapDemModel, AnEffectTheInputCannotShowIsNamedWithTheReason) {
@@ -110,6 +113,11 @@ TEST_F(GapDemModel, AnEffectTheInputCannotShowIsNamedWithTheReason) {
   EXPECT_NE(dem_effect_unsupported("discretisation", wirepm).find("hinge"), std::string::npos);
   EXPECT_NE(dem_effect_unsupported("sw_bending", wirepm).find("wirepm"), std::string::npos);
   EXPECT_EQ(dem_effect_unsupported("sw_bending", punch), "");
+  EXPECT_EQ(dem_effect_unsupported("beam_shear", punch), "");
+  EXPECT_NE(dem_effect_unsupported("beam_shear", wirepm).find("wirepm"), std::string::npos);
+  const dem::RunInput beam =
+      read_dem_model(toml, {{"links.sw.parameters.beam_shear=1", "links.dt.parameters.beam_shear=1"}, {}, {}});
+  EXPECT_NE(dem_effect_unsupported("beam_shear", beam).find("already"), std::string::npos);
   const dem::RunInput strip =
       read_dem_model(fs::path(DTWIRE_SOURCE_DIR) / "experiments/dem/strip_tension_thesis.toml", {});
   EXPECT_NE(dem_effect_unsupported("slack_state", strip).find("strip"), std::string::npos);

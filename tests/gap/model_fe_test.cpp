@@ -211,7 +211,8 @@ TEST(GapModelPrm, UnsupportedEffectsAreNamedWithTheirReason) {
   EXPECT_NE(model.unsupported.at("wire_friction").find("Wire contact"), std::string::npos);
   // The panel's effects (distortion, edge sliding, ...) have no .prm form and say so.
   for (const char* mesh_effect :
-       {"mesh_distortion", "edge_sliding", "slack_state", "dt_weakening", "sw_softening", "sw_bending", "discretisation"})
+       {"mesh_distortion", "edge_sliding", "slack_state", "dt_weakening", "sw_softening", "sw_bending", "beam_shear",
+        "discretisation"})
     EXPECT_NE(model.unsupported.at(mesh_effect).find("DEM panel model"), std::string::npos) << mesh_effect;
 }
 
