@@ -8,8 +8,12 @@
 
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/results_store.hpp"
+#include "dtwire/dem/contact_law.hpp"
+#include "dtwire/dem/export_params.hpp"
 
 namespace {
+
+namespace dem = dtwire::dem;
 
 const std::string kData = std::string(DTWIRE_SOURCE_DIR) + "/experiments/data/";
 
@@ -147,6 +151,33 @@ TEST(DemCli, ExportWritesTablesScriptAndTheCAbiBundle) {
   r = run_in(dir, "export --params '" + kData + "macroelement_thesis_params.json' --wire-type gabion --out thesis");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.output.find("gabion"), std::string::npos) << r.output;
+}
+
+// `export --beam-shear`: the files carry beam_shear = 1, and a law built from them as a DEM code
+// builds it (read_parameter_file, make_contact_law) has the slender beam's shear spring 12 k_b / L^2
+// (docs/dem_laws.md, "Shear spring"); a WirePM set is refused with exit 2 and nothing written.
+TEST(DemCli, ExportWithTheBeamsShearSpringWritesItIntoTheFilesAsTheLawsReadThem) {
+  const auto dir = scratch("export_beam_shear");
+  Outcome r = run_in(dir, "export --params '" + kData + "macroelement_thesis_params.json' --beam-shear --out beam");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* type : {"single_wire", "double_twist"}) {
+    const std::vector<dem::ParameterSet> sets = dem::read_parameter_file(dir / "beam" / (std::string(type) + "_parameters.json"));
+    ASSERT_EQ(sets.size(), 1u) << type;
+    const dem::ParameterMap values = sets.front().map();
+    ASSERT_EQ(values.at("beam_shear"), 1.0) << type;
+    const auto law = dem::make_contact_law("thesis", values);
+    dem::Vector6 increment = dem::Vector6::Zero();
+    increment[1] = 1e-6;  // a shear displacement across the bond [m]
+    law->update(increment);
+    const double bending_per_radian = values.at("EI_Nm2_per_deg_convention") * 57.295779513082320876798154814105;
+    const double length = values.at("reference_length_m");
+    EXPECT_NEAR(law->forces()[1] / 1e-6, 12.0 * bending_per_radian / (length * length),
+                1e-9 * 12.0 * bending_per_radian / (length * length)) << type;
+  }
+  r = run_in(dir, "export --params '" + kData + "wirepm_sw_2.7mm.json' --beam-shear --out wirepm");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--beam-shear applies to macro-element sets"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "wirepm"));
 }
 
 }  // namespace

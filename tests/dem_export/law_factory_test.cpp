@@ -75,8 +75,10 @@ TEST(LawSchema, AcceptsEveryNameThePublishedSetsAndTheLawsRead) {
   EXPECT_FALSE(is_law_parameter("thesis", "backbone_1_stress_Pa"));
   // Every name of the schema is one the law takes without complaint (no stale entry).
   ParameterMap thesis = test::thesis_parameters("single_wire");
-  for (const std::string& name : law_parameter_names("thesis"))  // rk_tolerance and the damage mode
-    if (!thesis.count(name)) thesis[name] = name == "damage_scales_forces" ? 0.0 : 1e-6;  // the set lacks
+  // rk_tolerance, the damage mode and the shear spring, which the set lacks (the switches at a value
+  // they take: beam_shear 0 with a given shear_stiffness_N_per_m).
+  for (const std::string& name : law_parameter_names("thesis"))
+    if (!thesis.count(name)) thesis[name] = name == "damage_scales_forces" || name == "beam_shear" ? 0.0 : 1e-6;
   EXPECT_NO_THROW(make_contact_law("thesis", thesis));
   EXPECT_THROW(law_parameter_names("thesys"), std::invalid_argument);
 }
