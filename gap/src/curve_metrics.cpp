@@ -11,30 +11,63 @@ double travel_tolerance(const std::vector<double>& u) {
   return 1e-3 * (*hi - *lo);
 }
 
-struct MonotoneBranch {
-  std::vector<double> u;  // non-decreasing
-  std::vector<double> f;
+// A branch of the model with u non-decreasing: a view of the model's own points where they are
+// (a loading branch that never steps back, the common case), else of a copy made monotone.
+struct BranchView {
+  const double* u = nullptr;
+  const double* f = nullptr;
+  std::size_t n = 0;
 };
 
-std::vector<MonotoneBranch> monotone_branches(const ForceCurve& model) {
-  std::vector<MonotoneBranch> out;
-  for (const Branch& b : split_monotone_branches(model.u, travel_tolerance(model.u))) {
-    MonotoneBranch m;
+struct MonotoneCopy {
+  std::vector<double> u, f;
+};
+
+// The model's branches as views (into the model or into `copies`, whose storage is reused: the
+// fits evaluate this for every trial curve, and allocating and copying cost more than the
+// interpolation).
+void monotone_branches(const ForceCurve& model, std::vector<MonotoneCopy>& copies, std::vector<BranchView>& out) {
+  const std::vector<Branch> branches = split_monotone_branches(model.u, travel_tolerance(model.u));
+  copies.resize(branches.size());
+  out.assign(branches.size(), BranchView{});
+  for (std::size_t k = 0; k < branches.size(); ++k) {
+    const Branch& b = branches[k];
     const bool loading = b.direction == BranchDirection::Loading;
+    if (loading && std::is_sorted(model.u.begin() + static_cast<std::ptrdiff_t>(b.begin),
+                                  model.u.begin() + static_cast<std::ptrdiff_t>(b.end))) {
+      out[k] = {model.u.data() + b.begin, model.f.data() + b.begin, b.end - b.begin};
+      continue;
+    }
+    MonotoneCopy& m = copies[k];
+    m.u.clear();
+    m.f.clear();
     for (std::size_t i = b.begin; i < b.end; ++i) {
       const double u = loading ? model.u[i] : -model.u[i];
       m.u.push_back(m.u.empty() ? u : std::max(u, m.u.back()));
       m.f.push_back(model.f[i]);
     }
-    if (!loading)
-      for (double& u : m.u) u = -u;
     if (!loading) {
+      for (double& u : m.u) u = -u;
       std::reverse(m.u.begin(), m.u.end());
       std::reverse(m.f.begin(), m.f.end());
     }
-    out.push_back(std::move(m));
+    out[k] = {m.u.data(), m.f.data(), m.u.size()};
   }
-  return out;
+}
+
+// interpolate_clamped on a view, with the search started at `cursor` (the index of the first u
+// above the previous, smaller query): the lab's points come in order along a branch, so the walk
+// is short.
+double interpolate_from(const BranchView& b, double xq, std::size_t& cursor) {
+  if (xq <= b.u[0]) return b.f[0];
+  if (xq >= b.u[b.n - 1]) return b.f[b.n - 1];
+  if (cursor == 0 || cursor >= b.n || b.u[cursor - 1] > xq)
+    cursor = static_cast<std::size_t>(std::upper_bound(b.u, b.u + b.n, xq) - b.u);
+  else
+    while (b.u[cursor] <= xq) ++cursor;
+  const std::size_t i = cursor;
+  const double t = (xq - b.u[i - 1]) / (b.u[i] - b.u[i - 1]);
+  return b.f[i - 1] + t * (b.f[i] - b.f[i - 1]);
 }
 
 }  // namespace
@@ -73,11 +106,18 @@ Comparison make_comparison(const ForceCurve& lab) {
 }
 
 std::vector<double> model_forces_at_lab(const ForceCurve& model, const Comparison& comparison) {
-  const auto branches = monotone_branches(model);
+  thread_local std::vector<MonotoneCopy> copies;
+  thread_local std::vector<BranchView> branches;
+  monotone_branches(model, copies, branches);
   std::vector<double> out(comparison.lab.size());
+  std::size_t branch = branches.size(), cursor = 0;
   for (std::size_t i = 0; i < out.size(); ++i) {
     const std::size_t b = std::min(comparison.branch_of[i], branches.size() - 1);
-    out[i] = interpolate_clamped(branches[b].u, branches[b].f, comparison.lab.u[i]);
+    if (b != branch) {
+      branch = b;
+      cursor = 0;
+    }
+    out[i] = interpolate_from(branches[b], comparison.lab.u[i], cursor);
   }
   return out;
 }

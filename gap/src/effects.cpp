@@ -141,7 +141,7 @@ std::vector<EffectSpec> make_catalogue() {
       for (std::size_t i = 0; i < sim.size(); ++i) {
         reached = std::max(reached, sim.u[i] * s.damage_clock);
         const double x = std::clamp((reached - onset) / span, 0.0, 1.0);
-        out.f[i] = sim.f[i] * (1.0 - p[1] * std::pow(x, growth));
+        if (x > 0.0) out.f[i] = sim.f[i] * (1.0 - p[1] * std::pow(x, growth));  // x = 0: undamaged
       }
       return out;
     };
@@ -228,14 +228,22 @@ std::vector<EffectSpec> make_catalogue() {
     e.apply = [](const ForceCurve& sim, const std::vector<double>& p, const CurveScale&) {
       const double onset = p[0], rate = p[1] * kMmPerKn, step = p[2] * kMm;
       const double spread = p.size() > 3 ? p[3] : 0.0;
-      return add_displacement(sim, [=](double, double fmax) {
-        // E[(F - F_s,i)+] for F_s,i ~ N(F_s, w^2) is w (z Phi(z) + phi(z)), z = (F - F_s) / w;
-        // counted from the unloaded grip (its value at F = 0 taken off), so nothing slips at rest.
-        const auto mean_excess = [=](double f) {
-          const double z = (f - onset) / spread;
-          return spread * (z * 0.5 * std::erfc(-z / std::sqrt(2.0)) + std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI));
-        };
-        const double excess = spread > 0 ? mean_excess(std::max(fmax, 0.0)) - mean_excess(0.0) : std::max(0.0, fmax - onset);
+      // E[(F - F_s,i)+] for F_s,i ~ N(F_s, w^2) is w (z Phi(z) + phi(z)), z = (F - F_s) / w;
+      // counted from the unloaded grip (its value at F = 0 taken off), so nothing slips at rest.
+      const auto mean_excess = [=](double f) {
+        const double z = (f - onset) / spread;
+        return spread * (z * 0.5 * std::erfc(-z / std::sqrt(2.0)) + std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI));
+      };
+      const double at_rest = spread > 0 ? mean_excess(0.0) : 0.0;
+      // The largest force so far repeats from the peak on: its excess is kept (the fits apply
+      // this to every trial curve).
+      double last_fmax = NAN, last_excess = 0.0;
+      return add_displacement(sim, [=](double, double fmax) mutable {
+        if (!(fmax == last_fmax)) {
+          last_excess = spread > 0 ? mean_excess(std::max(fmax, 0.0)) - at_rest : std::max(0.0, fmax - onset);
+          last_fmax = fmax;
+        }
+        const double excess = last_excess;
         // The steps centred on the mean slip line (rounded, not floored): onset, rate and spread
         // mean the same for every step, so the step's grid search refits them from the smooth
         // fit's values in the right phase (floored, the smooth fit lies half a step off, and a
