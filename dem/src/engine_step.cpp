@@ -467,10 +467,28 @@ double Engine::unbalanced_force_ratio() const {
     unbalanced += f.norm();
     ++free_nodes;
   }
-  for (const LinkLoad& load : s.link_load) link_force += load.force_on_a.norm();
+  // The interactions are YADE's: every link and every contact of a node or a link with a tool
+  // or roller (a net lying on a wall carries its weight through the wall's contacts, not its links).
+  double interaction_force = 0.0;
+  std::size_t interactions = s.link_load.size();
+  for (const LinkLoad& load : s.link_load) interaction_force += load.force_on_a.norm();
+  for (const ToolState& t : s.tools) {
+    if (t.parked) continue;
+    for (std::size_t i = 0; i < t.touching.size(); ++i)
+      if (t.touching[i]) {
+        interaction_force += t.force_on_node[i].norm();
+        ++interactions;
+      }
+  }
+  for (const RollerState& r : s.rollers)
+    for (std::size_t l = 0; l < r.touching.size(); ++l)
+      if (r.touching[l]) {
+        interaction_force += (r.on_a[l] + r.on_b[l]).norm();
+        ++interactions;
+      }
   if (free_nodes == 0) return 0.0;
-  if (s.link_load.empty() || !(link_force > 0.0)) return std::numeric_limits<double>::infinity();
-  return (unbalanced / static_cast<double>(free_nodes)) / (link_force / static_cast<double>(s.link_load.size()));
+  if (interactions == 0 || !(interaction_force > 0.0)) return std::numeric_limits<double>::infinity();
+  return (unbalanced / static_cast<double>(free_nodes)) / (interaction_force / static_cast<double>(interactions));
 }
 
 const EnergySplit& Engine::energy() const {

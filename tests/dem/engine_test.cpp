@@ -305,6 +305,31 @@ TEST(DemEngine, UnbalancedForceRatioIsYadesMeanRatio) {
   EXPECT_THROW(relaxed.set_local_damping(1.0), std::invalid_argument);
 }
 
+// A wall's contact is an interaction as a link is (YADE counts both): a free node pressed 1.5 m g
+// / k_n into a wall, its link unstretched, has the unbalanced force 0.5 m g; over the mean of the
+// link's 0 and the two nodes' contacts (1.5 m g each) the ratio is 1/2 (the mean link force alone
+// would make it infinite).
+TEST(DemEngine, UnbalancedForceRatioCountsTheWallsContactsAsInteractions) {
+  const double mass = 0.004, length = 0.05, g = 9.81, kn = 1e5, radius = 0.0054;
+  std::vector<NetNode> nodes{make_node(Vector3::Zero(), mass, NodeFixity::Pinned), make_node(Vector3(length, 0, 0), mass)};
+  std::vector<EngineLink> links;
+  links.push_back({{0, 1, LinkTag::SingleWire}, elastic_bond(length)});
+  EngineOptions options;
+  options.time_step = 1e-7;
+  options.local_damping = 0.0;
+  Engine engine(nodes, std::move(links), options);
+  auto wall = std::make_unique<PlaneWall>(Vector3::UnitZ());
+  const double depth = 1.5 * mass * g / kn;
+  wall->position = Vector3(0.0, 0.0, -radius + depth);
+  wall->contact.normal_stiffness = kn;
+  wall->contact.shear_stiffness = 0.0;
+  engine.add_tool(std::move(wall));
+  engine.step();
+  ASSERT_EQ(engine.tool_contacts(0), 2u);  // the pinned node touches it too (held: no unbalanced force)
+  // Interactions: the link (0) and two contacts (the free node's 1.5 m g, the pinned node's the same).
+  EXPECT_NEAR(engine.unbalanced_force_ratio(), 0.5 * mass * g / ((0.0 + 2.0 * 1.5 * mass * g) / 3.0), 1e-6);
+}
+
 TEST(DemEngine, EnergyBalanceClosesWithGravityDampingAndPlasticity) {
   EnergySplit split;
   const double coarse = chain_balance_error(0.5, &split);

@@ -134,8 +134,9 @@ class Engine {
   void set_local_damping(double alpha);
   double local_damping() const { return options_.local_damping; }
   // YADE's unbalancedForce (utils.unbalancedForce): the mean unbalanced force on the free nodes
-  // in the last step (gravity included, held components the support's) over the mean link
-  // force magnitude; infinite while no link carries force. Tends to 0 at static equilibrium.
+  // in the last step (gravity included, held components the support's) over the mean force of
+  // the interactions (the links and the tools' and rollers' contacts); infinite while none
+  // carries force. Tends to 0 at static equilibrium.
   double unbalanced_force_ratio() const;
   // Dynamic relaxation: steps with kinematic tools held until the largest unbalanced force on a
   // free node is below `tolerance` x the mean link force magnitude (at most max_steps).
