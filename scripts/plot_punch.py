@@ -10,9 +10,13 @@ marked at its own peak; the legend sits below the axes so that it hides no curve
 does not apply to its set-up is not drawn as a result: one whose force never reaches the onset
 force (1 kN) or still rises when the platter stops (its largest force in the last 1 % of the
 travel: the net has not failed, so its "peak" is no figure of the test; the WirePM sets in the
-slack state). It is named under the figure as not applicable, by the rule of the campaign report
+slack state), or whose net was asked to settle to rest and was still moving when the platter
+started (`settled_at_rest` false in the run's summary.json beside its curve.csv). It is named
+under the figure as not applicable, by the rule of the campaign report
 (app/campaign/report_recommendation.hpp).
 """
+import json
+import os
 import sys
 
 import matplotlib
@@ -40,6 +44,26 @@ def not_applicable(x, f):
     return None
 
 
+def not_at_rest(curve_path):
+    """Why the run beside this curve.csv did not start from rest, or None (no summary.json, or a
+    settle of a fixed time)."""
+    summary_path = os.path.join(os.path.dirname(curve_path) or ".", "summary.json")
+    if not os.path.exists(summary_path):
+        return None
+    try:
+        with open(summary_path) as f:
+            summary = json.load(f)
+    except (OSError, ValueError) as e:
+        sys.exit(f"{summary_path}: not a readable JSON summary ({e})")
+    if summary.get("settled_at_rest") is not False:
+        return None
+    ratio = summary.get("settle_unbalanced_force_ratio")
+    after = summary.get("settle_s")
+    details = ", ".join(d for d in (f"after {after:.1f} s of settling" if isinstance(after, (int, float)) else "",
+                                    f"unbalanced-force ratio {ratio:.2g}" if isinstance(ratio, (int, float)) else "") if d)
+    return "the net was not at rest when the platter started" + (f" ({details})" if details else "")
+
+
 def read_curve(path):
     metadata, header, values = read_curve_columns(path)
     for needed in ("tool_displacement_mm", "tool_force_N"):
@@ -60,7 +84,7 @@ def main():
         f = [r["tool_force_N"] / 1000.0 for r in rows]
         peak = max(range(len(f)), key=f.__getitem__)
         label = metadata.get("label") or path.rsplit("/", 1)[-1]
-        why = not_applicable(x, f)
+        why = not_applicable(x, f) or not_at_rest(path)
         if why:
             left_out.append(f"{label}: {why}")
             print(f"plot_punch: not drawn, not applicable in this set-up: {label}: {why}")
