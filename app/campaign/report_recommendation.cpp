@@ -113,6 +113,34 @@ std::string fits_text(const SetEvidence& set) {
   return text.empty() ? "published (no fit)" : text;
 }
 
+// A punch reference: the published sets' run with the candidate's model variant, or the thesis DEM.
+struct PunchReference {
+  double peak_N = 0.0, position_mm = 0.0;
+  std::string text;
+};
+
+// A label's model variant: its part after the first ", " ("beam shear spring"), empty if none.
+std::string model_variant(const std::string& label) {
+  const auto comma = label.find(", ");
+  return comma == std::string::npos ? std::string() : label.substr(comma + 2);
+}
+
+PunchReference punch_reference_for(const std::string& variant, const std::vector<SetEvidence>& sets) {
+  const std::string reference_label = variant.empty() ? kReferenceSet : std::string(kReferenceSet) + ", " + variant;
+  for (const SetEvidence& set : sets)
+    if (set.label == reference_label && finished(set.punch_status) && !set.punch_not_applicable &&
+        has_number(set.punch, "peak_force_N") && has_number(set.punch, "displacement_at_peak_mm") &&
+        set.punch.value("status", "ok") != "failed") {
+      const double peak = set.punch["peak_force_N"].get<double>(), position = set.punch["displacement_at_peak_mm"].get<double>();
+      return {peak, position,
+              "the thesis's published sets in the same set-up (`" + set.punch_step + "`: " + fixed(peak / 1000.0, 1) +
+                  " kN at " + fixed(position, 0) + " mm)"};
+    }
+  return {kThesisPeakN, kThesisPeakMm,
+          "the thesis DEM punch (25 kN at 530 mm; no run of the thesis's published sets" +
+              (variant.empty() ? std::string() : ", " + variant + ",") + " in this campaign)"};
+}
+
 }  // namespace
 
 std::optional<std::string> punch_not_applicable(const std::vector<double>& displacement_m,
@@ -143,29 +171,20 @@ std::optional<std::string> punch_not_at_rest(const nlohmann::json& summary) {
 
 Recommendation recommend_set(const std::vector<SetEvidence>& sets) {
   Recommendation r;
-  double peak_ref = kThesisPeakN, position_ref = kThesisPeakMm;
-  r.punch_reference = "the thesis DEM punch (25 kN at 530 mm; no run of the thesis's published sets in this campaign)";
-  for (const SetEvidence& set : sets)
-    if (set.label == kReferenceSet && finished(set.punch_status) && !set.punch_not_applicable &&
-        has_number(set.punch, "peak_force_N") && has_number(set.punch, "displacement_at_peak_mm") &&
-        set.punch.value("status", "ok") != "failed") {
-      peak_ref = set.punch["peak_force_N"].get<double>();
-      position_ref = set.punch["displacement_at_peak_mm"].get<double>();
-      r.punch_reference = "the thesis's published sets in the same set-up (`" + set.punch_step + "`: " +
-                          fixed(peak_ref / 1000.0, 1) + " kN at " + fixed(position_ref, 0) + " mm)";
-    }
   for (const SetEvidence& set : sets) {
     SetJudgement j;
     j.label = set.label;
     j.candidate = !set.fits.empty();
     wire_scale(set, j);
     j.not_judged = j.candidate ? why_not_judged(set) : "published set: a reference, not a candidate";
+    const PunchReference reference = punch_reference_for(model_variant(set.label), sets);
+    j.punch_reference = reference.text;
     if (j.not_judged.empty()) {
       const std::vector<Figure> figures = {
           against("strip strength", set.strip["strength_per_width_kN_per_m"].get<double>(), kStripStrengthKNPerM, "kN/m", 1),
           against("strip stiffness", set.strip["secant_EA_10_50_kN_per_m"].get<double>(), kStripStiffnessKNPerM, "kN/m", 0),
-          against("punch peak", set.punch["peak_force_N"].get<double>() / 1000.0, peak_ref / 1000.0, "kN", 1),
-          against("punch peak position", set.punch["displacement_at_peak_mm"].get<double>(), position_ref, "mm", 0)};
+          against("punch peak", set.punch["peak_force_N"].get<double>() / 1000.0, reference.peak_N / 1000.0, "kN", 1),
+          against("punch peak position", set.punch["displacement_at_peak_mm"].get<double>(), reference.position_mm, "mm", 0)};
       double log_sum = 0.0, farthest = 0.0;
       for (const Figure& f : figures) {
         j.figures.push_back(f.text);
@@ -183,7 +202,10 @@ Recommendation recommend_set(const std::vector<SetEvidence>& sets) {
   double smallest = 0.0;
   for (const SetJudgement& s : r.sets)
     if (s.candidate && s.not_judged.empty() && (smallest == 0.0 || s.distance < smallest)) smallest = s.distance;
-  if (smallest == 0.0) return r;
+  if (smallest == 0.0) {
+    r.punch_reference = punch_reference_for("", sets).text;
+    return r;
+  }
   std::vector<int> tied;
   for (std::size_t i = 0; i < r.sets.size(); ++i)
     if (r.sets[i].candidate && r.sets[i].not_judged.empty() && r.sets[i].distance <= kMeshScaleTie * smallest)
@@ -191,6 +213,7 @@ Recommendation recommend_set(const std::vector<SetEvidence>& sets) {
   r.chosen = tied.front();
   for (const int i : tied)
     if (better_wire_fit(r.sets[i], r.sets[r.chosen])) r.chosen = i;
+  r.punch_reference = r.sets[r.chosen].punch_reference;
   if (tied.size() > 1) {
     r.tie_note = "Tied at mesh scale (distances within a factor " + fixed(kMeshScaleTie, 2) + " of the smallest): ";
     for (std::size_t k = 0; k < tied.size(); ++k) r.tie_note += (k ? ", " : "") + r.sets[tied[k]].label;
@@ -221,6 +244,10 @@ std::string recommendation_markdown(const Recommendation& r, const std::vector<S
        << "nearest their references, x " << fixed(s.distance, 2) << " from them on geometric mean (farthest: "
        << s.farthest << "; punch figures against " << r.punch_reference << "). Wire scale: " << wire_text(s) << ". "
        << r.tie_note << (r.tie_note.empty() ? "" : " ")
+       << (model_variant(s.label) == "beam shear spring"
+               ? "The PFC7 plugin's law has no such spring (the exported `.dat` says so): in PFC7 take the same "
+                 "fits with the plugin's spring, the set `" + s.label.substr(0, s.label.find(", ")) + "` below. "
+               : std::string())
        << "Rules: the sets with a fit of this campaign behind them are the candidates; each is judged by the "
           "geometric mean of the factors between its strip (strength, 10-50 % secant stiffness) and 50 kN/m, "
           "500 kN/m, and between its punch peak and its position and those of the thesis's published sets; the "

@@ -14,7 +14,9 @@
 //    strip secant stiffness (10-50 % of the peak) against 500 kN/m (8x10 / 2.7 mm mesh, EN 15381
 //    Annex D and the manufacturer); punch peak force and its displacement against the thesis's
 //    published sets run by the same campaign in the same set-up (so the set-up's factor common to
-//    every set cancels), or the thesis DEM punch (25 kN at 0.53 m) when that run is absent. Every
+//    every set cancels) and the same model variant (the label's part after its first ", ", e.g.
+//    "section + N-M fit, beam shear spring" against "thesis published, beam shear spring"), or
+//    the thesis DEM punch (25 kN at 0.53 m) when that run is absent. Every
 //    figure counts alike, so a factor every set shares (the strip's, set by the common DT set)
 //    shifts them all and does not decide.
 // 4. The smallest distance wins. Distances within a factor 1.05 of the smallest are a tie at mesh
@@ -64,6 +66,7 @@ struct SetJudgement {
   std::string not_judged;      // rule 2's reason; empty when judged
   double distance = 0.0;       // rule 3: the geometric mean of the figures' factors, >= 1
   std::string farthest;        // the figure farthest from its reference, "strip stiffness 1165 kN/m against 500 (x 2.33)"
+  std::string punch_reference; // what its punch figures are compared with (rule 3)
   std::vector<std::string> figures;  // the four figures against their references
   int curves = 0, curves_beyond = 0;  // fitted curves, and those beyond NRMSE 0.10
   double worst_nrmse = 0.0;
@@ -75,7 +78,7 @@ struct Recommendation {
   std::vector<SetJudgement> sets;   // in the order given
   int chosen = -1;                  // index into sets; -1: no candidate could be judged
   std::string tie_note;             // the sets tied at mesh scale and how the tie was broken
-  std::string punch_reference;      // what the punch figures were compared with
+  std::string punch_reference;      // what the chosen set's punch figures were compared with
 };
 
 Recommendation recommend_set(const std::vector<SetEvidence>& sets);

@@ -105,6 +105,33 @@ TEST(RecommendSet, ATieAtMeshScaleGoesToTheBetterWireScaleFit) {
   EXPECT_NE(r.punch_reference.find("thesis DEM punch"), std::string::npos) << "no thesis-set run: the thesis's figures";
 }
 
+// Rule 3's punch reference follows the model variant the label names after its first ", ": a set
+// with the beam's shear spring against the published sets with the same spring, the plain set
+// against the plain published sets; a variant with no published run falls back to the thesis DEM.
+TEST(RecommendSet, APunchIsJudgedAgainstThePublishedSetsOfTheSameModelVariant) {
+  const std::vector<SetEvidence> sets = {
+      set("thesis published", {}, 58.8, 1165.0, 45.0, 530.0),
+      set("thesis published, beam shear spring", {}, 40.6, 280.0, 67.5, 760.0),
+      set("fit", {{"fit_a", fit_result(0, 4)}}, 61.0, 3879.0, 46.9, 547.5),
+      set("fit, beam shear spring", {{"fit_a", fit_result(0, 4)}}, 43.6, 272.0, 91.0, 977.5),
+      set("fit, other variant", {{"fit_a", fit_result(0, 4)}}, 50.0, 500.0, 25.0, 530.0),
+  };
+  const Recommendation r = recommend_set(sets);
+  const auto mean = [](double a, double b, double c, double d) { return std::exp((std::log(a) + std::log(b) + std::log(c) + std::log(d)) / 4); };
+  EXPECT_NEAR(r.sets[2].distance, mean(61.0 / 50, 3879.0 / 500, 46.9 / 45.0, 547.5 / 530), 1e-12);
+  EXPECT_NEAR(r.sets[3].distance, mean(50 / 43.6, 500 / 272.0, 91.0 / 67.5, 977.5 / 760), 1e-12);
+  EXPECT_NE(r.sets[3].punch_reference.find("punch_thesis published, beam shear spring"), std::string::npos) << r.sets[3].punch_reference;
+  EXPECT_NE(r.sets[4].punch_reference.find("thesis DEM punch"), std::string::npos) << r.sets[4].punch_reference;
+  EXPECT_NE(r.sets[4].punch_reference.find("other variant"), std::string::npos) << r.sets[4].punch_reference;
+  ASSERT_EQ(r.chosen, 4);  // 50 kN/m, 500 kN/m, and the thesis DEM's own figures: distance 1
+  EXPECT_EQ(r.punch_reference, r.sets[4].punch_reference);
+  const std::vector<SetEvidence> springs = {sets[0], sets[1], sets[2], sets[3]};
+  const Recommendation beam = recommend_set(springs);
+  ASSERT_EQ(beam.chosen, 3);  // x 1.38 against x 1.78
+  const std::string md = recommendation_markdown(beam, springs);
+  EXPECT_NE(md.find("in PFC7 take the same fits with the plugin's spring, the set `fit`"), std::string::npos) << md;
+}
+
 TEST(RecommendSet, NoCandidateNoRecommendation) {
   const Recommendation r = recommend_set({set("thesis published", {}, 58.8, 1165.0, 45.0, 548.0)});
   EXPECT_EQ(r.chosen, -1);
