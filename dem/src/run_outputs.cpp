@@ -359,6 +359,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
       {"settled_at_rest", input_.settle_rest_ratio > 0.0 ? nlohmann::json(summary.settled_at_rest) : nlohmann::json()},
       {"settle_unbalanced_force_ratio", std::isfinite(summary.settle_unbalanced_ratio) ? nlohmann::json(summary.settle_unbalanced_ratio) : nlohmann::json()},
       {"settle_kinetic_arrests", summary.settle_arrests},
+      {"settle_local_damping_from_s", summary.settle_local_damping_from >= 0.0 ? nlohmann::json(summary.settle_local_damping_from) : nlohmann::json()},
       {"wall_entered_at_s", summary.wall_entered_at < 0.0 ? nlohmann::json() : nlohmann::json(summary.wall_entered_at)},
       {"steps", summary.steps},
       {"wall_seconds", summary.wall_seconds},

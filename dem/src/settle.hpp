@@ -40,13 +40,14 @@ struct SettleRecord {
   bool at_rest = false;             // the rest criterion was met (rest_ratio > 0 only)
   double unbalanced_ratio = 0.0;    // Engine::unbalanced_force_ratio at the end
   long arrests = 0;                 // kinetic-damping arrests
+  double local_damping_from = -1.0; // when the local damping joined the kinetic [s]; < 0: never
 };
 
 // Settles under gravity: for in.settle_time if in.settle_rest_ratio is 0; otherwise with kinetic
 // damping (the free nodes stopped at each peak of the kinetic energy, Barnes 1999) until YADE's
 // unbalanced-force ratio is below in.settle_rest_ratio (checked every 10 steps), at most
-// in.settle_time, with a warning on stderr if the net is not at rest by then. The wall, if any,
-// enters as it says.
+// in.settle_time, the local damping joining the kinetic from half that time on, with a warning
+// on stderr if the net is not at rest by then. The wall, if any, enters as it says.
 SettleRecord settle(Engine& engine, const RunInput& in, WaitingWall& wall);
 
 // The settle's figures in a run's summary (settle_seconds, settled_at_rest, ...).

@@ -123,6 +123,7 @@ struct RunSummary {
   bool settled_at_rest = false;   // the rest ratio was reached (settle_rest_ratio > 0)
   double settle_unbalanced_ratio = 0.0;  // at the settle's end (Engine::unbalanced_force_ratio)
   long settle_arrests = 0;        // kinetic-damping arrests while settling
+  double settle_local_damping_from = -1.0;  // when the local damping joined the settle [s]; < 0: never
   double wall_entered_at = -1.0;  // the slack state's wall entered the run at this time [s] (-1: never)
   std::size_t nodes = 0, links = 0, broken_links = 0;
   long steps = 0;
