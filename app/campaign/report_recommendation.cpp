@@ -113,7 +113,6 @@ std::string fits_text(const SetEvidence& set) {
   return text.empty() ? "published (no fit)" : text;
 }
 
-// A punch reference: the published sets' run with the candidate's model variant, or the thesis DEM.
 struct PunchReference {
   double peak_N = 0.0, position_mm = 0.0;
   std::string text;
@@ -125,8 +124,9 @@ std::string model_variant(const std::string& label) {
   return comma == std::string::npos ? std::string() : label.substr(comma + 2);
 }
 
-PunchReference punch_reference_for(const std::string& variant, const std::vector<SetEvidence>& sets) {
-  const std::string reference_label = variant.empty() ? kReferenceSet : std::string(kReferenceSet) + ", " + variant;
+// A set's punch reference: the published sets' run with its model variant, or the thesis DEM.
+PunchReference punch_reference_for(const std::string& label, const std::vector<SetEvidence>& sets) {
+  const std::string reference_label = published_counterpart(label), variant = model_variant(label);
   for (const SetEvidence& set : sets)
     if (set.label == reference_label && finished(set.punch_status) && !set.punch_not_applicable &&
         has_number(set.punch, "peak_force_N") && has_number(set.punch, "displacement_at_peak_mm") &&
@@ -142,6 +142,11 @@ PunchReference punch_reference_for(const std::string& variant, const std::vector
 }
 
 }  // namespace
+
+std::string published_counterpart(const std::string& label) {
+  const std::string variant = model_variant(label);
+  return variant.empty() ? std::string(kReferenceSet) : std::string(kReferenceSet) + ", " + variant;
+}
 
 std::optional<std::string> punch_not_applicable(const std::vector<double>& displacement_m,
                                                 const std::vector<double>& force_N) {
@@ -177,7 +182,7 @@ Recommendation recommend_set(const std::vector<SetEvidence>& sets) {
     j.candidate = !set.fits.empty();
     wire_scale(set, j);
     j.not_judged = j.candidate ? why_not_judged(set) : "published set: a reference, not a candidate";
-    const PunchReference reference = punch_reference_for(model_variant(set.label), sets);
+    const PunchReference reference = punch_reference_for(set.label, sets);
     j.punch_reference = reference.text;
     if (j.not_judged.empty()) {
       const std::vector<Figure> figures = {
@@ -203,7 +208,7 @@ Recommendation recommend_set(const std::vector<SetEvidence>& sets) {
   for (const SetJudgement& s : r.sets)
     if (s.candidate && s.not_judged.empty() && (smallest == 0.0 || s.distance < smallest)) smallest = s.distance;
   if (smallest == 0.0) {
-    r.punch_reference = punch_reference_for("", sets).text;
+    r.punch_reference = punch_reference_for(kReferenceSet, sets).text;
     return r;
   }
   std::vector<int> tied;

@@ -45,6 +45,11 @@ std::optional<std::string> punch_not_applicable(const std::vector<double>& displ
 // a fixed time: `settled_at_rest` null).
 std::optional<std::string> punch_not_at_rest(const nlohmann::json& summary);
 
+// The published sets' label with the same model variant as `label` (its part after the first
+// ", "): "thesis published, beam shear spring" for "section + N-M fit, beam shear spring",
+// "thesis published" for a label without one. Rule 3's punch reference, and the band table's.
+std::string published_counterpart(const std::string& label);
+
 struct FitEvidence {
   std::string step;           // the fit step
   nlohmann::json parameters;  // its parameters.json; null if the step did not write it

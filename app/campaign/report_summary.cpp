@@ -515,10 +515,12 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
   std::ostringstream summary;
   summary << "## Summary\n\n" << recommendation_markdown(recommendation, sets);
   if (recommendation.chosen >= 0) {
-    // The chosen set's bands (dem propagate steps with its label), beside the thesis sets' runs.
+    // The chosen set's bands (dem propagate steps with its label), beside the runs of the thesis
+    // sets with the same model variant.
     json thesis_strip, thesis_punch;
+    const std::string counterpart = published_counterpart(sets[recommendation.chosen].label);
     for (const SetEvidence& e : sets)
-      if (e.label == "thesis published") thesis_strip = e.strip, thesis_punch = e.punch;
+      if (e.label == counterpart) thesis_strip = e.strip, thesis_punch = e.punch;
     summary << band_markdown(sets[recommendation.chosen].label, bands, thesis_strip, thesis_punch);
     for (const StepFiles& s : by_kind[Kind::Band])
       if (label_of_command(s.step->command) == sets[recommendation.chosen].label)
