@@ -111,7 +111,7 @@ TEST(CampaignSplit, TheStudyRunsEveryDefaultStepAsTheDefaultDoes) {
       if (const std::string label = label_of_command(step.command); !label.empty()) found.insert(label);
     return found;
   };
-  // The recommended and published sets, each also with the beam's shear spring (its strips).
+  // The recommended and published sets, each also with the beam's shear spring (its strips and punches).
   EXPECT_EQ(labels(main), (std::set<std::string>{"thesis published", "section + N-M fit", "thesis published, beam shear spring",
                                                  "section + N-M fit, beam shear spring"}));
   EXPECT_EQ(labels(study), (std::set<std::string>{"thesis published", "WirePM published", "straight-wire fit", "as-made fit",
@@ -122,13 +122,14 @@ TEST(CampaignSplit, TheStudyRunsEveryDefaultStepAsTheDefaultDoes) {
     return std::any_of(c.steps.begin(), c.steps.end(), [&](const CampaignStep& s) { return s.name == name; });
   };
   for (const char* step : {"segment_fit_nm", "dt_specimen_fit", "export_nm", "dem_punch_nm", "dem_strip_nm", "gap_strip",
-                           "gap_sw_backbone", "gap_sw_compression", "dem_strip_nm_band"})
+                           "gap_sw_backbone", "gap_sw_compression", "dem_strip_nm_beam_shear_band", "dem_punch_nm_beam_shear",
+                           "dem_punch_thesis_beam_shear"})
     EXPECT_TRUE(has(main, step)) << step;
   for (const char* step : {"macro_fit", "dt_link_fit", "dem_punch_wirepm", "gap_selfcheck", "dt_twisting", "gap_punch",
                            "segment_fit", "export_as_made", "dem_strip_nm_sampled", "dem_punch_nm_band", "sw_bending",
-                           "sw_fit_pull_spin_20deg", "sw_fit_pull_spin_unspin", "dt_pair_mesh"})
+                           "sw_fit_pull_spin_20deg", "sw_fit_pull_spin_unspin", "dt_pair_mesh", "dem_strip_nm_band"})
     EXPECT_FALSE(has(main, step)) << step << " belongs to the study";
-  for (const char* step : {"dem_strip_nm_sampled", "dem_punch_nm_band", "sw_bending", "sw_fit_pull_spin_20deg",
+  for (const char* step : {"dem_strip_nm_sampled", "dem_strip_nm_band", "dem_punch_nm_band", "sw_bending", "sw_fit_pull_spin_20deg",
                            "sw_fit_pull_spin_unspin", "dt_pair_mesh"})
     EXPECT_TRUE(has(study, step)) << step;
 }
