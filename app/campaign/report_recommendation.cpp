@@ -133,7 +133,8 @@ PunchReference punch_reference_for(const std::string& label, const std::vector<S
         set.punch.value("status", "ok") != "failed") {
       const double peak = set.punch["peak_force_N"].get<double>(), position = set.punch["displacement_at_peak_mm"].get<double>();
       return {peak, position,
-              "the thesis's published sets in the same set-up (`" + set.punch_step + "`: " + fixed(peak / 1000.0, 1) +
+              "the thesis's published sets in the same set-up" + (variant.empty() ? "" : " with the same " + variant) +
+                  " (`" + set.punch_step + "`: " + fixed(peak / 1000.0, 1) +
                   " kN at " + fixed(position, 0) + " mm)"};
     }
   return {kThesisPeakN, kThesisPeakMm,

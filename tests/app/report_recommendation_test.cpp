@@ -120,7 +120,9 @@ TEST(RecommendSet, APunchIsJudgedAgainstThePublishedSetsOfTheSameModelVariant) {
   const auto mean = [](double a, double b, double c, double d) { return std::exp((std::log(a) + std::log(b) + std::log(c) + std::log(d)) / 4); };
   EXPECT_NEAR(r.sets[2].distance, mean(61.0 / 50, 3879.0 / 500, 46.9 / 45.0, 547.5 / 530), 1e-12);
   EXPECT_NEAR(r.sets[3].distance, mean(50 / 43.6, 500 / 272.0, 91.0 / 67.5, 977.5 / 760), 1e-12);
-  EXPECT_NE(r.sets[3].punch_reference.find("punch_thesis published, beam shear spring"), std::string::npos) << r.sets[3].punch_reference;
+  EXPECT_NE(r.sets[3].punch_reference.find("with the same beam shear spring (`punch_thesis published, beam shear spring`"),
+            std::string::npos)
+      << r.sets[3].punch_reference;
   EXPECT_NE(r.sets[4].punch_reference.find("thesis DEM punch"), std::string::npos) << r.sets[4].punch_reference;
   EXPECT_NE(r.sets[4].punch_reference.find("other variant"), std::string::npos) << r.sets[4].punch_reference;
   ASSERT_EQ(r.chosen, 4);  // 50 kN/m, 500 kN/m, and the thesis DEM's own figures: distance 1
