@@ -73,12 +73,8 @@ double interpolate_from(const BranchView& b, double xq, std::size_t& cursor) {
 }  // namespace
 
 double interpolate_clamped(const std::vector<double>& x, const std::vector<double>& y, double xq) {
-  if (xq <= x.front()) return y.front();
-  if (xq >= x.back()) return y.back();
-  const auto upper = std::upper_bound(x.begin(), x.end(), xq);
-  const std::size_t i = static_cast<std::size_t>(upper - x.begin());
-  const double t = (xq - x[i - 1]) / (x[i] - x[i - 1]);
-  return y[i - 1] + t * (y[i] - y[i - 1]);
+  std::size_t cursor = 0;  // no previous query: a binary search
+  return interpolate_from({x.data(), y.data(), x.size()}, xq, cursor);
 }
 
 Comparison make_comparison(const ForceCurve& lab) {
