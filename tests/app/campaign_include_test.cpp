@@ -126,10 +126,10 @@ TEST(CampaignSplit, TheStudyRunsEveryDefaultStepAsTheDefaultDoes) {
                            "dem_punch_thesis_beam_shear"})
     EXPECT_TRUE(has(main, step)) << step;
   for (const char* step : {"macro_fit", "dt_link_fit", "dem_punch_wirepm", "gap_selfcheck", "dt_twisting", "gap_punch",
-                           "segment_fit", "export_as_made", "dem_strip_nm_sampled", "dem_punch_nm_band", "sw_bending",
+                           "segment_fit", "export_as_made", "dem_strip_nm_beam_shear_sampled", "dem_punch_nm_band", "sw_bending",
                            "sw_fit_pull_spin_20deg", "sw_fit_pull_spin_unspin", "dt_pair_mesh", "dem_strip_nm_band"})
     EXPECT_FALSE(has(main, step)) << step << " belongs to the study";
-  for (const char* step : {"dem_strip_nm_sampled", "dem_strip_nm_band", "dem_punch_nm_band", "sw_bending", "sw_fit_pull_spin_20deg",
+  for (const char* step : {"dem_strip_nm_beam_shear_sampled", "dem_strip_nm_band", "dem_punch_nm_band", "sw_bending", "sw_fit_pull_spin_20deg",
                            "sw_fit_pull_spin_unspin", "dt_pair_mesh"})
     EXPECT_TRUE(has(study, step)) << step;
 }
