@@ -127,10 +127,11 @@ TEST(CampaignSplit, TheStudyRunsEveryDefaultStepAsTheDefaultDoes) {
     EXPECT_TRUE(has(main, step)) << step;
   for (const char* step : {"macro_fit", "dt_link_fit", "dem_punch_wirepm", "gap_selfcheck", "dt_twisting", "gap_punch",
                            "segment_fit", "export_as_made", "dem_strip_nm_beam_shear_sampled", "dem_punch_nm_band", "sw_bending",
-                           "sw_fit_pull_spin_20deg", "sw_fit_pull_spin_unspin", "dt_pair_mesh", "dem_strip_nm_band"})
+                           "sw_fit_pull_spin_20deg", "sw_fit_pull_spin_unspin", "dt_pair_mesh", "dem_strip_nm_band",
+                           "dem_punch_nm_beam_shear_band"})
     EXPECT_FALSE(has(main, step)) << step << " belongs to the study";
-  for (const char* step : {"dem_strip_nm_beam_shear_sampled", "dem_strip_nm_band", "dem_punch_nm_band", "sw_bending", "sw_fit_pull_spin_20deg",
-                           "sw_fit_pull_spin_unspin", "dt_pair_mesh"})
+  for (const char* step : {"dem_strip_nm_beam_shear_sampled", "dem_strip_nm_band", "dem_punch_nm_band", "dem_punch_nm_beam_shear_band",
+                           "sw_bending", "sw_fit_pull_spin_20deg", "sw_fit_pull_spin_unspin", "dt_pair_mesh"})
     EXPECT_TRUE(has(study, step)) << step;
 }
 
