@@ -15,15 +15,22 @@ constexpr double kSmallestReferenceWork = 1.0;  // [J]
 std::string FailedCheck::message() const {
   std::ostringstream os;
   os << "check '" << check << "' failed at t = " << time << " s (step " << step << ")";
-  if (check == "finite_state") return os.str() + ": the state became non-finite (NaN or inf)";
-  os << ": " << (check == "energy_balance" ? "|energy balance error|" : "kinetic energy") << " is " << 100.0 * value
-     << " % of the work on the mesh, above the bound " << 100.0 * bound << " % (" << key << ")";
+  if (before_loading) os << ", the loading's first row";
+  if (check == "finite_state")
+    os << ": the state became non-finite (NaN or inf)";
+  else
+    os << ": " << (check == "energy_balance" ? "|energy balance error|" : "kinetic energy") << " is " << 100.0 * value
+       << " % of the work on the mesh, above the bound " << 100.0 * bound << " % (" << key << ")";
+  if (before_loading)
+    os << "; the state is the one the settle under gravity left, so the settle failed, not the loading (see the "
+          "summary's settled_at_rest and settle_unbalanced_force_ratio; docs/dem_engine.md, \"Settling to rest\")";
   return os.str();
 }
 
 std::optional<FailedCheck> RunGuard::check(const EnergySplit& e, double time, long step, double row_figure) {
+  const bool first_row = rows_++ == 0;
   auto failed = [&](const std::string& name, const std::string& key, double value, double bound) {
-    return FailedCheck{name, key, time, step, value, bound};
+    return FailedCheck{name, key, time, step, value, bound, first_row};
   };
   if (!std::isfinite(e.kinetic) || !std::isfinite(e.balance_error()) || !std::isfinite(e.stored_and_dissipated()) ||
       !std::isfinite(row_figure))

@@ -238,7 +238,7 @@ void add_status(nlohmann::json& headline, const RunSummary& summary) {
   const FailedCheck& f = *summary.failed;
   headline["failed_check"] = {{"check", f.check}, {"bound_key", f.key}, {"time_s", f.time}, {"step", f.step},
                               {"value_percent", 100.0 * f.value}, {"bound_percent", 100.0 * f.bound},
-                              {"message", f.message()}};
+                              {"before_loading", f.before_loading}, {"message", f.message()}};
 }
 
 void RunRecorder::finish(const Engine& engine, RunSummary& summary) {

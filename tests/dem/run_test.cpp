@@ -11,6 +11,7 @@
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/results_store.hpp"
 #include "dtwire/dem/run.hpp"
+#include "dtwire/dem/run_checks.hpp"
 
 #include "run_cli.hpp"
 
@@ -259,6 +260,27 @@ TEST(DemRun, FailedCheckStopsTheRunAndMarksItsPartialResults) {
   const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
   EXPECT_NE(text.find("\"bound_key\": \"checks.max_balance_error_percent\""), std::string::npos) << text;
+}
+
+// A check that fails on the loading's first row fails in the state the settle left: the message
+// says the settle failed, not the loading; on a later row it does not.
+TEST(DemRun, AFailedCheckOnTheFirstRowNamesTheSettle) {
+  EnergySplit balanced;
+  balanced.gravity_work = 10.0;  // J
+  balanced.link_elastic = 10.0;
+  EnergySplit runaway = balanced;
+  runaway.kinetic = 5.0;  // 5 J from nowhere: a balance error of 50 % of the work
+  RunGuard at_start(RunChecks{}, true);
+  const auto first = at_start.check(runaway, 0.0, 1200);
+  ASSERT_TRUE(first);
+  EXPECT_TRUE(first->before_loading);
+  EXPECT_NE(first->message().find("the settle failed, not the loading"), std::string::npos) << first->message();
+  RunGuard later(RunChecks{}, true);
+  ASSERT_FALSE(later.check(balanced, 0.0, 1200));
+  const auto second = later.check(runaway, 0.01, 1300);
+  ASSERT_TRUE(second);
+  EXPECT_FALSE(second->before_loading);
+  EXPECT_EQ(second->message().find("settle"), std::string::npos) << second->message();
 }
 
 // Cyclic punch: the platter reverses when the (interval-averaged) force reaches each level and

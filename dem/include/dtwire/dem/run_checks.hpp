@@ -25,6 +25,9 @@ struct FailedCheck {
   double time = 0.0;  // [s] after settling
   long step = 0;
   double value = 0.0, bound = 0.0;  // fractions (finite_state: none)
+  // Failed on the loading's first row, in the state the settle left: the settle ran away (or
+  // left the net moving), not the loading.
+  bool before_loading = false;
   std::string message() const;
 };
 
@@ -39,6 +42,7 @@ class RunGuard {
   RunChecks checks_;
   bool quasi_static_;
   double largest_work_ = 0.0;
+  long rows_ = 0;         // rows checked
   long loaded_rows_ = 0;  // rows with work on the mesh
 };
 
