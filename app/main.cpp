@@ -1,6 +1,10 @@
+#include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -17,5 +21,13 @@ int main(int argc, char** argv) {
   std::error_code error;
   const auto self = std::filesystem::read_symlink("/proc/self/exe", error);
   if (!error) setenv("DTWIRE_EXECUTABLE", self.c_str(), 0);
-  return dtwire::app::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
+  const int code = dtwire::app::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
+  // What a command printed is part of its result (`parameters > file.prm`): a write that failed
+  // (a full disk, /dev/full) is a failed command.
+  std::fflush(stdout);
+  if (!(std::cout << std::flush) || std::ferror(stdout)) {
+    std::cerr << "dtwire: failed: the standard output: cannot write (" << std::strerror(errno) << ")\n";
+    return code == 0 ? 1 : code;
+  }
+  return code;
 }

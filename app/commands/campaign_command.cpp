@@ -1,5 +1,6 @@
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <iostream>
 
 #include "../campaign/campaign_file.hpp"
@@ -112,6 +113,15 @@ void add_campaign_command(CLI::App& root, CommandSet& commands) {
       return write_snakefile(campaign, run_options.out, options->snakefile, options->variables);
     if (options->report_only && !std::filesystem::is_directory(run_options.out))
       throw InputError("--report-only", "no output directory " + run_options.out.string() + " to report on");
+    if (options->report_only) {
+      const auto recorded = recorded_outcomes(campaign, run_options.out);
+      if (std::all_of(recorded.begin(), recorded.end(), [](const StepOutcome& o) {
+            return o.status == StepStatus::Blocked || o.status == StepStatus::Unavailable;
+          }))
+        throw InputError("--report-only", "no step of campaign '" + campaign.name + "' has its outputs in " +
+                                              run_options.out.string() +
+                                              ": nothing to report (run the campaign into it first)");
+    }
     CampaignLock lock(run_options.out);
     run_options.lock = &lock;
     if (!lock.stale_note().empty())

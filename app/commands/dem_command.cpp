@@ -16,6 +16,7 @@
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/driver.hpp"
 #include "dtwire/dem/export_params.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -91,6 +92,7 @@ void drive_set(const DriverOptions& o, dem::ParameterSet set, const std::filesys
 }
 
 int run_driver_command(const DriverOptions& o, const std::string& command_line) {
+  check_output_folders({{"--out", o.out}});
   const std::vector<dem::ParameterSet> sets = dem::read_parameter_file(o.params);
   check_driver_resources(o, o.wire_type.empty() ? sets.size() : 1);
   if (!o.wire_type.empty() || sets.size() == 1) {
@@ -130,10 +132,10 @@ void add_dem_command(CLI::App& root, CommandSet& commands) {
   driver->add_option("--steps", options->steps, "Increments per path")->capture_default_str()->check(CLI::Range(1, 100000000));
   driver->add_option("--max-strain", options->max_strain,
                      "Peak elongation / reference length of the pulls (default 0.4; wirepm: 1.1 x its break)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_in(0.0));
   driver->add_option("--max-rotation", options->max_rotation, "Peak bending rotation theta_y [rad]")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(finite_in(0.0));
   driver->add_option("--out", options->out, "Output directory")->required();
   driver->add_option("--max-memory", options->max_memory,
                      "Refuse a run whose memory estimate exceeds SIZE (4G, 512M; default: the available memory)");

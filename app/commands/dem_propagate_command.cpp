@@ -25,6 +25,7 @@
 #include "propagation_emulator.hpp"
 #include "propagation_outputs.hpp"
 #include "propagation_runs.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -214,6 +215,7 @@ void linearise(PropagationResult& r, const std::vector<TagFit>& fits, const dem:
 int run_propagate(const PropagateOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   if (!o.no_plot) require_plotting("plot_band.py", "band.png (dem propagate draws it; --no-plot skips it)");
+  check_output_folders({{"-o", o.out}, {"--cache", o.cache}});
   dem::RunInput input = dem::read_run_input(o.file, o.set_entries);
   if (input.tool != "platter" && input.tool != "strip_tension")
     throw InputError(o.file, "dem propagate needs a punch (tool.kind = \"platter\") or a strip tension "

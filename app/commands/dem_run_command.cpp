@@ -14,6 +14,7 @@
 #include "dtwire/core/resources.hpp"
 #include "dtwire/dem/run.hpp"
 #include "dtwire/dem/run_footprint.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -62,6 +63,8 @@ void print_strip_summary(const dem::RunInput& input, const dem::RunSummary& s, c
 }
 
 int run_dem_run(const RunCommandOptions& o) {
+  check_output_folders({{"-o", o.out}});
+  check_plot_file(o.plot, "--plot");
   if (!o.plot.empty()) {
     require_plotting("plot_punch.py", "--plot");
     require_plotting("plot_curves.py", "--plot");

@@ -19,6 +19,7 @@
 #include "dtwire/core/provenance.hpp"
 #include "dtwire/dem/export_params.hpp"
 #include "dtwire/dem/yield_surface.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -77,6 +78,7 @@ void write_surfaces(const SurfaceOptions& o, const SetSurfaces& set, const Prove
 }
 
 int run_surface_command(const SurfaceOptions& o) {
+  check_output_folders({{"--out", o.out}});
   const std::vector<dem::ParameterSet> sets = dem::read_parameter_file(o.params);
   std::vector<SetSurfaces> surfaces;
   if (!o.wire_type.empty() || sets.size() == 1)

@@ -18,6 +18,7 @@
 #include "dtwire/core/atomic_file.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/provenance.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -93,12 +94,13 @@ void add_fit_command(CLI::App& root, CommandSet& commands) {
                       "Instead of fitting: write the targets simulated at the parameters' reference "
                       "values into this directory");
   command->add_option("--noise", options->noise, "With --synthesize: Gaussian noise, fraction of each channel's range")
-      ->check(CLI::Range(0.0, 1.0));
-  command->add_option("--seed", options->seed, "With --synthesize: noise seed");
+      ->check(finite_in(0.0, 1.0));
+  command->add_option("--seed", options->seed, "With --synthesize: noise seed")->check(unsigned_whole());
   command->add_option("--points", options->points, "With --synthesize: at most this many rows per curve")
       ->check(CLI::Range(3, 100000));
   commands.add(command, [options] {
     if (options->plot && options->synthesize.empty()) require_plotting("plot_fit.py", "--plot");
+    check_output_folders({{"-o", options->out}, {"--synthesize", options->synthesize}});
     if (!options->synthesize.empty()) {
       calibrate::FitReadOptions read;
       read.read_targets = false;

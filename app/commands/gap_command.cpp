@@ -24,6 +24,7 @@
 #include "dtwire/gap/summary_lab.hpp"
 #include "gap_dem_model.hpp"
 #include "gap_model_runner.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -166,14 +167,16 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--plot", options->plot, "Write a PNG of the curves, gap regions and best model");
   command->add_option("--report", options->report, "Write a Markdown summary");
   command->add_option("--gauge-mm", options->gauge_mm,
-                      "Gauge length turning strain_1 columns into displacement");
+                      "Gauge length turning strain_1 columns into displacement")
+      ->check(finite_positive());
   command->add_option("--area-mm2", options->area_mm2,
-                      "Cross-section turning stress columns into force");
+                      "Cross-section turning stress columns into force")
+      ->check(finite_positive());
   command->add_option("--columns", options->columns,
                       "Displacement and force channels of every curve, names without unit "
                       "(e.g. tool_displacement,tool_force of a DEM run); default displacement,force");
   command->add_flag("--no-pairs", options->no_pairs, "Do not try pairs of effects");
-  command->add_option("--seed", options->seed, "Seed of the multi-start fits")->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed of the multi-start fits")->capture_default_str()->check(unsigned_whole());
 
   commands.add(command, [options] {
     if (options->labs.empty() && options->lab_summary.empty())
@@ -183,6 +186,9 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     if (options->sims.empty() && options->models.empty())
       throw InputError("--sim", "give the simulated curve (or --model)");
     if (!options->plot.empty() && options->lab_summary.empty()) require_plotting("plot_gap.py", "--plot");
+    check_output_files({{"--json", options->json}, {"--report", options->report}});
+    check_output_folders({{"--model-cache", options->model_cache}});
+    check_plot_file(options->plot, "--plot");
     std::vector<std::string> effects;
     try {
       for (const auto& name : split_names(options->effects)) {
@@ -419,7 +425,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   selfcheck->add_option("--trials", self->run.trials, "Trials per single effect")->capture_default_str()->check(CLI::Range(0, 100000));
   selfcheck->add_option("--pair-trials", self->run.pair_trials, "Trials with two effects")->capture_default_str()->check(CLI::Range(0, 100000));
   selfcheck->add_option("--none-trials", self->run.none_trials, "Effect-free trials")->capture_default_str()->check(CLI::Range(0, 100000));
-  selfcheck->add_option("--seed", self->run.seed, "Random seed")->capture_default_str();
+  selfcheck->add_option("--seed", self->run.seed, "Random seed")->capture_default_str()->check(unsigned_whole());
   selfcheck->add_option("--family", self->run.family,
                         "Effect generators: fitted (the fitted augmentations) or independent (other physical forms, "
                         "realistic measurement chain, repeated specimens)")
@@ -440,6 +446,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   selfcheck->add_option("--report", self->report, "Write a Markdown summary");
   selfcheck->add_flag("--require-goals", self->require_goals, "Exit 1 when a goal is missed");
   commands.add(selfcheck, [self] {
+    check_output_files({{"--json", self->json}, {"--report", self->report}});
+    check_output_folders({{"--write-curves", self->run.curves_dir}});
     // A backbone that is not there would leave half the trials out without a word.
     if (!self->run.backbone_csv.empty() && !std::filesystem::is_regular_file(self->run.backbone_csv))
       throw InputError("--backbone", "no such file: '" + self->run.backbone_csv.string() +

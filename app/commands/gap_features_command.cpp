@@ -26,6 +26,7 @@
 #include "dtwire/gap/effects.hpp"
 #include "gap_model_runner.hpp"
 #include "text_output.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -241,7 +242,7 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
                 "reports one (`# failure:`, an FE run) and --lab-failure is not given")
       ->check(CLI::ExistingFile);
   c->add_option("--lab-peak-sd", o->lab_peak_sd, "The standard deviation of --lab-curve's peak (N)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive());
   c->add_option("--model-cache", o->model_cache,
                 "Keep every FE run's curve in this folder and take it from there next time (resume, share runs)");
   c->add_option("--model-set", o->model_set,
@@ -251,6 +252,8 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
   c->add_option("--json", o->json, "Write the figures as JSON");
   c->add_option("--report", o->report, "Write a Markdown report");
   commands.add(c, [o] {
+    check_output_files({{"--json", o->json}, {"--report", o->report}});
+    check_output_folders({{"--model-cache", o->model_cache}});
     if (!o->lab_peak.empty()) std::tie(o->lab.peak_force, o->lab.peak_sd) = parse_lab_peak(o->lab_peak);
     for (const gap::FailureZone zone : {gap::FailureZone::twist, gap::FailureZone::junction, gap::FailureZone::arm})
       if (gap::zone_name(zone) == o->lab_failure) o->lab.zone = zone;

@@ -27,6 +27,7 @@
 #include "dtwire/gap/summary_lab.hpp"
 #include "gap_dem_model.hpp"
 #include "text_output.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -101,19 +102,12 @@ void add_gap_mesh_selfcheck_command(CLI::App& gap_command, CommandSet& commands)
   command->add_option("--force-at-fraction", o->force_at_fraction,
                       "Fourth figure: the force at this fraction of the base run's peak displacement (0: none)")
       ->capture_default_str()
-      ->check(CLI::Validator(
-          [](const std::string& text) {
-            // CLI::Range compares, and every comparison with NaN is false: NaN would pass it.
-            double value = 0.0;
-            return CLI::detail::lexical_cast(text, value) && std::isfinite(value)
-                       ? std::string()
-                       : "Value " + text + " is not a finite number";
-          },
-          "FINITE"))
-      ->check(CLI::Range(0.0, 0.99));
+      ->check(finite_in(0.0, 0.99));
   command->add_option("--json", o->json, "Write every trial as JSON");
   command->add_option("--report", o->report, "Write a Markdown summary");
   commands.add(command, [o] {
+    check_output_files({{"--json", o->json}, {"--report", o->report}});
+    check_output_folders({{"--model-cache", o->cache}});
     const auto started = std::chrono::steady_clock::now();
     const std::filesystem::path cache =
         o->cache.empty() ? std::filesystem::temp_directory_path() / ("dtwire_mesh_selfcheck_" + std::to_string(::getpid()))

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -20,6 +21,7 @@
 #include "dtwire/meshes/mesh_io.hpp"
 #include "dtwire/meshes/parameter_file.hpp"
 #include "dtwire/meshes/wire_geometry.hpp"
+#include "option_checks.hpp"
 
 namespace dtwire::app {
 namespace {
@@ -92,10 +94,15 @@ int run_mesh(const MeshOptions& options) {
   if (options.msh.empty() && options.vtu.empty() && !options.check && options.report.empty())
     throw InputError("mesh", "nothing to do: give -o FILE.msh, --vtu FILE.vtu, --check or --report FILE.md");
 
+  check_output_files({{"-o", options.msh}, {"--vtu", options.vtu}, {"--report", options.report}});
   check_mesh_memory(options, parameters);
   const auto start = std::chrono::steady_clock::now();
   const WireMesh mesh = build_wire_mesh(parameters, locations);
   const double build_seconds = seconds_since(start);
+  // Output folders are made as the other commands make theirs (checked above: no file in the way).
+  for (const std::string& file : {options.msh, options.vtu, options.report})
+    if (!file.empty() && std::filesystem::path(file).has_parent_path())
+      std::filesystem::create_directories(std::filesystem::path(file).parent_path());
   if (!options.msh.empty()) {
     write_msh(mesh.mesh, options.msh);
     write_axis_csv(mesh, axis_file_for(options.msh));

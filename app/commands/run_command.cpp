@@ -9,6 +9,7 @@
 #ifdef DTWIRE_HAVE_FEM
 #include "dtwire/core/resources.hpp"
 #include "dtwire/fem/run.hpp"
+#include "option_checks.hpp"
 #endif
 
 namespace dtwire::app {
@@ -50,6 +51,8 @@ void add_run_command(CLI::App& root, CommandSet& commands) {
   command->add_option("--plot-y", options->plot_y, "Quantity on the plot's y axis")->capture_default_str();
   commands.add(command, [options] {
     if (!options->plot.empty()) require_plotting("plot_curves.py", "--plot");
+    check_output_folders({{"-o", options->out}});
+    check_plot_file(options->plot, "--plot");
     fem::RunOptions run;
     run.parameter_file = options->file;
     run.output_directory = options->out.empty()

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <tuple>
@@ -27,6 +28,10 @@
 
 namespace dtwire::calibrate {
 namespace {
+
+// The paths count their increments in an int; the memory check (check_path_memory) is the limit
+// that matters.
+constexpr long long kMostIncrementsPerLeg = std::numeric_limits<int>::max();
 
 const toml::table& table_at(const toml::table& root, const std::string& key, const std::string& file) {
   const toml::node* node = root.get(key);
@@ -444,7 +449,9 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
       if (!read_targets)
         x.fail(x.get("path_from_target"), "path_from_target", "needs the target curve (not available with --synthesize)");
       try {
-        followed_path = path_from_target(e.target, static_cast<int>(x.integer("increments_per_leg", 100, 1)));
+        const long long increments = x.integer("increments_per_leg", 100, 1, kMostIncrementsPerLeg);
+        check_path_memory(x, static_cast<double>(increments) * static_cast<double>(std::max<std::size_t>(e.target.size(), 1)));
+        followed_path = path_from_target(e.target, static_cast<int>(increments));
       } catch (const std::invalid_argument& error) {
         x.fail(x.get("path_from_target"), "path_from_target", "the target " + target.string() + ": " + error.what());
       }
@@ -493,7 +500,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
     if (x.has("peak")) e.peaks = weighted_quantities("peak");
     if (read_targets && !e.target.has(e.abscissa))
       x.fail(x.get("abscissa"), "abscissa", "the target " + target.string() + " has no channel '" + e.abscissa + "'");
-    const int increments = static_cast<int>(x.integer("increments_per_leg", 100, 1));
+    const int increments = static_cast<int>(x.integer("increments_per_leg", 100, 1, kMostIncrementsPerLeg));
     if (followed_path) {
       e.simulator = std::make_shared<LawReplaySimulator>(def.law, def.fixed, *followed_path);
     } else if (def.simulator == "law_replay") {
@@ -507,6 +514,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
       if (path.displacement_m.size() != path.rotation_rad.size() || path.displacement_m.size() < 2)
         x.fail(nullptr, "path_rotation", "displacement and rotation waypoints must have the same length, >= 2");
       path.increments_per_leg = increments;
+      check_path_memory(x, static_cast<double>(increments) * static_cast<double>(path.displacement_m.size() - 1));
       e.simulator = std::make_shared<LawReplaySimulator>(def.law, def.fixed, path);
     } else if (specimen) {
       SpecimenPath path;
@@ -538,6 +546,7 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
         x.fail(x.get(x.has("pull_angle_rad") ? "pull_angle_rad" : "pull_angle_deg"),
                x.has("pull_angle_rad") ? "pull_angle_rad" : "pull_angle_deg", "expected an angle within [-90, 90] deg");
       path.increments_per_leg = increments;
+      check_path_memory(x, static_cast<double>(increments) * static_cast<double>(path.displacement_m.size() - 1));
       try {
         e.simulator =
             std::make_shared<DemSpecimenSimulator>(def.law, def.fixed, geometry, quasi_static, path, scale_to_link, rig);

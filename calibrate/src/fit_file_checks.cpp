@@ -6,6 +6,8 @@
 
 #include "dtwire/calibrate/dem_specimen.hpp"
 #include "dtwire/core/closest_name.hpp"
+#include "dtwire/core/csv.hpp"
+#include "dtwire/core/resources.hpp"
 #include "dtwire/core/units.hpp"
 #include "dtwire/dem/law_schema.hpp"
 
@@ -125,6 +127,17 @@ void check_fixed_specimen_parameters(const FitDefinition& def, const Table& sim)
                std::string("no ") + prefix +
                    "reference_length_m (the length the set was calibrated for; give it in the set's section or "
                    "[simulator.fixed])");
+}
+
+void check_path_memory(const Table& experiment, double increments) {
+  constexpr double kBytesPerIncrement = 48 * sizeof(double);
+  const double bytes = kBytesPerIncrement * increments;
+  const std::optional<std::uint64_t> available = available_memory();
+  if (!available || bytes <= static_cast<double>(*available)) return;
+  experiment.fail(experiment.get("increments_per_leg"), "increments_per_leg",
+                  "the path's " + format_number(increments) + " increments need about " + format_bytes(bytes) +
+                      " of memory for one evaluation, above the " + format_bytes(static_cast<double>(*available)) +
+                      " available (MemAvailable, /proc/meminfo); expected fewer increments per leg");
 }
 
 }  // namespace dtwire::calibrate

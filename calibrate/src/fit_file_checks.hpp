@@ -28,6 +28,12 @@ void check_parameters_are_read(const FitDefinition& def, const std::vector<Table
 // reference lies within its bounds and needs its base's reference.
 void check_offsets(const std::vector<ParameterDefinition>& parameters, const std::vector<Table>& tables);
 
+// One evaluation of an experiment holds its whole path: the samples, the driver's history and the
+// simulated curve, about 48 numbers per increment (law_replay.cpp, dem_export's driver.cpp). A path
+// of `increments` rows that the available memory cannot hold is refused at `increments_per_leg`
+// here, not by the allocator in the middle of the fit.
+void check_path_memory(const Table& experiment, double increments);
+
 // A quantity an experiment compares, and the field that names it (for error positions).
 struct Compared {
   std::string quantity;

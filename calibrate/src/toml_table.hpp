@@ -4,6 +4,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -53,12 +54,14 @@ class Table {
     if (!std::isfinite(value)) fail(node, key, "expected a finite number");
     return value;
   }
-  long long integer(const std::string& key, long long fallback, long long minimum) const {
+  long long integer(const std::string& key, long long fallback, long long minimum,
+                    long long maximum = std::numeric_limits<long long>::max()) const {
     const toml::node* node = get(key);
     if (!node) return fallback;
     if (!node->is_integer()) fail(node, key, "expected an integer");
     const long long value = node->as_integer()->get();
     if (value < minimum) fail(node, key, "expected an integer >= " + std::to_string(minimum));
+    if (value > maximum) fail(node, key, "expected an integer <= " + std::to_string(maximum));
     return value;
   }
   bool boolean(const std::string& key, bool fallback) const {

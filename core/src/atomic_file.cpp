@@ -222,4 +222,25 @@ void write_bytes_atomically(const std::filesystem::path& target, std::string_vie
   write_through_temporary(target, [&](int fd) { return write_all(fd, bytes.data(), bytes.size()); });
 }
 
+void check_output_folder(const std::filesystem::path& folder, const std::string& option) {
+  std::error_code error;
+  for (std::filesystem::path p = std::filesystem::absolute(folder, error).lexically_normal(); !p.empty();
+       p = p.parent_path()) {
+    if (std::filesystem::exists(p, error) && !std::filesystem::is_directory(p, error))
+      throw InputError(option, "'" + p.string() + "' is a file, not a folder: expected " +
+                                   (p == std::filesystem::absolute(folder, error).lexically_normal()
+                                        ? std::string("a folder to write into")
+                                        : "a path whose parents are folders (" + folder.string() + ")"));
+    if (p == p.parent_path()) break;
+  }
+}
+
+void check_output_file(const std::filesystem::path& file, const std::string& option) {
+  std::error_code error;
+  if (std::filesystem::is_directory(file, error))
+    throw InputError(option, "'" + file.string() + "' is a folder: expected a file name to write");
+  const std::filesystem::path folder = std::filesystem::absolute(file, error).parent_path();
+  check_output_folder(folder, option);
+}
+
 }  // namespace dtwire

@@ -75,7 +75,10 @@ Curve parse_csv(const std::string& text, const std::string& source) {
   int line_number = 0;
   int last_line = 0;
 
-  std::istringstream lines(text);
+  // A UTF-8 byte-order mark (spreadsheets' "CSV UTF-8") is not part of the first column's name.
+  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+  std::istringstream lines(text.compare(0, kByteOrderMark.size(), kByteOrderMark) == 0 ? text.substr(kByteOrderMark.size())
+                                                                                         : text);
   std::string line_text;
   while (std::getline(lines, line_text)) {
     ++line_number;

@@ -79,6 +79,11 @@ PrmDocument PrmDocument::read(const std::filesystem::path& file) {
   if (!in) throw InputError(file.string(), "cannot read the parameter file");
   std::stringstream text;
   text << in.rdbuf();
+  // deal.II's ParameterHandler reads the file itself and would take the mark for a name.
+  if (text.str().compare(0, 3, "\xEF\xBB\xBF") == 0)
+    throw InputError(file.string(), 1, 1,
+                     "the file starts with a UTF-8 byte-order mark (an editor's 'UTF-8 with BOM'); save it as "
+                     "plain UTF-8 without the mark");
   return parse(text.str(), file.string());
 }
 

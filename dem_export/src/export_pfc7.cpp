@@ -5,6 +5,7 @@
 // files), so values are written unchanged; rotations stay in the plugin's degree convention.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -51,7 +52,8 @@ std::string number(double value) {
   for (const int digits : {15, 17}) {
     std::ostringstream s;
     s << std::setprecision(digits) << value;
-    if (std::stod(s.str()) == value || digits == 17) return s.str();
+    // strtod, not stod: a subnormal reads back without the out-of-range exception stod throws.
+    if (std::strtod(s.str().c_str(), nullptr) == value || digits == 17) return s.str();
   }
   return {};
 }

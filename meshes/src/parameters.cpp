@@ -104,6 +104,10 @@ double maximum_gap(const MeshParameters& parameters) { return 0.05 * parameters.
 
 void validate(const MeshParameters& p, const FieldLocations& where) {
   auto mm = [](double metres) { return format(metres * 1e3) + " mm"; };
+  // An infinite length or angle passes the order checks below and then fills the mesh with NaN.
+  for (const ParameterField& field : parameter_fields())
+    if (field.real && used_by(field, p.kind) && !std::isfinite(p.*field.real))
+      throw_field_error(where, field.name, "expected a finite number, got " + format(user_value(p, field)));
   if (!(p.diameter > 0)) throw_field_error(where, "d", "expected a diameter > 0 mm, got " + mm(p.diameter));
   if (p.level < 0 || p.level > 3)
     throw_field_error(where, "level", "expected a refinement level 0..3, got " + std::to_string(p.level));

@@ -100,9 +100,9 @@ case_ "--write-curves: '$src/README.md' is a file" gap selfcheck --trials 1 --wr
 case_ "--write-curves: '$src/tests' is not empty" gap selfcheck --trials 1 --write-curves "$src/tests"
 case_ "--effects: 'bogus' is no curve-mode effect" gap selfcheck --trials 1 --effects gauge_length,bogus
 case_ "--pair-trials: pairs need at least two --effects" gap selfcheck --trials 1 --effects gauge_length
-case_ "--force-at-fraction: Value 1.5 not in range" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction 1.5
+case_ "--force-at-fraction: expected a number in [0, 0.99], got 1.5" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction 1.5
 # CLI::Range lets NaN through (every comparison with it is false).
-case_ "--force-at-fraction: Value nan is not a finite number" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction nan
+case_ "--force-at-fraction: expected a finite number in [0, 0.99], got 'nan'" gap mesh-selfcheck --model "$src/experiments/dem/gap_selfcheck_punch.toml" --force-at-fraction nan
 case_ "a mesh-test effect: it acts on a DEM panel model" gap features --model "$src/experiments/dt/dt_tension.prm" --effects mesh_distortion --json "$work/features.json"
 case_ "--lab-peak: '5000': expected PEAK_N:SD_N" gap features --model "$src/experiments/dt/dt_tension.prm" --lab-peak 5000 --json "$work/features.json"
 case_ "--lab-peak: '5000:-1': the peak and its standard deviation must be positive" gap features --model "$src/experiments/dt/dt_tension.prm" --lab-peak 5000:-1 --json "$work/features.json"
@@ -288,6 +288,28 @@ case_ "unknown feature 'force_at_-420mm_N'" gap --lab-summary force_at_-420mm_N=
 case_ "force_at_45mm_N: the simulated curve reaches only 30" gap --lab-summary force_at_45mm_N=2000:100 --sim sim.csv --mode tension --json beyond.json
 total=$((total + 1))
 if [ ! -e beyond.json ]; then pass=$((pass + 1)); else echo "FAIL: beyond.json written by a refused diagnosis"; fi
+# Careless numbers and paths (a helper's sweep, 2026-12-03): each refused before any work.
+case_ "--noise: expected a finite number in [0, 1], got 'nan'" fit "$fit" --synthesize synth --noise nan
+case_ "--seed: expected a whole number >= 0 (digits only), got '-1'" fit "$fit" --synthesize synth --seed -1
+case_ "--max-strain: expected a finite number in [0, inf), got 'nan'" dem driver --law thesis --params "$thesis" --max-strain nan --out driver
+case_ "--gauge-mm: expected a number in (0, inf), got -1" gap --lab sim.csv --sim sim.csv --gauge-mm -1 --area-mm2 5
+case_ "--lab-peak-sd: expected a number in (0, inf), got 0" gap features --model "$src/experiments/dt/dt_tension.prm" --lab-curve sim.csv --lab-peak-sd 0
+case_ "--d: expected a finite number, got inf" mesh sw --level 0 --d inf -o inf.msh
+case_ "--arm-length: expected a finite number, got inf" mesh dt --level 0 --arm-length inf -o inf.msh
+: > a_file
+case_ "-o: '$work/a_file' is a file, not a folder" dem run "$src/experiments/dem/strip_tension_thesis.toml" -o a_file -q
+case_ "-o: '$work/a_file' is a file, not a folder" fit "$fit" -o a_file
+case_ "--json: '$work/a_file' is a file, not a folder" gap --lab sim.csv --sim sim.csv --mode tension --json a_file/x.json
+case_ "--json: '$work' is a folder: expected a file name" gap --lab sim.csv --sim sim.csv --mode tension --json "$work"
+case_ "--plot: 'gap.txt': expected a figure file ending in .png" gap --lab sim.csv --sim sim.csv --mode tension --plot gap.txt
+case_ "--plot: 'strip.txt': expected a figure file ending in .png" dem run "$src/experiments/dem/strip_tension_thesis.toml" --plot strip.txt -o plot_out -q
+case_ "-o: '$work/a_file' is a file, not a folder" run "$prm" -o a_file -q
+mkdir -p empty_campaign
+case_ "--report-only: no step of campaign 'default' has its outputs in" campaign --report-only -o empty_campaign
+printf '\xef\xbb\xbf' | cat - "$prm" > bom.prm
+case_ "bom.prm:1:1: the file starts with a UTF-8 byte-order mark" run bom.prm $out
+sed -e 's/^increments_per_leg = .*/increments_per_leg = 2000000000/' -e "s|\"\\.\\./|\"$src/experiments/|" "$fit" > huge_increments.toml
+case_ "increments_per_leg': the path's" fit huge_increments.toml --synthesize synth_huge
 # A plot that cannot be drawn (a binary without its scripts: an empty data folder) is refused
 # before any run, not after the tables are written.
 mkdir -p no_data

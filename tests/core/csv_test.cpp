@@ -23,6 +23,15 @@ TEST(Csv, ParsesMetadataHeaderAndValuesKeepingUnits) {
   EXPECT_DOUBLE_EQ(curve.si("displacement")[1], 0.5e-3);  // mm -> m
 }
 
+// Spreadsheets save "CSV UTF-8" with a byte-order mark before the header: it is no part of the
+// first column's name.
+TEST(Csv, AByteOrderMarkBeforeTheHeaderIsSkipped) {
+  const Curve curve = parse_csv("\xEF\xBB\xBF# specimen: SW-02\ndisplacement_mm,force_N\n0,0\n1,10\n2,20\n", "bom.csv");
+  EXPECT_EQ(curve.metadata("specimen"), "SW-02");
+  ASSERT_TRUE(curve.has("displacement"));
+  EXPECT_DOUBLE_EQ(curve.si("displacement")[2], 2e-3);
+}
+
 TEST(Csv, WriteThenReadIsExactForAwkwardNumbers) {
   Curve curve;
   curve.set_metadata("source", "test");

@@ -88,5 +88,26 @@ TEST(Provenance, EachRunGetsItsOwnId) {
   EXPECT_EQ(new_run_id().size(), std::string("20261124T121500Z-").size() + std::to_string(::getpid()).size() + 9);
 }
 
+// An output path is checked before any work: a file where a folder must be is named with the
+// option; a folder that does not exist yet is fine (the command makes it).
+TEST(OutputPaths, AFileInTheWayIsNamedWithItsOption) {
+  const auto root = std::filesystem::temp_directory_path() / ("dtwire_output_paths_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(root);
+  std::filesystem::create_directories(root);
+  std::ofstream(root / "a_file") << "x";
+  EXPECT_NO_THROW(check_output_folder(root / "new" / "deeper", "-o"));
+  EXPECT_NO_THROW(check_output_file(root / "new" / "x.json", "--json"));
+  try {
+    check_output_folder(root / "a_file" / "sub", "-o");
+    ADD_FAILURE() << "a file as a parent folder was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("-o"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("a_file' is a file, not a folder"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(check_output_folder(root / "a_file", "--out"), InputError);
+  EXPECT_THROW(check_output_file(root, "--json"), InputError);  // a folder where a file must be
+  std::filesystem::remove_all(root);
+}
+
 }  // namespace
 }  // namespace dtwire

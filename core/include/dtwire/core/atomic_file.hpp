@@ -69,4 +69,13 @@ std::size_t remove_stale_temporaries(const std::filesystem::path& folder);
 // The temporary's writer, if `name` has the form NAME.tmp.PID.N (0 otherwise).
 long temporary_writer(const std::string& name);
 
+// Checks, before any work, that a command can create or write into the output `folder` given by
+// `option` (e.g. "-o"): neither it nor any of its parents is an existing file. Throws InputError
+// naming the option and the file in the way. A folder that does not exist yet is fine: the
+// command creates it.
+void check_output_folder(const std::filesystem::path& folder, const std::string& option);
+
+// As check_output_folder for the folder of the output `file`, and `file` is not an existing folder.
+void check_output_file(const std::filesystem::path& file, const std::string& option);
+
 }  // namespace dtwire
