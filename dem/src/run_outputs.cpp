@@ -330,7 +330,7 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   parameter("kinetic_energy_after_settling_J", summary.kinetic_after_settling, "J");
   if (input_.tool == "platter") {
     parameter("onset_displacement_m", summary.onset, "m");
-    parameter("force_at_420mm_N", summary.force_at_420mm, "N");
+    if (summary.force_at_420mm >= 0.0) parameter("force_at_420mm_N", summary.force_at_420mm, "N");
   }
   results.fields.emplace_back("frames", frames_.empty() ? "none" : "net.pvd (frames/net_<k>.vtu)");
   results.fields.emplace_back("title", input_.title);
@@ -368,7 +368,8 @@ void RunRecorder::finish(const Engine& engine, RunSummary& summary) {
   if (input_.tool == "platter") {
     headline["onset_displacement_mm"] = summary.onset < 0.0 ? nlohmann::json() : nlohmann::json(1000.0 * summary.onset);
     headline["onset_force_N"] = 1000.0;
-    headline["force_at_420mm_N"] = summary.force_at_420mm;
+    // null where the platter stopped short of 0.42 m (a net that failed earlier, a shorter travel).
+    headline["force_at_420mm_N"] = summary.force_at_420mm < 0.0 ? nlohmann::json() : nlohmann::json(summary.force_at_420mm);
     headline["stopped_at_failure"] = summary.stopped_at_failure;
   }
   if (!at_peak_.sections.empty()) {

@@ -10,6 +10,7 @@
 #include "dtwire/core/csv.hpp"
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/results_store.hpp"
+#include "dtwire/dem/punch_figures.hpp"
 #include "dtwire/dem/run.hpp"
 #include "dtwire/dem/run_checks.hpp"
 
@@ -260,6 +261,20 @@ TEST(DemRun, FailedCheckStopsTheRunAndMarksItsPartialResults) {
   const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
   EXPECT_NE(text.find("\"bound_key\": \"checks.max_balance_error_percent\""), std::string::npos) << text;
+}
+
+// The punch's headline figures from a curve whose values are known by hand: the onset between
+// the samples that bracket 1 kN, the force at 0.42 m interpolated, and -1 for a travel that stops
+// short of it (summary.json writes null there, never a force the run did not reach).
+TEST(PunchFigures, OnsetProbeAndPeakByHandAndAProbeNotReached) {
+  const std::vector<double> x{0.0, 0.1, 0.2, 0.3}, f{0.0, 500.0, 1500.0, 3000.0};
+  const PunchFigures short_travel = punch_figures(x, f);
+  EXPECT_DOUBLE_EQ(short_travel.onset, 0.15);
+  EXPECT_DOUBLE_EQ(short_travel.peak_force, 3000.0);
+  EXPECT_DOUBLE_EQ(short_travel.displacement_at_peak, 0.3);
+  EXPECT_EQ(short_travel.force_at_probe, -1.0);
+  const PunchFigures long_travel = punch_figures({0.0, 0.1, 0.2, 0.3, 0.5}, {0.0, 500.0, 1500.0, 3000.0, 5000.0});
+  EXPECT_NEAR(long_travel.force_at_probe, 3000.0 + 0.6 * 2000.0, 1e-9);
 }
 
 // A check that fails on the loading's first row fails in the state the settle left: the message

@@ -8,7 +8,7 @@ namespace dtwire::dem {
 
 struct PunchFigures {
   double onset = -1.0;          // travel where the force first reaches onset_force [m]; -1: never
-  double force_at_probe = 0.0;  // force at probe travel (linear interpolation; 0 if not reached) [N]
+  double force_at_probe = -1.0;  // force at probe travel (linear interpolation) [N]; -1: the travel was not reached
   double peak_force = 0.0;      // [N]
   double displacement_at_peak = 0.0;  // [m]
 };

@@ -112,7 +112,7 @@ struct RunOptions {
 struct RunSummary {
   Curve history;
   double peak_force = 0.0, displacement_at_peak = 0.0;  // [N], [m]
-  double onset = -1.0, force_at_420mm = 0.0;  // punch_figures.hpp: [m] (-1: no onset), [N]
+  double onset = -1.0, force_at_420mm = -1.0;  // punch_figures.hpp: [m] (-1: no onset), [N] (-1: not reached)
   double largest_balance_error = 0.0;  // |error| / work on the mesh, largest over the run
   double sag = 0.0;  // largest downward displacement after settling [m]
   double pretension_strain = 0.0;  // the stretch used (searched for a pre-load's sag)
