@@ -121,6 +121,7 @@ std::pair<std::filesystem::path, std::filesystem::path> target_path(const Table&
                                                                     const FitReadOptions& options) {
   static const std::string placeholder = "{targets}";
   const std::string text = x.text("target");
+  if (text.empty()) x.fail(x.get("target"), "target", "empty: expected the path of the target CSV");
   if (text.rfind(placeholder, 0) != 0) {
     if (text.find(placeholder) != std::string::npos)
       x.fail(x.get("target"), "target", "{targets} must begin the path, as in \"{targets}/run/curve.csv\"");
@@ -511,8 +512,11 @@ FitDefinition read_fit_file(const std::filesystem::path& file, const FitReadOpti
         x.fail(nullptr, "path_displacement_mm", "missing: give path_displacement_<unit> and/or path_rotation_<unit>");
       if (path.displacement_m.empty()) path.displacement_m.assign(path.rotation_rad.size(), 0.0);
       if (path.rotation_rad.empty()) path.rotation_rad.assign(path.displacement_m.size(), 0.0);
-      if (path.displacement_m.size() != path.rotation_rad.size() || path.displacement_m.size() < 2)
-        x.fail(nullptr, "path_rotation", "displacement and rotation waypoints must have the same length, >= 2");
+      if (path.displacement_m.size() != path.rotation_rad.size())
+        x.fail(nullptr, "path_rotation", "displacement and rotation waypoints must have the same length");
+      if (path.displacement_m.size() < 2)
+        x.fail(x.get("path_displacement_mm"), x.has("path_displacement_mm") ? "path_displacement_mm" : "path_displacement",
+               "expected >= 2 waypoints (a leg runs from one to the next)");
       path.increments_per_leg = increments;
       check_path_memory(x, static_cast<double>(increments) * static_cast<double>(path.displacement_m.size() - 1));
       e.simulator = std::make_shared<LawReplaySimulator>(def.law, def.fixed, path);

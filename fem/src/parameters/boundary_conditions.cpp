@@ -63,24 +63,24 @@ void read_boundary_conditions(const Source& source, Parameters& p) {
   p.load.direction = prm.get("Load direction") == "lateral" ? LoadDirection::lateral : LoadDirection::axial;
   if (p.load.direction == LoadDirection::lateral && (p.geometry.quarter || p.load.bottom != EndCondition::clamped))
     throw InputError(name, "Load direction = lateral needs Cross section = full and Bottom end = clamped");
-  for (const auto& [t, u] : parse_pairs(prm.get("Load path (mm)"), name, "Load path (mm)"))
-    p.load.path.emplace_back(t, u * 1e-3);
+  constexpr const char* kSection = "Boundary conditions";
+  for (const auto& [t, u] : source.pairs(kSection, "Load path (mm)")) p.load.path.emplace_back(t, u * 1e-3);
   if (p.load.path.size() < 2 || p.load.path.front().first != 0.0 || p.load.path.front().second != 0.0)
-    throw InputError(name, "'Load path (mm)': expected at least two pairs starting with 0:0");
+    source.fail(kSection, "Load path (mm)", "expected at least two pairs starting with 0:0");
   for (std::size_t i = 1; i < p.load.path.size(); ++i)
     if (!(p.load.path[i].first > p.load.path[i - 1].first))
-      throw InputError(name, "'Load path (mm)': pseudo-times must increase strictly");
+      source.fail(kSection, "Load path (mm)", "pseudo-times must increase strictly");
   if (prm.get("Control") == "force") {
     if (p.load.direction != LoadDirection::axial || p.load.top == EndCondition::free)
       throw InputError(name, "Control = force needs Load direction = axial and Top end = clamped or axial");
     p.load.force_control = true;
-    p.load.force_path = parse_pairs(prm.get("Force path (N)"), name, "Force path (N)");
+    p.load.force_path = source.pairs(kSection, "Force path (N)");
     const auto& f = p.load.force_path;
     if (f.size() < 2 || f.front().first != 0.0 || f.front().second != 0.0)
-      throw InputError(name, "'Force path (N)': expected at least two pairs starting with 0:0");
+      source.fail(kSection, "Force path (N)", "expected at least two pairs starting with 0:0");
     for (std::size_t i = 1; i < f.size(); ++i)
       if (!(f[i].first > f[i - 1].first))
-        throw InputError(name, "'Force path (N)': pseudo-times must increase strictly");
+        source.fail(kSection, "Force path (N)", "pseudo-times must increase strictly");
     p.load.path.clear();
     for (const auto& knot : f) p.load.path.emplace_back(knot.first, 0.0);
   }
@@ -91,11 +91,11 @@ void read_boundary_conditions(const Source& source, Parameters& p) {
     p.load.pull_direction.assign(d.begin(), d.end());
   }
   if (!prm.get("Rotation path (deg)").empty()) {
-    for (const auto& [t, angle] : parse_pairs(prm.get("Rotation path (deg)"), name, "Rotation path (deg)"))
+    for (const auto& [t, angle] : source.pairs(kSection, "Rotation path (deg)"))
       p.load.rotation_path.emplace_back(t, angle * M_PI / 180.0);
     if (p.load.rotation_path.empty() || p.load.rotation_path.front().first != 0.0 ||
         p.load.rotation_path.front().second != 0.0)
-      throw InputError(name, "'Rotation path (deg)': expected pairs starting with 0:0");
+      source.fail(kSection, "Rotation path (deg)", "expected pairs starting with 0:0");
     for (const auto& knot : p.load.rotation_path) {
       bool found = false;
       for (const auto& k : p.load.path) found = found || std::abs(k.first - knot.first) <= 1e-12 * (1.0 + k.first);

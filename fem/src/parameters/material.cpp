@@ -98,7 +98,7 @@ void read_material(const Source& source, Parameters& p) {
   h.swift_coefficient = prm.get_double("Swift coefficient (MPa)") * 1e6;
   h.swift_offset = prm.get_double("Swift offset");
   h.swift_exponent = prm.get_double("Swift exponent");
-  for (const auto& [strain, stress] : parse_pairs(prm.get("Hardening table"), name, "Hardening table")) {
+  for (const auto& [strain, stress] : source.pairs("Material", "Hardening table")) {
     h.table_plastic_strain.push_back(strain);
     h.table_stress.push_back(stress * 1e6);
   }

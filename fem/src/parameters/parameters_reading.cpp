@@ -11,12 +11,14 @@
 namespace dtwire::fem::prm_reading {
 
 void Source::require(bool ok, const std::string& section, const std::string& entry, const std::string& expected) const {
-  if (ok) return;
+  if (!ok) fail(section, entry, "expected " + expected + ", found '" + prm.get(entry) + "'");
+}
+
+void Source::fail(const std::string& section, const std::string& entry, const std::string& message) const {
   const std::string path = section + "/" + entry;
-  const std::string message = "'" + entry + "': expected " + expected + ", found '" + prm.get(entry) + "'";
-  if (set_on_command_line.count(path)) throw InputError("--set", path + ": " + message);
+  if (set_on_command_line.count(path)) throw InputError("--set", path + ": '" + entry + "': " + message);
   const auto line = lines.find(path);
-  throw InputError(name, line == lines.end() ? 0 : line->second, 0, "subsection " + section + ": " + message);
+  throw InputError(name, line == lines.end() ? 0 : line->second, 0, "subsection " + section + ": '" + entry + "': " + message);
 }
 std::array<double, 3> Source::vector3(const std::string& entry) const {
   std::istringstream in(prm.get(entry));
@@ -35,10 +37,9 @@ std::array<double, 3> Source::unit(const std::string& entry) const {
   return v;
 }
 
-std::vector<std::pair<double, double>> parse_pairs(const std::string& text, const std::string& file,
-                                                   const std::string& entry) {
+std::vector<std::pair<double, double>> Source::pairs(const std::string& section, const std::string& entry) const {
   std::vector<std::pair<double, double>> pairs;
-  std::stringstream list(text);
+  std::stringstream list(prm.get(entry));
   std::string item;
   while (std::getline(list, item, ',')) {
     if (item.find_first_not_of(" \t") == std::string::npos) continue;
@@ -51,7 +52,7 @@ std::vector<std::pair<double, double>> parse_pairs(const std::string& text, cons
       if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("not finite");
       pairs.emplace_back(x, y);
     } catch (const std::exception&) {
-      throw InputError(file, "'" + entry + "': expected number:number pairs, found '" + item + "'");
+      fail(section, entry, "expected number:number pairs of finite numbers, found '" + item + "'");
     }
   }
   return pairs;

@@ -30,13 +30,15 @@ struct Source {
   // Called inside `section`.
   // Called inside `section`: an InputError naming --set, file:line or the file when !ok.
   void require(bool ok, const std::string& section, const std::string& entry, const std::string& expected) const;
+  // An InputError about `entry` of `section`: at --set when the entry was given there, else at
+  // the file's line of the entry.
+  [[noreturn]] void fail(const std::string& section, const std::string& entry, const std::string& message) const;
+  // `time:value` pairs separated by commas (finite numbers); a bad item fails at the entry.
+  std::vector<std::pair<double, double>> pairs(const std::string& section, const std::string& entry) const;
   std::array<double, 3> vector3(const std::string& entry) const;  // three finite numbers
   std::array<double, 3> unit(const std::string& entry) const;     // a non-zero direction, normalised
 };
 
-// `time:value` pairs separated by commas; a bad item is an InputError naming file and entry.
-std::vector<std::pair<double, double>> parse_pairs(const std::string& text, const std::string& file,
-                                                   const std::string& entry);
 // Whether the file starts like a gmsh mesh ($MeshFormat, or $NOD in format 1).
 bool looks_like_gmsh(const std::filesystem::path& mesh);
 EndCondition end_condition(const std::string& s);
