@@ -172,8 +172,15 @@ std::vector<ParameterSet> read_parameter_file(const std::filesystem::path& file)
                                       "{name, value, unit, sigma}");
     if (root.contains("backbone")) read_backbone_object(root["backbone"], file, sets.back());
   } else {
-    for (const auto& [name, value] : root.items())
-      if (value.is_object()) sets.push_back(read_numeric_object(value, file, name + ".", name, law));
+    // Text fields are the file's notes (source, units, law); anything else that is not a wire
+    // type's object would be dropped without a word.
+    for (const auto& [name, value] : root.items()) {
+      if (value.is_object())
+        sets.push_back(read_numeric_object(value, file, name + ".", name, law));
+      else if (!value.is_string())
+        throw InputError(file.string(), "field '" + name + "': expected an object {name: value} of a wire type's "
+                                        "parameters (e.g. 'single_wire'), or a text note, found " + value.type_name());
+    }
   }
   if (sets.empty())
     throw InputError(file.string(), "no parameters: expected a 'parameters' field or wire-type objects "

@@ -304,6 +304,8 @@ case_ "--json: '$work' is a folder: expected a file name" gap --lab sim.csv --si
 case_ "--plot: 'gap.txt': expected a figure file ending in .png" gap --lab sim.csv --sim sim.csv --mode tension --plot gap.txt
 case_ "--plot: 'strip.txt': expected a figure file ending in .png" dem run "$src/experiments/dem/strip_tension_thesis.toml" --plot strip.txt -o plot_out -q
 case_ "-o: '$work/a_file' is a file, not a folder" run "$prm" -o a_file -q
+python3 -c "import json; s = json.load(open('$thesis')); s['single_wire'] = [1, 2]; json.dump(s, open('array_set.json', 'w'))"
+case_ "array_set.json: field 'single_wire': expected an object {name: value}" export --params array_set.json --out export
 mkdir -p empty_campaign
 case_ "--report-only: no step of campaign 'default' has its outputs in" campaign --report-only -o empty_campaign
 printf '\xef\xbb\xbf' | cat - "$prm" > bom.prm
