@@ -422,6 +422,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
   self->run.backbone_csv = data_path("experiments/data/sw_2.7mm_dem_backbone.csv").string();
   CLI::App* selfcheck = command->add_subcommand(
       "selfcheck", "Inject effects into model curves, withhold them, and check the diagnosis");
+  selfcheck->footer("");  // the parent's footer is about --lab, --sim and --mode, which this has not
   selfcheck->add_option("--trials", self->run.trials, "Trials per single effect")->capture_default_str()->check(CLI::Range(0, 100000));
   selfcheck->add_option("--pair-trials", self->run.pair_trials, "Trials with two effects")->capture_default_str()->check(CLI::Range(0, 100000));
   selfcheck->add_option("--none-trials", self->run.none_trials, "Effect-free trials")->capture_default_str()->check(CLI::Range(0, 100000));

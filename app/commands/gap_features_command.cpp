@@ -231,6 +231,7 @@ void add_gap_features_command(CLI::App& gap_command, CommandSet& commands) {
   auto o = std::make_shared<FeaturesOptions>();
   CLI::App* c = gap_command.add_subcommand(
       "features", "DT tension model against the laboratory's toe and failure zone, with each model-only effect");
+  c->footer("");  // the parent's footer is about --lab, --sim and --mode, which this has not
   c->add_option("--model", o->model, "The DT tension experiment (.prm)")->required()->check(CLI::ExistingFile);
   c->add_option("--effects", o->effects, "Model-only effects to try (default: every one the .prm supports)");
   c->add_option("--lab-failure", o->lab_failure, "Where the laboratory specimens fail")

@@ -89,6 +89,7 @@ void add_gap_mesh_selfcheck_command(CLI::App& gap_command, CommandSet& commands)
   auto o = std::make_shared<MeshOptions>();
   CLI::App* command = gap_command.add_subcommand(
       "mesh-selfcheck", "Check the mesh-scale diagnosis on DEM runs with a known effect withheld");
+  command->footer("");  // the parent's footer is about --lab, --sim and --mode, which this has not
   command->add_option("--model", o->model, "DEM run (.toml, punch or strip tension): the base model")->required();
   command->add_option("--model-set", o->model_set, "A `dem run --set` entry of the base model (repeat)");
   command->add_option("--model-set-params", o->model_set_params, "A `dem run --set-params TAG=FILE` of the base model");
