@@ -224,14 +224,13 @@ void write_bytes_atomically(const std::filesystem::path& target, std::string_vie
 
 void check_output_folder(const std::filesystem::path& folder, const std::string& option) {
   std::error_code error;
-  for (std::filesystem::path p = std::filesystem::absolute(folder, error).lexically_normal(); !p.empty();
-       p = p.parent_path()) {
+  const std::filesystem::path target = std::filesystem::absolute(folder, error).lexically_normal();
+  for (std::filesystem::path p = target; !p.empty(); p = p.parent_path()) {
     if (std::filesystem::exists(p, error) && !std::filesystem::is_directory(p, error))
       throw InputError(option, "'" + p.string() + "' is a file, not a folder: expected " +
-                                   (p == std::filesystem::absolute(folder, error).lexically_normal()
-                                        ? std::string("a folder to write into")
-                                        : "a path whose parents are folders (" + folder.string() + ")"));
-    if (p == p.parent_path()) break;
+                                   (p == target ? std::string("a folder to write into")
+                                                : "a path whose parents are folders (" + folder.string() + ")"));
+    if (p == p.parent_path()) break;  // the root
   }
 }
 
