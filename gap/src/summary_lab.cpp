@@ -533,6 +533,9 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     d.verdict = "within_noise";
     d.reason = "the simulated features lie within one laboratory standard deviation (rms z-score " +
                std::to_string(d.gap_before) + ")";
+  } else if (d.ranking.empty()) {  // as in curve mode: nothing was tried, so nothing failed to close
+    d.verdict = "nothing_tested";
+    d.reason = "no effect could be tested on these figures (see not_tested)";
   } else if (refused != d.ranking.end() &&
              (cause == d.ranking.end() ||
               (cause->gap_after > d.noise_floor && cause->shrink < kOutdoneRatio * refused->shrink))) {

@@ -110,6 +110,23 @@ TEST(GapSummaryLab, ForceBeyondTheSimulatedTravelIsRefused) {
   }
 }
 
+// When no effect can be tried (here the only one asked for is not in the model), the verdict says
+// so; "no effect reduces the gap" would claim effects were tried and failed.
+TEST(GapSummaryLab, NothingTestedIsNotNoEffectReducesTheGap) {
+  SummaryOptions options;
+  options.effects = {"residual_stress"};
+  options.model = [](const std::vector<AppliedEffect>&) { return stand_in_column(1.0); };
+  options.model_unsupported["residual_stress"] = "not in this model";
+  const ForceCurve lab_model = stand_in_column(3.0);
+  const double peak = curve_feature(lab_model, "peak_force_N");
+  const SummaryDiagnosis d = diagnose_summary(stand_in_column(1.0), {{"peak_force_N", peak, 0.02 * peak}}, options);
+  ASSERT_GT(d.gap_before, d.noise_floor);
+  EXPECT_TRUE(d.ranking.empty());
+  EXPECT_EQ(d.verdict, "nothing_tested") << d.reason;
+  EXPECT_EQ(d.cause, "none");
+  EXPECT_EQ(d.reason.find("no effect reduces"), std::string::npos) << d.reason;
+}
+
 // A grid parameter (three nodes per wire or two) is only ever evaluated at its grid values, the
 // continuous one beside it refined as before.
 // The standard's figures of a mesh strip (EN 10223-3, 8x10 / 2.7 mm: 50 kN/m, axial stiffness
