@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <unistd.h>
@@ -301,13 +302,19 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     // Each laboratory curve's mode, then the curves grouped by mode (in order of appearance).
     std::vector<gap::ModeInput> inputs;
     std::vector<std::string> input_sim, input_model, input_first_lab;
-    std::vector<std::string> order_warnings;  // flagged, not refused: the user may know better
+    std::vector<std::string> input_warnings;  // flagged, not refused: the user may know better
+    struct LabModes {
+      std::size_t input = 0, index = 0;  // inputs[input].labs[index]
+      std::optional<gap::ModeGuess> own;  // the curve's own (none if its metadata names no mode we know)
+      gap::ModeGuess compared;
+    };
+    std::vector<LabModes> lab_modes;
     for (std::size_t k = 0; k < n; ++k) {
       const std::string& path = options->labs[k];
       const gap::ForceCurve lab = gap::load_force_curve(path, conversion);
       if (const std::string warning = gap::row_order_warning(lab); !warning.empty()) {
         std::cerr << "warning: " << warning << "\n";
-        order_warnings.push_back(warning);
+        input_warnings.push_back(warning);
       }
       const std::string sim = sims.empty() ? "" : sims[k];
       const std::string model = models.empty() ? "" : models[k];
@@ -347,6 +354,13 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       if (in->basis != guess.basis && in->basis.find(guess.basis) == std::string::npos)
         in->basis += "; " + guess.basis;
       in->labs.push_back(lab);
+      LabModes modes{m, in->labs.size() - 1, std::nullopt, guess};
+      try {
+        modes.own = gap::detect_loading_mode(read_csv(path), lab, path);
+      } catch (const InputError&) {
+        // A mode name we do not know in the curve's metadata: the mode given or inferred stands.
+      }
+      lab_modes.push_back(modes);
     }
     if (inputs.size() > 1 && options->sims.size() <= 1 && options->models.size() <= 1)
       throw InputError("--sim", "the laboratory curves are of " + std::to_string(inputs.size()) +
@@ -364,6 +378,13 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       }
       inputs[m].sim = !input_sim[m].empty() ? gap::load_force_curve(input_sim[m], conversion) : inputs[m].model({});
     }
+    for (const LabModes& l : lab_modes)
+      for (const std::string& warning :
+           gap::comparison_warnings(inputs[l.input].labs[l.index], l.own.value_or(l.compared), inputs[l.input].sim,
+                                    l.compared)) {
+        std::cerr << "warning: " << warning << "\n";
+        input_warnings.push_back(warning);
+      }
     gap::DiagnosisOptions diagnosis_options;
     diagnosis_options.effects = effects;
     diagnosis_options.try_pairs = !options->no_pairs;
@@ -372,10 +393,10 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     const gap::MultiModeDiagnosis result = gap::diagnose_modes(inputs, diagnosis_options);
     auto document = gap::multimode_json(result);
     std::string markdown = gap::multimode_markdown(result);
-    if (!order_warnings.empty()) {
-      document["input_warnings"] = order_warnings;
+    if (!input_warnings.empty()) {
+      document["input_warnings"] = input_warnings;
       std::string flagged;
-      for (const std::string& w : order_warnings) flagged += "> **Warning**: " + w + "\n\n";
+      for (const std::string& w : input_warnings) flagged += "> **Warning**: " + w + "\n\n";
       markdown = flagged + markdown;
     }
     write_text(options->json, document.dump(2) + "\n");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 
 #include "dtwire/core/error.hpp"
 
@@ -64,6 +65,65 @@ ModeGuess detect_loading_mode(const Curve& curve, const ForceCurve& c, const std
   if (*lo < -0.2 * peak && *hi > 0.2 * peak) return {"cyclic", "force of both signs"};
   if (std::abs(*lo) > std::abs(*hi)) return {"compression", "dominant force negative"};
   return {"tension", "dominant force positive"};
+}
+
+namespace {
+
+struct Extent {
+  double largest_force = 0.0, largest_displacement = 0.0;
+  int sign = 0;  // of the dominant force; 0 for a curve loaded both ways (cyclic)
+};
+
+Extent extent_of(const ForceCurve& c) {
+  Extent e;
+  const auto [lo, hi] = std::minmax_element(c.f.begin(), c.f.end());
+  e.largest_force = std::max(std::abs(*lo), std::abs(*hi));
+  for (const double u : c.u) e.largest_displacement = std::max(e.largest_displacement, std::abs(u));
+  const bool both_ways = *lo < -0.2 * e.largest_force && *hi > 0.2 * e.largest_force;  // as detect_loading_mode
+  e.sign = both_ways ? 0 : (std::abs(*lo) > std::abs(*hi) ? -1 : 1);
+  return e;
+}
+
+// "" when a and b (> 0) lie within kScaleWarningDecades decades of each other; else what the
+// ratio suggests.
+std::string scale_mismatch(double lab, double sim, const char* what, const char* small_unit, const char* large_unit) {
+  if (!(lab > 0.0 && sim > 0.0)) return "";
+  const double decades = std::log10(lab / sim);
+  if (std::abs(decades) <= kScaleWarningDecades) return "";
+  char ratio[32];
+  std::snprintf(ratio, sizeof ratio, "%.3g", lab / sim);
+  std::string out = std::string("its largest ") + what + " is " + ratio + " times the simulation's";
+  if (std::abs(std::abs(decades) - 3.0) <= 0.5)
+    out += decades < 0 ? std::string(" (a column in ") + large_unit + " labelled " + small_unit + "?)"
+                       : std::string(" (a column in ") + small_unit + " labelled " + large_unit + "?)";
+  else
+    out += " (a curve of another specimen or test?)";
+  return out;
+}
+
+bool stated_mode(const ModeGuess& guess) {
+  return guess.basis.rfind("metadata", 0) == 0 || guess.basis.rfind("channel", 0) == 0;
+}
+
+}  // namespace
+
+std::vector<std::string> comparison_warnings(const ForceCurve& lab, const ModeGuess& lab_own, const ForceCurve& sim,
+                                             const ModeGuess& compared) {
+  std::vector<std::string> out;
+  const std::string both = lab.source + " against the simulation " + sim.source + ": ";
+  const Extent l = extent_of(lab), s = extent_of(sim);
+  if (l.sign != 0 && s.sign != 0 && l.sign != s.sign)
+    out.push_back(both + "the laboratory's force is mostly " + (l.sign < 0 ? "negative" : "positive") +
+                  " and the simulation's mostly " + (s.sign < 0 ? "negative" : "positive") +
+                  ": is the laboratory's test the one simulated (compression against tension), or are "
+                  "the sign conventions opposite? The curves are compared by magnitude");
+  if (stated_mode(lab_own) && lab_own.mode != compared.mode && compared.basis != "--mode")
+    out.push_back(both + "the laboratory curve is a " + lab_own.mode + " test (" + lab_own.basis +
+                  ") but is compared as " + compared.mode + " (" + compared.basis + ")");
+  for (const std::string& m : {scale_mismatch(l.largest_force, s.largest_force, "force", "N", "kN"),
+                               scale_mismatch(l.largest_displacement, s.largest_displacement, "displacement", "mm", "m")})
+    if (!m.empty()) out.push_back(both + m);
+  return out;
 }
 
 bool mesh_mode(const std::string& mode) { return mode == "punch" || mode == "panel_tension"; }

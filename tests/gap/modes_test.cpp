@@ -3,6 +3,8 @@
 // applies to (test-setup effects one value per mode, specimen effects one value for all).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include <nlohmann/json.hpp>
@@ -347,6 +349,61 @@ TEST(GapModes, ASingleBeyondItsRangeDoesNotSpareThePairsTheirSearchAcrossTheMode
   EXPECT_TRUE(slip.implausible);
   EXPECT_LT(slip.gap_after, 1.5 * d.noise_floor) << "the case is one where the implausible single came close";
   EXPECT_LE(entry(d, d.cause).gap_after, d.noise_floor);
+}
+
+// A laboratory curve that is not the simulated test is flagged, naming both curves: a
+// compression test against a tension run (each curve is oriented by its own sign, so they would
+// be compared by magnitude), a mode its metadata states against another, a force or a
+// displacement 1000 times off (a kN column labelled N, mm labelled m). Curves of the same test
+// a few per cent or 2 x apart are not.
+TEST(GapModes, ALaboratoryCurveThatIsNotTheSimulatedTestIsFlagged) {
+  ForceCurve sim, lab;
+  sim.source = "sim.csv";
+  lab.source = "lab.csv";
+  for (int i = 0; i <= 20; ++i) {
+    sim.u.push_back(1e-3 * i);
+    sim.f.push_back(3000.0 * std::sin(0.07 * i));
+  }
+  const auto same_test = [&](double force_factor, double displacement_factor) {
+    ForceCurve c = lab;
+    for (std::size_t i = 0; i < sim.u.size(); ++i) {
+      c.u.push_back(displacement_factor * sim.u[i]);
+      c.f.push_back(force_factor * sim.f[i]);
+    }
+    return c;
+  };
+  const ModeGuess tension{"tension", "--sim sim.csv (dominant force positive)"};
+  const auto warnings = [&](const ForceCurve& c, const ModeGuess& own, const ModeGuess& compared) {
+    std::string all;
+    for (const std::string& w : comparison_warnings(c, own, sim, compared)) all += w + "\n";
+    return all;
+  };
+  const ModeGuess by_sign{"tension", "dominant force positive"};
+  EXPECT_EQ(warnings(same_test(1.05, 1.0), by_sign, tension), "");
+  EXPECT_EQ(warnings(same_test(2.0, 0.5), by_sign, tension), "") << "2 x is an effect's size, not a unit";
+
+  const std::string compression =
+      warnings(same_test(-1.05, -1.0), {"compression", "dominant force negative"}, tension);
+  EXPECT_NE(compression.find("lab.csv against the simulation sim.csv"), std::string::npos) << compression;
+  EXPECT_NE(compression.find("mostly negative and the simulation's mostly positive"), std::string::npos) << compression;
+  EXPECT_EQ(std::count(compression.begin(), compression.end(), '\n'), 1) << compression;
+
+  const ModeGuess stated{"bending", "metadata experiment"};
+  const std::string mode = warnings(same_test(1.0, 1.0), stated, tension);
+  EXPECT_NE(mode.find("is a bending test (metadata experiment) but is compared as tension"), std::string::npos)
+      << mode;
+  EXPECT_EQ(warnings(same_test(1.0, 1.0), stated, {"tension", "--mode"}), "") << "--mode is the user's choice";
+
+  const std::string kilonewtons = warnings(same_test(1.05e-3, 1.0), by_sign, tension);
+  EXPECT_NE(kilonewtons.find("largest force is 0.00105 times the simulation's (a column in kN labelled N?)"),
+            std::string::npos)
+      << kilonewtons;
+  const std::string millimetres = warnings(same_test(1.0, 1e3), by_sign, tension);
+  EXPECT_NE(millimetres.find("largest displacement is 1e+03 times the simulation's (a column in mm labelled m?)"),
+            std::string::npos)
+      << millimetres;
+  const std::string other = warnings(same_test(50.0, 1.0), by_sign, tension);
+  EXPECT_NE(other.find("another specimen or test"), std::string::npos) << other;
 }
 
 TEST(GapModes, ModeFromMetadataThenChannelsThenSign) {

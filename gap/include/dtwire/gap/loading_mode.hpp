@@ -30,6 +30,22 @@ struct ModeGuess {
 // negative -> compression; else tension).
 ModeGuess detect_loading_mode(const Curve& curve, const ForceCurve& force_curve, const std::string& file);
 
+// Warnings that a laboratory curve may not be the test its simulation runs (flagged, not refused:
+// the user may know better), each naming both curves:
+// - their dominant forces are of opposite sign (a compression test against a tension simulation,
+//   or opposite sign conventions): each curve is oriented by its own sign, so they would be
+//   compared by magnitude alone;
+// - the laboratory curve's own mode, stated by its metadata or channels, is not the mode it is
+//   compared in (not checked when `compared` comes from --mode: the user chose it);
+// - its largest force or displacement lies more than kScaleWarningDecades decades from the
+//   simulation's (x 31.6): beyond what any effect does within its plausible range (docs/gap.md,
+//   the range table: the largest, a grip slip of 10 mm/kN, stretches a wire test's displacement
+//   a few times; none moves the largest force by 2 x), so more likely a unit read wrongly (a kN
+//   column labelled N reads 1000 times too small) or a curve of another specimen.
+std::vector<std::string> comparison_warnings(const ForceCurve& lab, const ModeGuess& lab_own, const ForceCurve& sim,
+                                             const ModeGuess& compared);
+inline constexpr double kScaleWarningDecades = 1.5;
+
 // A test of a panel of mesh (the DEM runs' tests), not of a wire or twist specimen.
 bool mesh_mode(const std::string& mode);
 // Whether `effect` can act in `mode`: wire effects in wire tests, mesh effects in mesh tests
