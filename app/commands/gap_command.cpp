@@ -282,9 +282,19 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       summary_options.jobs = options->jobs;
       summary_options.try_pairs = !options->no_pairs;
       summary_options.seed = options->seed;
+      const std::vector<std::string> warnings = gap::summary_scale_warnings(summary, sim);
+      for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
       const gap::SummaryDiagnosis d = gap::diagnose_summary(sim, summary, summary_options);
-      write_text(options->json, gap::summary_json(d).dump(2) + "\n");
-      write_text(options->report, gap::summary_markdown(d));
+      auto document = gap::summary_json(d);
+      std::string markdown = gap::summary_markdown(d);
+      if (!warnings.empty()) {
+        document["input_warnings"] = warnings;
+        std::string flagged;
+        for (const std::string& w : warnings) flagged += "> **Warning**: " + w + "\n\n";
+        markdown = flagged + markdown;
+      }
+      write_text(options->json, document.dump(2) + "\n");
+      write_text(options->report, markdown);
       std::cout << "gap " << d.gap_before << " lab sd (noise floor " << d.noise_floor << "), cause: "
                 << d.cause << " (" << d.reason << ")";
       if (!d.ranking.empty())

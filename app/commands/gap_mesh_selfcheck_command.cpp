@@ -58,15 +58,32 @@ std::vector<MeshTrial> mesh_trials() {
   for (const auto& e : both("distortion_lambda_u", "0.1")) distortion.push_back(e);
   distortion.push_back("links.sw.distortion_seed=11");
   distortion.push_back("links.dt.distortion_seed=12");
+  std::vector<std::string> mild_distortion = both("distortion", "\"random\"");
+  for (const auto& e : both("distortion_lambda_u", "0.05")) mild_distortion.push_back(e);
+  mild_distortion.push_back("links.sw.distortion_seed=21");
+  mild_distortion.push_back("links.dt.distortion_seed=22");
+  // Magnitudes across each effect's plausible range (docs/gap.md, the range table): distortion at
+  // its upper edge (0.1) and mid-range (0.05), the DT at its range's lower edge (0.5), the SW's
+  // bending within its (0.05-1), so that a range drawn too narrow shows up as missed trials.
   return {
       {"distortion_random", "mesh_distortion",
        "lambda_u 0.1 drawn per link (triangular on [0, 1], seeds 11/12); fitted as one uniform slack", distortion},
+      {"distortion_random_mid", "mesh_distortion",
+       "lambda_u 0.05 drawn per link (triangular on [0, 1], seeds 21/22); fitted as one uniform slack",
+       mild_distortion},
       {"edges_sliding", "edge_sliding", "slider supports (the fitted form itself: a two-valued effect)",
        {"boundary.support=\"slider\""}},
       {"slack_120mm", "slack_state", "wall 120 mm below, between the fitted runs",
        {"boundary.pretension_strain=0.0", "boundary.wall_below_m=0.12", "dynamics.settle_s=40.0"}},
       {"dt_unravelling", "dt_weakening", "DT N0 x 0.75, Nult x 0.6, W2 x 0.6; fitted as one factor on N0, Nult, W1 and W2",
        {"links.dt.scale.N0_N=0.75", "links.dt.scale.Nult_N=0.6", "links.dt.scale.W2_J=0.6"}},
+      {"dt_weak_edge", "dt_weakening",
+       "DT N0 x 0.5, Nult x 0.55, W1 and W2 x 0.5 (near the fitted form at its range's lower edge); fitted as "
+       "one factor on N0, Nult, W1 and W2",
+       {"links.dt.scale.N0_N=0.5", "links.dt.scale.Nult_N=0.55", "links.dt.scale.W1_J=0.5",
+        "links.dt.scale.W2_J=0.5"}},
+      {"sw_bending_soft", "sw_bending", "SW EI x 0.2 (the fitted form, inside its range)",
+       {"links.sw.scale.EI_Nm2_per_deg_convention=0.2"}},
       {"sw_crimp", "sw_softening", "SW EA x 0.15 and EI x 0.5; fitted as a factor on EA or on EI alone",
        {"links.sw.scale.EA_N=0.15", "links.sw.scale.EI_Nm2_per_deg_convention=0.5"}, {"sw_bending"}},
       {"none", "none", "the model itself, its figures moved by half a standard deviation", {}}};

@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "dtwire/core/error.hpp"
+#include "dtwire/gap/diagnosis.hpp"
+#include "dtwire/gap/loading_mode.hpp"
 #include "dtwire/gap/summary_lab.hpp"
 
 namespace dtwire::gap {
@@ -166,6 +168,44 @@ double curve_feature(const ForceCurve& c, const std::string& name) {
     return (kSecantHigh - kSecantLow) * *peak / c.strip_width_m / (du / c.free_length_m);
   }
   throw std::invalid_argument("unknown summary feature " + name);
+}
+
+std::vector<std::string> summary_scale_warnings(const std::vector<SummaryFeature>& lab, const ForceCurve& sim) {
+  validate_force_curve(sim);
+  const ForceCurve curve = oriented(sim);
+  std::vector<std::string> out;
+  for (const SummaryFeature& figure : lab) {
+    const double given = figure.mean, simulated = curve_feature(curve, figure.name);
+    std::ostringstream text;
+    text << "--lab-summary " << figure.name << "=" << given << ": ";
+    if (given < 0.0 && simulated > 0.0) {
+      text << "negative, but the figures are magnitudes (each curve is oriented to a positive force; the "
+              "simulation's is " << simulated << ")";
+      out.push_back(text.str());
+      continue;
+    }
+    if (!(given > 0.0 && simulated > 0.0)) continue;  // a residual force may end below zero
+    const double decades = std::log10(given / simulated);
+    if (std::abs(decades) <= kScaleWarningDecades) continue;
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.3g", given / simulated);
+    text << ratio << " times the simulation's " << simulated;
+    // The name's unit and the one a thousand times larger, which a figure copied from a table
+    // in kN or m most often is.
+    const std::string& name = figure.name;
+    const auto ends = [&](const std::string& tail) {
+      return name.size() >= tail.size() && name.compare(name.size() - tail.size(), tail.size(), tail) == 0;
+    };
+    const std::string unit = ends("_N_per_m") ? "N/m" : ends("_N") ? "N" : ends("_mm") ? "mm" : "";
+    const std::string larger = unit == "N/m" ? "kN/m" : unit == "N" ? "kN" : unit == "mm" ? "m" : "";
+    if (!unit.empty() && std::abs(std::abs(decades) - 3.0) <= 0.5)
+      text << (decades < 0 ? "; a figure in " + larger + " given in " + unit + "?"
+                           : "; a figure in " + unit + " given in " + larger + "?");
+    else
+      text << "; a figure of another specimen or test?";
+    out.push_back(text.str());
+  }
+  return out;
 }
 
 }  // namespace dtwire::gap

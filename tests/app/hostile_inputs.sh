@@ -283,8 +283,9 @@ if "$dtwire" gap --lab shuffled.csv --sim sim.csv --mode tension --json gap.json
 else
   echo "FAIL: shuffled laboratory rows not flagged:"; cat gap.err | head -5
 fi
-# A compression curve against a tension simulation, and a force in kN labelled N: diagnosed, but
-# flagged on stderr and in the JSON (each curve is oriented by its own sign).
+# A compression curve against a tension simulation, a force in kN labelled N, a summary figure in
+# kN given in N: diagnosed, but flagged on stderr and in the JSON (each curve is oriented by its
+# own sign).
 total=$((total + 1))
 python3 -c "import math
 rows = [(0.03 * i / 199, 3000 * math.sin(3 * i / 199)) for i in range(200)]
@@ -294,10 +295,12 @@ if "$dtwire" gap --lab compression.csv --sim sim.csv --json compression.json 2> 
    grep -q "warning: compression.csv against the simulation sim.csv: the laboratory's force is mostly negative" compression.err &&
    grep -q '"input_warnings"' compression.json &&
    "$dtwire" gap --lab kilonewtons.csv --sim sim.csv --json kilonewtons.json 2> kilonewtons.err > /dev/null &&
-   grep -q "(a column in kN labelled N?)" kilonewtons.err; then
+   grep -q "(a column in kN labelled N?)" kilonewtons.err &&
+   "$dtwire" gap --lab-summary peak_force_N=2.7:0.1 --sim sim.csv --mode tension --json summary_kn.json 2> summary_kn.err > /dev/null &&
+   grep -q "a figure in kN given in N?" summary_kn.err && grep -q '"input_warnings"' summary_kn.json; then
   pass=$((pass + 1))
 else
-  echo "FAIL: a compression curve against tension, or kN as N, not flagged:"; cat compression.err kilonewtons.err | head -5
+  echo "FAIL: a compression curve against tension, or kN as N, not flagged:"; cat compression.err kilonewtons.err summary_kn.err | head -5
 fi
 # Summary figures: a force at a negative displacement, and one beyond the simulated travel (30 mm).
 case_ "unknown feature 'force_at_-420mm_N'" gap --lab-summary force_at_-420mm_N=1:1 --sim sim.csv --mode tension

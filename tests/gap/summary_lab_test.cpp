@@ -77,6 +77,30 @@ TEST(GapSummaryLab, CurveFeatures) {
   EXPECT_NEAR(curve_feature(c, "peak_displacement_mm"), 0.2, 1e-12);
 }
 
+// Figures not in their names' units are flagged before the diagnosis: a peak in kN given as N,
+// a displacement in m given as mm, a negative peak (figures are magnitudes); figures of the same
+// test within an effect's reach (2 x) are not.
+TEST(GapSummaryLab, FiguresInAnotherUnitOrSignAreFlagged) {
+  const ForceCurve c = stand_in_column(1.0);  // 1500 N at 0.2 mm
+  const auto warnings = [&](const std::string& text) {
+    std::string all;
+    for (const std::string& w : summary_scale_warnings(parse_lab_summary(text), c)) all += w + "\n";
+    return all;
+  };
+  EXPECT_EQ(warnings("peak_force_N=1400:100,peak_displacement_mm=0.3:0.05"), "");
+  EXPECT_EQ(warnings("peak_force_N=750:100,peak_displacement_mm=0.4:0.05"), "") << "2 x is an effect's size";
+  const std::string kilonewtons = warnings("peak_force_N=1.5:0.1");
+  EXPECT_NE(kilonewtons.find("peak_force_N=1.5: 0.001 times the simulation's 1500; a figure in kN given in N?"),
+            std::string::npos)
+      << kilonewtons;
+  const std::string metres = warnings("peak_displacement_mm=0.0002:0.00005");
+  EXPECT_NE(metres.find("a figure in m given in mm?"), std::string::npos) << metres;
+  const std::string negative = warnings("peak_force_N=-1500:100");
+  EXPECT_NE(negative.find("peak_force_N=-1500: negative, but the figures are magnitudes"), std::string::npos)
+      << negative;
+  EXPECT_NE(warnings("peak_force_N=150000:100").find("another specimen or test"), std::string::npos);
+}
+
 // The force at a given displacement: linear between samples (the stand-in rises 1500 N over
 // 0.2 mm, then falls by 900 N over 1.8 mm).
 TEST(GapSummaryLab, ForceAtADisplacement) {

@@ -37,6 +37,13 @@ std::string summary_feature_names();
 // between kSecantLow and kSecantHigh of the peak, per metre and per unit strain over the free
 // length (both need a strip tension's geometry, else InputError).
 double curve_feature(const ForceCurve& curve, const std::string& name);
+// Warnings that laboratory figures may not be in their names' units (flagged, not refused): a
+// mean of the other sign than the simulation's figure, or more than kScaleWarningDecades decades
+// from it (docs/gap.md: beyond any effect's plausible reach), naming the figure and what its
+// ratio suggests ("peak_force_N=25: 0.000553 times the simulation's 45200; a figure in kN given
+// in N?"). Checked before the diagnosis (whose searches may take minutes); throws what
+// diagnose_summary would for a curve or figure it cannot take.
+std::vector<std::string> summary_scale_warnings(const std::vector<SummaryFeature>& lab, const ForceCurve& sim);
 // D of a force_at_<D>mm_N name (D a positive plain decimal, e.g. force_at_420mm_N), else none.
 std::optional<double> force_at_displacement_mm(const std::string& name);
 // The force_at_<D>mm_N name of a displacement in mm (up to 10 significant digits).
