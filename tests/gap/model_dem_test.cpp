@@ -175,6 +175,28 @@ TEST_F(GapDemModel, ACrimpThatHalvesTheBendingIsReadAsTheBending) {
   EXPECT_LT(factor, 0.75);
 }
 
+// The mesh selfcheck on the strip (issue 51, docs/validation.md thirteenth record): every trial
+// whose effect moves the strip's figures beyond the 5 % scatter is named, none of them as a pair,
+// and the trials below it and the effect-free one read none. Its seven trials run some 70 small
+// strips (140 s on one core).
+TEST_F(GapDemModel, TheStripSelfcheckNamesEveryEffectAboveTheScatter) {
+  const fs::path strip = fs::path(DTWIRE_SOURCE_DIR) / "experiments/dem/gap_selfcheck_strip.toml";
+  fs::create_directories(dir);
+  testing::internal::CaptureStdout();
+  const int status = run_command_line({"gap", "mesh-selfcheck", "--model", strip.string(), "--model-runs", "4",
+                                       "--jobs", "2", "--model-cache", (dir / "cache").string(), "--json",
+                                       (dir / "selfcheck.json").string()});
+  testing::internal::GetCapturedStdout();
+  ASSERT_EQ(status, 0);
+  std::ifstream in(dir / "selfcheck.json");
+  const auto result = nlohmann::json::parse(in);
+  EXPECT_EQ(result["trials_run"], 7) << "nine trials, less the two a strip cannot show";
+  EXPECT_GE(result["trials_above_scatter"].get<int>(), 5);
+  EXPECT_EQ(result["top1_rate_above_scatter"], 1.0);
+  EXPECT_EQ(result["right_verdicts"], result["trials_run"]);
+  EXPECT_EQ(result["spurious_pair_rate"], 0.0);
+}
+
 // `gap --model punch.toml --lab other_code.csv` (issue 51): without --mode the mode is the
 // model's (its tool), not the curve's sign (a punch curve from another code reads as tension);
 // a --mode that contradicts the model is refused before any run, naming both.
