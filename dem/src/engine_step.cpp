@@ -63,8 +63,12 @@ void Engine::step() {
   const std::size_t links = s.links.size();
   const int threads = options_.threads;
   const bool imposed = s.imposed_pending;
-  const bool arrest = arrest_pending_;
-  arrest_pending_ = false;
+  // The step after an arrest ends the move back to the peak (reset); an arrest asked for then
+  // waits a step.
+  const bool reset = reset_pending_;
+  const bool arrest = arrest_pending_ && !reset;
+  if (arrest) arrest_pending_ = false;
+  reset_pending_ = arrest;
 
   // One parallel region a step: the links, tools and rollers, a serial sum of the contacts, then
   // the nodes. Each loop writes only its own slots; every sum over links or nodes runs on one
@@ -96,7 +100,7 @@ void Engine::step() {
     link_roller_contacts(moved);  // needs the laws' broken flags
 #pragma omp single
     contact_sums(imposed);
-    node_updates(moved, spanned, dt, imposed, arrest);
+    node_updates(moved, spanned, dt, imposed, arrest, reset);
   };
   if (threads > 1 && std::max(n, links) >= options_.parallel_threshold) {
 #pragma omp parallel num_threads(threads)
@@ -159,6 +163,8 @@ void Engine::step() {
   s.imposed_pending = false;
   time_ += dt;
   last_move_ = dt;
+  previous_moved_ = moved;
+  previous_spanned_ = spanned;
   ++steps_;
 }
 
@@ -351,7 +357,7 @@ void Engine::contact_sums(bool imposed) {
 
 // 3. Nodes: gather in a fixed order, damp, integrate, move (free nodes by their velocity, guided
 // ones at their prescribed one). Each node's works go to its own slots, summed after the region.
-void Engine::node_updates(double moved, double spanned, double dt, bool imposed, bool arrest) {
+void Engine::node_updates(double moved, double spanned, double dt, bool imposed, bool arrest, bool reset) {
   State& s = *s_;
   const std::size_t n = s.nodes.size();
   const Vector3 gravity = options_.gravity;
@@ -379,6 +385,15 @@ void Engine::node_updates(double moved, double spanned, double dt, bool imposed,
         const auto l = static_cast<std::size_t>(entry.link);
         f += entry.end == 0 ? r.on_a[l] : r.on_b[l];
       }
+    // An arrest (kinetic damping) needs step n's forces to recover v_{n-1/2}; the move back after
+    // it, the forces at its start to book their work.
+    Vector3 f_before = Vector3::Zero(), m_before = Vector3::Zero(), fd_before = Vector3::Zero(), md_before = Vector3::Zero();
+    if (arrest || reset) {
+      f_before = s.force[i];
+      m_before = s.moment[i];
+      fd_before = s.damping_previous[i];
+      md_before = s.damping_moment_previous[i];
+    }
     s.force[i] = f;
     s.moment[i] = m;
     const Vector3 dx = imposed ? Vector3::Zero() : Vector3(s.x[i] - s.x_previous[i]);
@@ -400,11 +415,19 @@ void Engine::node_updates(double moved, double spanned, double dt, bool imposed,
     const Vector3 reaction = free_components(node, f) - f;
     s.node_support_work[i] = 0.5 * (s.reaction_previous[i] + reaction).dot(dx);
     s.reaction_previous[i] = reaction;
+    const Vector3 dtheta = imposed ? Vector3::Zero() : Vector3(moved * s.w[i]);
+    if (reset) {
+      // The move back to the peak is over (x_{n+1} -> x*, made by the arrest step's velocities):
+      // the node starts from rest, and the work of every force over that move, which no kinetic
+      // energy took up, is dissipated (trapezoidal, as every work here).
+      s.v[i] -= free_components(node, s.v[i]);
+      s.w[i].setZero();
+    }
     const Vector3 fd = free_components(node, damping_force(f, s.v[i], s.inverse_mass[i], spanned, alpha));
     const Vector3 md = damping_force(m, s.w[i], s.inverse_inertia[i], spanned, alpha);
-    const Vector3 dtheta = imposed ? Vector3::Zero() : Vector3(moved * s.w[i]);
-    s.node_damping_work[i] = -(0.5 * (s.damping_previous[i] + fd).dot(dx) +
-                               0.5 * (s.damping_moment_previous[i] + md).dot(dtheta));
+    s.node_damping_work[i] = reset ? 0.5 * free_components(node, f_before + f).dot(dx) + 0.5 * (m_before + m).dot(dtheta)
+                                   : -(0.5 * (s.damping_previous[i] + fd).dot(dx) +
+                                       0.5 * (s.damping_moment_previous[i] + md).dot(dtheta));
     s.damping_previous[i] = fd;
     s.damping_moment_previous[i] = md;
     const Vector3 v_old = s.v[i], w_old = s.w[i];
@@ -414,12 +437,18 @@ void Engine::node_updates(double moved, double spanned, double dt, bool imposed,
     s.node_kinetic[i] = 0.5 * free_components(node, v_old).dot(s.v[i]) / s.inverse_mass[i] +
                         0.5 * w_old.dot(s.w[i]) / s.inverse_inertia[i];
     if (arrest) {
-      // Kinetic damping: the node stops where this step leaves it. The kinetic energy the step
-      // would have given it (the synchronised form, so the balance stays exact) is dissipated.
+      // Kinetic damping: the kinetic energy this step would leave (the synchronised form, so the
+      // balance stays exact) is dissipated, and the node moves back to the peak of the kinetic
+      // energy, Barnes's (1999, Int. J. Space Struct. 14(2) 89-104, eq. for the reset geometry)
+      // x* = x_n - dt v_{n-1/2} / 2, with x_n = x_{n+1} - moved v_{n+1/2} and v_{n-1/2} from step
+      // n's forces; the spins alike. The next step starts it from rest there (reset).
       s.node_damping_work[i] += s.node_kinetic[i];
       s.node_kinetic[i] = 0.0;
-      s.v[i] -= free_components(node, s.v[i]);
-      s.w[i].setZero();
+      const Vector3 v_before = v_old - previous_spanned_ * (f_before + fd_before) * s.inverse_mass[i];
+      const Vector3 w_before = w_old - previous_spanned_ * (m_before + md_before) * s.inverse_inertia[i];
+      s.v[i] = free_components(node, -(moved * v_old + 0.5 * previous_moved_ * v_before) / dt);
+      s.w[i] = -(moved * w_old + 0.5 * previous_moved_ * w_before) / dt;
+      hold(node, s.v[i], s.w[i]);
     }
     s.x_previous[i] = s.x[i];
     s.x[i] += dt * s.v[i];

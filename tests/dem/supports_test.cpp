@@ -74,36 +74,46 @@ TEST(DemSupports, SettleToRestFindsTheLongSettlesState) {
   EXPECT_LT(rested.largest_balance_error, 0.01);
 }
 
-// A net lying on the wall: kinetic damping alone stalls above the rest ratio (the contacts'
-// chatter, which the arrests at the peaks of the whole net's kinetic energy miss), and the local
-// damping that joins it at half the settle's time brings the net to rest on the wall. A 1 x 1 m
-// panel of the thesis's sets with the beam's shear spring (the 3 x 3 m campaign punch stalled at
-// a ratio of 1e-3 through 400 s of settling), 5 mm above the wall; the small WirePM net above
-// reaches rest on its wall with kinetic damping alone.
-TEST(DemSupports, ANetOnTheWallReachesRestOnceTheLocalDampingJoins) {
+// A net lying on the wall reaches rest with kinetic damping alone: a 1 x 1 m panel of the
+// thesis's sets with the beam's shear spring, 5 mm above the wall, no local damping. Before the
+// arrest moved the nodes back to the peak (Engine::arrest, Barnes 1999) the arrests locked to a
+// swing of a few steps a period and pumped it: this panel stalled at a ratio of 0.093 after 60 s
+// (the local damping joining at 30 s brought it to rest at 44 s), the 3 x 3 m beam-spring punch
+// stalled or, on the kn 1e7 wall, ran away (docs/dem_engine.md, "Settling to rest").
+TEST(DemSupports, ANetOnTheWallReachesRestWithKineticDampingAlone) {
   const std::vector<std::string> on_wall = {
       "mesh.width_m=1.0", "mesh.height_m=1.0", "boundary.pretension_strain=0.0", "boundary.wall_below_m=0.005",
       "links.sw.parameters.beam_shear=1", "links.dt.parameters.beam_shear=1", "dynamics.settle_s=60.0",
-      "dynamics.settle_rest_ratio=1e-4", "tool.travel_m=0.005", "tool.base_radius_m=0.2"};
-  const auto run_on_wall = [&](const std::string& local_damping, const std::string& name) {
-    RunOptions options;
-    options.quiet = true;
-    options.write_frames = false;
-    options.threads = 1;
-    options.out = std::filesystem::temp_directory_path() / "dtwire_dem_supports_test" / name;
-    std::vector<std::string> set = on_wall;
-    set.push_back("dynamics.local_damping=" + local_damping);
-    return run_simulation(read_run_input(std::string(DTWIRE_SOURCE_DIR) + "/experiments/dem/punch_macro.toml", set), options);
-  };
-  const RunSummary stalled = run_on_wall("0.0", "kinetic_only");  // no local damping to join
-  const RunSummary rested = run_on_wall("0.5", "joined");
-  EXPECT_FALSE(stalled.settled_at_rest);
-  EXPECT_GT(stalled.settle_unbalanced_ratio, 10 * 1e-4);  // stalled well above the asked ratio
-  EXPECT_LT(stalled.settle_local_damping_from, 0.0);
+      "dynamics.settle_rest_ratio=1e-4", "tool.travel_m=0.005", "tool.base_radius_m=0.2", "dynamics.local_damping=0.0"};
+  RunOptions options;
+  options.quiet = true;
+  options.write_frames = false;
+  options.threads = 1;
+  options.out = std::filesystem::temp_directory_path() / "dtwire_dem_supports_test" / "kinetic_only";
+  const RunSummary rested =
+      run_simulation(read_run_input(std::string(DTWIRE_SOURCE_DIR) + "/experiments/dem/punch_macro.toml", on_wall), options);
   ASSERT_TRUE(rested.settled_at_rest) << rested.settle_unbalanced_ratio;
-  EXPECT_NEAR(rested.settle_local_damping_from, 30.0, 1e-2);
+  EXPECT_LT(rested.settle_seconds, 30.0);  // 15.9 s, 28 arrests
+  EXPECT_LT(rested.settle_local_damping_from, 0.0);
   EXPECT_NEAR(rested.sag, 0.005, 5e-4) << "on the wall (its surface 5 mm below the nodes' surfaces; hanging free the panel sags 11 mm)";
   EXPECT_LT(rested.largest_balance_error, 0.01);
+
+  // A net not at rest by half of settle_s gets the local damping beside the kinetic damping from
+  // then on, and still reaches rest on the wall: the same panel given 24 s, whose half comes
+  // before the 15.9 s it needs alone.
+  std::vector<std::string> short_settle;
+  for (const std::string& entry : on_wall)
+    if (entry.rfind("dynamics.settle_s=", 0) != 0 && entry.rfind("dynamics.local_damping=", 0) != 0)
+      short_settle.push_back(entry);
+  short_settle.push_back("dynamics.settle_s=24.0");
+  short_settle.push_back("dynamics.local_damping=0.5");
+  options.out = std::filesystem::temp_directory_path() / "dtwire_dem_supports_test" / "joined";
+  const RunSummary joined =
+      run_simulation(read_run_input(std::string(DTWIRE_SOURCE_DIR) + "/experiments/dem/punch_macro.toml", short_settle), options);
+  EXPECT_NEAR(joined.settle_local_damping_from, 12.0, 1e-2);
+  ASSERT_TRUE(joined.settled_at_rest) << joined.settle_unbalanced_ratio;
+  EXPECT_NEAR(joined.sag, 0.005, 5e-4);
+  EXPECT_LT(joined.largest_balance_error, 0.01);
 }
 
 // A wall the net does not reach while it settles waits out of the bound (the longer settling
