@@ -96,6 +96,20 @@ void check_mode_against_model(const std::string& mode, const std::string& model,
   }
 }
 
+// Writes the diagnosis's JSON and report, the input warnings (flagged, not refused) in both:
+// `input_warnings` in the JSON, a warning line each at the report's head.
+void write_diagnosis(const std::string& json_path, const std::string& report_path, nlohmann::json document,
+                     std::string markdown, const std::vector<std::string>& warnings) {
+  if (!warnings.empty()) {
+    document["input_warnings"] = warnings;
+    std::string flagged;
+    for (const std::string& w : warnings) flagged += "> **Warning**: " + w + "\n\n";
+    markdown = flagged + markdown;
+  }
+  write_text(json_path, document.dump(2) + "\n");
+  write_text(report_path, markdown);
+}
+
 std::string png_for_mode(const std::string& png, const std::string& mode) {
   std::filesystem::path p(png);
   const std::string extension = p.extension().string();
@@ -285,16 +299,7 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
       const std::vector<std::string> warnings = gap::summary_scale_warnings(summary, sim);
       for (const std::string& w : warnings) std::cerr << "warning: " << w << "\n";
       const gap::SummaryDiagnosis d = gap::diagnose_summary(sim, summary, summary_options);
-      auto document = gap::summary_json(d);
-      std::string markdown = gap::summary_markdown(d);
-      if (!warnings.empty()) {
-        document["input_warnings"] = warnings;
-        std::string flagged;
-        for (const std::string& w : warnings) flagged += "> **Warning**: " + w + "\n\n";
-        markdown = flagged + markdown;
-      }
-      write_text(options->json, document.dump(2) + "\n");
-      write_text(options->report, markdown);
+      write_diagnosis(options->json, options->report, gap::summary_json(d), gap::summary_markdown(d), warnings);
       std::cout << "gap " << d.gap_before << " lab sd (noise floor " << d.noise_floor << "), cause: "
                 << d.cause << " (" << d.reason << ")";
       if (!d.ranking.empty())
@@ -401,16 +406,8 @@ void add_gap_command(CLI::App& root, CommandSet& commands) {
     diagnosis_options.seed = options->seed;
     diagnosis_options.model_runs = options->model_runs;
     const gap::MultiModeDiagnosis result = gap::diagnose_modes(inputs, diagnosis_options);
-    auto document = gap::multimode_json(result);
-    std::string markdown = gap::multimode_markdown(result);
-    if (!input_warnings.empty()) {
-      document["input_warnings"] = input_warnings;
-      std::string flagged;
-      for (const std::string& w : input_warnings) flagged += "> **Warning**: " + w + "\n\n";
-      markdown = flagged + markdown;
-    }
-    write_text(options->json, document.dump(2) + "\n");
-    write_text(options->report, markdown);
+    write_diagnosis(options->json, options->report, gap::multimode_json(result), gap::multimode_markdown(result),
+                    input_warnings);
     const auto summary_line = [](const gap::Diagnosis& d) {
       std::ostringstream line;
       line << "gap " << d.gap_before << " (noise floor " << d.noise_floor << "), cause: " << d.cause << " ("

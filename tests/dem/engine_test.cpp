@@ -243,6 +243,19 @@ double chain_balance_error(double safety, EnergySplit* split = nullptr) {
   return std::abs(engine.energy().balance_error()) / engine.energy().external();
 }
 
+// One step of the settle's kinetic damping (dem/src/settle.cpp): an arrest at the step whose
+// kinetic energy fell below the step before's (`previous`); true when it arrested.
+bool step_with_kinetic_damping(Engine& engine, double& previous) {
+  engine.step();
+  if (engine.kinetic_energy() < previous) {
+    engine.arrest();
+    previous = 0.0;
+    return true;
+  }
+  previous = engine.kinetic_energy();
+  return false;
+}
+
 // Kinetic damping (Barnes 1999): the undamped one-link oscillator, arrested at its first peak
 // of kinetic energy, stops within a step of the equilibrium (the peak lies there): the amplitude
 // left is at most omega dt of the initial one (one step's travel at the largest speed), against a
@@ -254,16 +267,7 @@ TEST(DemEngine, KineticDampingStopsTheSwingAtTheEquilibriumAndKeepsTheBalanceExa
   Engine engine = o.make(dt, amplitude);
   double previous = 0.0;
   int arrests = 0;
-  while (engine.time() < 3.0 * period) {
-    engine.step();
-    if (engine.kinetic_energy() < previous) {
-      engine.arrest();
-      ++arrests;
-      previous = 0.0;
-    } else {
-      previous = engine.kinetic_energy();
-    }
-  }
+  while (engine.time() < 3.0 * period) arrests += step_with_kinetic_damping(engine, previous);
   ASSERT_GE(arrests, 1);
   engine.step();
   EXPECT_LT(std::abs(engine.position(1).x() - o.length), o.omega() * dt * amplitude);
@@ -293,14 +297,7 @@ TEST(DemEngine, KineticDampingDoesNotPumpASwingOfFewStepsAPeriod) {
     double previous = 0.0, largest_late = 0.0;
     int arrests = 0;
     for (int n = 0; n < 400; ++n) {
-      engine.step();
-      if (engine.kinetic_energy() < previous) {
-        engine.arrest();
-        ++arrests;
-        previous = 0.0;
-      } else {
-        previous = engine.kinetic_energy();
-      }
+      arrests += step_with_kinetic_damping(engine, previous);
       if (n >= 300) largest_late = std::max(largest_late, std::abs(engine.position(1).x() - o.length));
     }
     EXPECT_GE(arrests, 1) << "omega dt " << omega_dt;
