@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <map>
@@ -104,11 +105,13 @@ struct ModelSearch {
   ForceCurve curve;
   int runs = 0;
   std::vector<std::pair<std::vector<double>, std::vector<double>>> samples;
+  double seconds = 0.0;  // wall
 };
 
 ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, const EffectSpec& effect,
                                 const std::vector<SummaryFeature>& lab, const ModelRunner& runner,
                                 std::size_t runs) {
+  const auto started = std::chrono::steady_clock::now();
   const ParameterSpec spec = effect.parameters(scale).front();
   std::map<double, std::vector<double>> sampled;  // value -> features
   std::map<double, ForceCurve> curves;
@@ -160,7 +163,7 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
     if (!next || sampled.count(*next)) break;
     run(*next);
   }
-  ModelSearch out{effect.neutral, sim, spent, {}};
+  ModelSearch out{effect.neutral, sim, spent, {}, 0.0};
   for (const auto& [v, f] : sampled) out.samples.push_back({{v}, f});
   double best_gap = INFINITY;
   for (const auto& [v, f] : sampled) {
@@ -171,6 +174,7 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
       out.curve = curves[v];
     }
   }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return out;
 }
 
@@ -320,6 +324,7 @@ std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryC
   const bool both_model = fa.effect->needs_model && fb.effect->needs_model;
   const AppliedEffect& model = fa.effect->needs_model ? fa : fb;
   const AppliedEffect& other = fa.effect->needs_model ? fb : fa;
+  const auto started = std::chrono::steady_clock::now();
   SummaryCandidate c;
   std::map<std::vector<double>, std::pair<std::vector<AppliedEffect>, ForceCurve>> tried;
   std::map<std::vector<double>, ForceCurve> model_curves;  // before the curve-mode partner
@@ -351,6 +356,7 @@ std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryC
   if (both_model) starts.insert(starts.begin(), superposition_start(a, b, model.effect, lab));
   const PatternSearch s = pattern_search(specs, known, starts, evaluate, points);
   c.runs = static_cast<int>(s.points);
+  c.model_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (!tried.count(s.best)) return std::nullopt;  // no point beats the singles: the pair adds nothing
   c.fitted = tried[s.best].first;
   c.curve = tried[s.best].second;
@@ -399,6 +405,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
   // The model-only searches are independent of each other and of the random stream: with
   // jobs > 1 they run first, side by side, the costliest first (a long search started last runs
   // alone at the end), and the loop below takes their results.
+  const auto searches_started = std::chrono::steady_clock::now();
   std::map<std::string, ModelSearch> searched;
   std::vector<const EffectSpec*> to_search;
   for (const EffectSpec* e : requested)
@@ -447,6 +454,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
                                                    : search_model_effect(d.sim, scale, *e, lab, options.model, options.model_runs);
       c.fitted = {{e, {s.value}}};
       c.runs = s.runs;
+      c.model_seconds = s.seconds;
       c.samples = s.samples;
       model = s.curve;
     } else {
@@ -499,6 +507,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
           better.fitted = {*alone};
           better.curve = c.curve;
           better.runs += c.runs;
+          better.model_seconds += c.model_seconds;
           if (alone->effect->needs_model) better.samples.push_back({alone->params, c.features});
           assess(better, d, scale);
           judge_range_edge(better, d, scale, rng);
@@ -523,6 +532,8 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
       if (!beats_singles) c.score *= 0.1;
     }
   }
+  if (options.model)
+    d.model_elapsed_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - searches_started).count();
   std::stable_sort(d.ranking.begin(), d.ranking.end(),
                    [](const SummaryCandidate& a, const SummaryCandidate& b) { return a.score > b.score; });
   auto cause = std::find_if(d.ranking.begin(), d.ranking.end(),
@@ -571,130 +582,6 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
   d.best_model = d.ranking.empty() ? d.sim
                                     : (cause != d.ranking.end() ? *cause : d.ranking.front()).curve;
   return d;
-}
-
-namespace {
-
-// Parameter names with their values; `<effect>.<parameter>` for a pair.
-std::vector<std::pair<std::string, double>> named_params(const SummaryCandidate& c, const CurveScale& scale) {
-  std::vector<std::pair<std::string, double>> out;
-  for (const AppliedEffect& a : c.fitted) {
-    const auto specs = a.effect->parameters(scale);
-    for (std::size_t j = 0; j < specs.size(); ++j)
-      out.emplace_back((c.fitted.size() > 1 ? a.effect->name + "." : std::string()) + specs[j].name, a.params[j]);
-  }
-  return out;
-}
-
-}  // namespace
-
-nlohmann::json summary_json(const SummaryDiagnosis& d) {
-  const CurveScale scale = curve_scale(d.sim);
-  nlohmann::json where = nlohmann::json::array();
-  double total = 0.0;
-  std::vector<double> z2;
-  for (std::size_t i = 0; i < d.lab.size(); ++i) {
-    const double z = (d.sim_features[i] - d.lab[i].mean) / d.lab[i].sd;
-    z2.push_back(z * z);
-    total += z * z;
-  }
-  const auto peak = std::max_element(d.sim.f.begin(), d.sim.f.end()) - d.sim.f.begin();
-  nlohmann::json lab = nlohmann::json::array();
-  for (std::size_t i = 0; i < d.lab.size(); ++i) {
-    const auto force_at_mm = force_at_displacement_mm(d.lab[i].name);
-    const bool at_peak = d.lab[i].name != "residual_force_N" && !force_at_mm;
-    const double at = force_at_mm ? *force_at_mm * 1e-3 : at_peak ? d.sim.u[static_cast<std::size_t>(peak)] : d.sim.u.back();
-    const double z = (d.sim_features[i] - d.lab[i].mean) / d.lab[i].sd;
-    const std::string region = at_peak ? "peak" : force_at_mm && at < d.sim.u[static_cast<std::size_t>(peak)] ? "pre_peak" : "post_peak";
-    where.push_back({{"region", region},
-                     {"from_mm", at * 1e3},
-                     {"to_mm", at * 1e3},
-                     {"share", total > 0 ? z2[i] / total : 1.0 / static_cast<double>(d.lab.size())},
-                     {"direction", d.lab[i].name == "peak_displacement_mm"       ? "horizontal offset"
-                                   : d.lab[i].name == "secant_stiffness_N_per_m" ? "slope"
-                                                                                 : "vertical offset"},
-                     {"feature", d.lab[i].name},
-                     {"z", z}});
-    lab.push_back({{"feature", d.lab[i].name}, {"mean", d.lab[i].mean}, {"sd", d.lab[i].sd},
-                   {"simulated", d.sim_features[i]}});
-  }
-  nlohmann::json ranking = nlohmann::json::array();
-  for (const SummaryCandidate& c : d.ranking) {
-    nlohmann::json params = nlohmann::json::object();
-    for (const auto& [name, value] : named_params(c, scale)) params[name] = value;
-    ranking.push_back({{"effect", c.effect}, {"params", params}, {"gap_after", c.gap_after},
-                       {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility}, {"implausible", c.implausible},
-                       {"aic", c.aic}, {"parameters", c.parameters},
-                       {"features_after", c.features}, {"fe_runs", c.runs}, {"qualifies", c.qualifies}});
-    if (!c.at_range_edge.empty()) ranking.back()["at_plausible_edge"] = beyond_range_json(c.at_range_edge);
-    if (c.implausible) {
-      ranking.back()["beyond_plausible_range"] = beyond_range_json(c.beyond_range);
-      ranking.back()["qualifies_but_implausible"] = c.qualifies_but_implausible;
-    }
-    if (!c.samples.empty()) {
-      nlohmann::json samples = nlohmann::json::array();
-      for (const auto& [v, f] : c.samples)
-        samples.push_back({{"value", v.size() == 1 ? nlohmann::json(v.front()) : nlohmann::json(v)}, {"features", f}});
-      ranking.back()["fe_samples"] = samples;
-    }
-  }
-  nlohmann::json out = {{"metric", d.metric},       {"noise_floor", d.noise_floor},
-                        {"gap_before", d.gap_before}, {"where", where},
-                        {"ranking", ranking},       {"cause", d.cause},
-                        {"cause_reason", d.reason}, {"also_closes", d.also_closes},
-                        {"compression", d.compression},
-                        {"not_tested", d.not_tested}, {"not_tested_reason", d.not_tested_reason},
-                        {"lab_summary", lab},       {"sim", d.sim.source}, {"verdict", d.verdict}};
-  for (const SummaryCandidate& c : d.ranking)
-    if (c.effect == d.refused_effect)
-      out["refused_for_magnitude"] = {{"effect", c.effect}, {"shrink", c.shrink},
-                                      {"beyond_plausible_range", beyond_range_json(c.beyond_range)}};
-  require_finite(out);
-  return out;
-}
-
-std::string summary_markdown(const SummaryDiagnosis& d) {
-  std::ostringstream s;
-  s.precision(4);
-  s << "### Gap diagnosis against laboratory summary figures\n\n"
-    << "Simulation `" << d.sim.source << "`; gap = rms of (simulated - laboratory mean) / "
-    << "laboratory sd over the features; noise floor " << d.noise_floor << " (one sd).\n\n"
-    << "| feature | laboratory mean | sd | simulated | z |\n|---|---|---|---|---|\n";
-  for (std::size_t i = 0; i < d.lab.size(); ++i)
-    s << "| " << d.lab[i].name << " | " << d.lab[i].mean << " | " << d.lab[i].sd << " | "
-      << d.sim_features[i] << " | " << (d.sim_features[i] - d.lab[i].mean) / d.lab[i].sd << " |\n";
-  s << "\n- gap before: " << d.gap_before << "\n- **cause: " << d.cause << "** (" << d.reason << ")\n";
-  if (!d.not_tested.empty()) {
-    s << "- not tested:";
-    for (const auto& n : d.not_tested) s << " " << n << " (" << d.not_tested_reason.at(n) << ");";
-    s << "\n";
-  }
-  s << "\n| effect | fitted | features after | gap after | shrink | plausibility | model runs |\n"
-    << "|---|---|---|---|---|---|---|\n";
-  const CurveScale scale = curve_scale(d.sim);
-  for (const SummaryCandidate& c : d.ranking) {
-    s << "| " << c.effect << (c.implausible ? " (implausible)" : !c.at_range_edge.empty() ? " (at its range's edge)" : "")
-      << " | ";
-    for (const auto& [name, value] : named_params(c, scale)) s << name << " " << value << " ";
-    s << "| ";
-    for (double f : c.features) s << f << " ";
-    s << "| " << c.gap_after << " | " << c.shrink << " | " << c.plausibility << " | " << c.runs << " |\n";
-  }
-  for (const SummaryCandidate& c : d.ranking) {
-    if (c.samples.empty()) continue;
-    std::string names;
-    for (const AppliedEffect& a : c.fitted)
-      if (a.effect->needs_model) names += (names.empty() ? "" : ", ") + a.effect->parameters(scale).front().name;
-    s << "\nModel runs of " << c.effect << " (" << names << " -> features, rms z):";
-    for (const auto& [v, f] : c.samples) {
-      for (double x : v) s << " " << x;
-      s << " ->";
-      for (double x : f) s << " " << x;
-      s << " (" << summary_gap(d.lab, f) << ");";
-    }
-    s << "\n";
-  }
-  return s.str();
 }
 
 }  // namespace dtwire::gap

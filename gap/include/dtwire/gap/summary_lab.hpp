@@ -76,6 +76,7 @@ struct SummaryCandidate {
   double aic = 0.0;
   int parameters = 0;
   int runs = 0;  // FE runs spent (pairs: search points, each at most one FE run)
+  double model_seconds = 0.0;  // wall time of its model search (searches side by side overlap)
   // Model-only effects: every value run (the neutral one is the simulation; a pair's values of its
   // model-only parameters) and the features.
   std::vector<std::pair<std::vector<double>, std::vector<double>>> samples;
@@ -106,6 +107,9 @@ struct SummaryDiagnosis {
   std::vector<std::string> also_closes;
   std::vector<std::string> not_tested;
   std::map<std::string, std::string> not_tested_reason;
+  // Wall time from the first model search to the last pair's (with --jobs below the candidates'
+  // summed model_seconds).
+  double model_elapsed_seconds = 0.0;
   ForceCurve sim, best_model;  // oriented
 };
 
