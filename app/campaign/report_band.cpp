@@ -8,6 +8,8 @@
 #include <map>
 #include <sstream>
 
+#include "commands/propagation_runs.hpp"
+
 namespace dtwire::app {
 namespace {
 
@@ -83,7 +85,7 @@ std::vector<std::vector<std::string>> read_sensitivity_rows(const std::string& f
 }
 
 std::string band_markdown(const std::string& label, const std::vector<BandEvidence>& bands, const json& thesis_strip,
-                          const json& thesis_punch) {
+                          const json& thesis_punch, const json& own_strip, const json& own_punch) {
   std::ostringstream md;
   bool any = false;
   for (const BandEvidence& b : bands) any = any || b.label == label;
@@ -129,6 +131,25 @@ std::string band_markdown(const std::string& label, const std::vector<BandEviden
         md << "n/a | ";
       }
       md << " (`" << b.step << "`) | " << standard_of(key) << " | " << thesis_value(key, tool, thesis_strip, thesis_punch) << " |\n";
+    }
+  }
+  // The set's own runs whose figures no step of this campaign bands: shown with their value and
+  // said to be unbanded, so that no figure looks as if it had no uncertainty.
+  for (const auto& [tool, run] : {std::pair<std::string, const json*>{"strip_tension", &own_strip}, {"platter", &own_punch}}) {
+    if (!run->is_object()) continue;
+    bool explained = false;
+    for (const HeadlineFigure& f : headline_figures(tool)) {
+      if (!has_number(*run, f.key.c_str()) || figure_band(bands, label, tool, f.key)) continue;
+      md << "| " << f.label << " (" << f.unit << ") | " << number((*run)[f.key].get<double>() * f.factor)
+         << " | not banded by this campaign | ";
+      if (!explained)
+        md << "a linearised band takes one " << (tool == "platter" ? "punch" : "strip")
+           << " per fitted parameter (`dtwire dem propagate`, docs/dem_engine.md, \"Propagating a fit's uncertainty\"; "
+           << "the study campaign runs it)";
+      else
+        md << "as above";
+      explained = true;
+      md << " | " << standard_of(f.key) << " | " << thesis_value(f.key, tool, thesis_strip, thesis_punch) << " |\n";
     }
   }
   // Which parameter each figure hangs on: the largest linearised shares (or first-order indices).

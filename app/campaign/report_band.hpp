@@ -41,9 +41,12 @@ std::optional<FigureBand> figure_band(const std::vector<BandEvidence>& bands, co
 std::vector<std::vector<std::string>> read_sensitivity_rows(const std::string& file);
 
 // "#### Mesh-scale figures with their band" for `label`: one row per figure of every band step
-// of the set, its references, then the sensitivities; `reference_runs` are the summaries of the
-// thesis's published sets' strip and punch (null when absent). Empty when no step bands the set.
+// of the set, then a row per headline figure of the set's own strip and punch (`own_strip`,
+// `own_punch`: their summary.json, null when absent) that no step bands, said to be unbanded;
+// its references (`thesis_strip`, `thesis_punch`: the thesis's published sets' runs, null when
+// absent), then the sensitivities. Empty when no step bands the set.
 std::string band_markdown(const std::string& label, const std::vector<BandEvidence>& bands,
-                          const nlohmann::json& thesis_strip, const nlohmann::json& thesis_punch);
+                          const nlohmann::json& thesis_strip, const nlohmann::json& thesis_punch,
+                          const nlohmann::json& own_strip = nullptr, const nlohmann::json& own_punch = nullptr);
 
 }  // namespace dtwire::app

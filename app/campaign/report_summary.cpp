@@ -521,7 +521,8 @@ std::string summary_markdown(const Campaign& campaign, const std::vector<StepOut
     const std::string counterpart = published_counterpart(sets[recommendation.chosen].label);
     for (const SetEvidence& e : sets)
       if (e.label == counterpart) thesis_strip = e.strip, thesis_punch = e.punch;
-    summary << band_markdown(sets[recommendation.chosen].label, bands, thesis_strip, thesis_punch);
+    const SetEvidence& chosen = sets[recommendation.chosen];
+    summary << band_markdown(chosen.label, bands, thesis_strip, thesis_punch, chosen.strip, chosen.punch);
     for (const StepFiles& s : by_kind[Kind::Band])
       if (label_of_command(s.step->command) == sets[recommendation.chosen].label)
         for (const auto& file : s.figures) figure(summary, file, out);

@@ -50,6 +50,20 @@ TEST(ReportBand, TheRecommendedSetsFiguresWithTheirBandAndReferences) {
   EXPECT_NE(sampled.find("66.9 - 75.2 | sampled, 60 runs of 60 drawn, converged; linearised 68.1 - 74.7"), std::string::npos)
       << sampled;
 
+  // The set's own runs: a figure no step bands is shown with its value and said to be unbanded
+  // (the punch here, and the strip's stiffness); a banded one is not repeated.
+  const json own_strip = {{"strength_per_width_kN_per_m", 43.6}, {"secant_EA_10_50_kN_per_m", 272.0}};
+  const json own_punch = {{"peak_force_N", 90105.7}, {"displacement_at_peak_mm", 977.5}, {"onset_displacement_mm", 300.2}};
+  const json thesis_punch = {{"peak_force_N", 66910.0}};
+  const std::string unbanded =
+      band_markdown("section + N-M fit", {{"dem_strip_nm_band", "section + N-M fit", "done", band_summary(false), {}}},
+                    thesis_strip, thesis_punch, own_strip, own_punch);
+  EXPECT_NE(unbanded.find("| punch peak force (kN) | 90.1 | not banded by this campaign |"), std::string::npos) << unbanded;
+  EXPECT_NE(unbanded.find("| - | 66.9 |"), std::string::npos) << unbanded;
+  EXPECT_NE(unbanded.find("| onset (1 kN) displacement (mm) | 300 | not banded"), std::string::npos) << unbanded;
+  EXPECT_NE(unbanded.find("| secant EA per metre (10-50 % of the peak) (kN/m) | 272 | not banded"), std::string::npos) << unbanded;
+  EXPECT_EQ(unbanded.find("| strength per metre (kN/m) | 43.6"), std::string::npos) << unbanded;
+
   // Another set's band, or none: no section.
   EXPECT_TRUE(band_markdown("straight-wire fit", {{"s", "section + N-M fit", "done", band_summary(true), {}}}, json(), json()).empty());
   // A band step that has not run is named.
