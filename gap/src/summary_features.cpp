@@ -170,10 +170,29 @@ double curve_feature(const ForceCurve& c, const std::string& name) {
   throw std::invalid_argument("unknown summary feature " + name);
 }
 
+bool peak_at_curve_end(const ForceCurve& c) {
+  if (c.size() < 2) return false;
+  const auto peak = static_cast<std::size_t>(std::max_element(c.f.begin(), c.f.end()) - c.f.begin());
+  const double start = c.u.front(), end = *std::max_element(c.u.begin(), c.u.end());
+  return end > start && c.u[peak] >= end - kCurveEndShare * (end - start);
+}
+
+bool feature_needs_peak(const std::string& name) {
+  return name == "peak_force_N" || name == "peak_displacement_mm" || name == "onset_displacement_mm" ||
+         name == "strength_N_per_m" || name == "secant_stiffness_N_per_m";
+}
+
 std::vector<std::string> summary_scale_warnings(const std::vector<SummaryFeature>& lab, const ForceCurve& sim) {
   validate_force_curve(sim);
   const ForceCurve curve = oriented(sim);
   std::vector<std::string> out;
+  for (const SummaryFeature& figure : lab)
+    if (feature_needs_peak(figure.name) && peak_at_curve_end(curve)) {
+      out.push_back("the simulation's largest force lies at the end of its curve (" + sim.source +
+                    "): if the specimen fails in the test, the run ended before it did, and its " + figure.name +
+                    " and every figure of the peak are lower bounds");
+      break;
+    }
   for (const SummaryFeature& figure : lab) {
     const double given = figure.mean, simulated = curve_feature(curve, figure.name);
     std::ostringstream text;

@@ -105,8 +105,13 @@ struct ModelSearch {
   ForceCurve curve;
   int runs = 0;
   std::vector<std::pair<std::vector<double>, std::vector<double>>> samples;
+  std::vector<std::vector<double>> peak_at_end;  // as SummaryCandidate::peak_at_end
   double seconds = 0.0;  // wall
 };
+
+bool any_needs_peak(const std::vector<SummaryFeature>& lab) {
+  return std::any_of(lab.begin(), lab.end(), [](const SummaryFeature& f) { return feature_needs_peak(f.name); });
+}
 
 ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, const EffectSpec& effect,
                                 const std::vector<SummaryFeature>& lab, const ModelRunner& runner,
@@ -115,6 +120,7 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
   const ParameterSpec spec = effect.parameters(scale).front();
   std::map<double, std::vector<double>> sampled;  // value -> features
   std::map<double, ForceCurve> curves;
+  std::vector<std::vector<double>> peak_at_end;
   sampled[effect.neutral] = features_of(sim, lab);
   curves[effect.neutral] = sim;
   int spent = 0;
@@ -122,6 +128,7 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
     if (sampled.count(v) || static_cast<std::size_t>(spent) >= runs) return;
     ForceCurve c = oriented(runner({{&effect, {v}}}));
     validate_force_curve(c);
+    if (any_needs_peak(lab) && peak_at_curve_end(c)) peak_at_end.push_back({v});
     sampled[v] = features_of(c, lab);
     curves[v] = c;
     ++spent;
@@ -163,7 +170,7 @@ ModelSearch search_model_effect(const ForceCurve& sim, const CurveScale& scale, 
     if (!next || sampled.count(*next)) break;
     run(*next);
   }
-  ModelSearch out{effect.neutral, sim, spent, {}, 0.0};
+  ModelSearch out{effect.neutral, sim, spent, {}, peak_at_end, 0.0};
   for (const auto& [v, f] : sampled) out.samples.push_back({{v}, f});
   double best_gap = INFINITY;
   for (const auto& [v, f] : sampled) {
@@ -333,6 +340,7 @@ std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryC
     if (both_model) effects.push_back({other.effect, {x[1]}});
     ForceCurve curve = oriented(runner(effects));
     validate_force_curve(curve);
+    if (any_needs_peak(lab) && peak_at_curve_end(curve)) c.peak_at_end.push_back(x);
     if (!both_model) {
       model_curves[x] = curve;
       effects.push_back({other.effect, fit_curve_effect(curve, scale, *other.effect, lab, rng)});
@@ -367,6 +375,11 @@ std::optional<SummaryCandidate> fit_pair(const CurveScale& scale, const SummaryC
 }
 
 }  // namespace
+
+bool fitted_peak_at_end(const SummaryCandidate& c) {
+  return c.fitted.size() == 1 && c.fitted.front().effect->needs_model &&
+         std::find(c.peak_at_end.begin(), c.peak_at_end.end(), c.fitted.front().params) != c.peak_at_end.end();
+}
 
 double summary_gap(const std::vector<SummaryFeature>& lab, const std::vector<double>& features) {
   double sum = 0.0;
@@ -456,6 +469,7 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
       c.runs = s.runs;
       c.model_seconds = s.seconds;
       c.samples = s.samples;
+      c.peak_at_end = s.peak_at_end;
       model = s.curve;
     } else {
       c.fitted = {{e, fit_curve_effect(d.sim, scale, *e, lab, rng)}};
@@ -508,6 +522,8 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
           better.curve = c.curve;
           better.runs += c.runs;
           better.model_seconds += c.model_seconds;
+          if (alone->effect->needs_model && any_needs_peak(lab) && peak_at_curve_end(c.curve))
+            better.peak_at_end.push_back(alone->params);
           if (alone->effect->needs_model) better.samples.push_back({alone->params, c.features});
           assess(better, d, scale);
           judge_range_edge(better, d, scale, rng);
@@ -575,6 +591,9 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
     d.reason = cause->gap_after <= d.noise_floor ? "brings the features within the laboratory scatter"
                                                  : "reduces the gap most, but not to the laboratory scatter";
     d.reason += evidence::at_edge_text(cause->at_range_edge);
+    if (fitted_peak_at_end(*cause))
+      d.reason += "; the run at its fitted value ended before the specimen failed (its largest force at the curve's "
+                  "end), so its peak figures are lower bounds";
     if (cause->gap_after <= d.noise_floor)
       d.reason += evidence::also_closing(d.ranking, *cause, d.noise_floor, "AIC",
                                          [](const SummaryCandidate& c) { return c.aic; }, &d.also_closes);

@@ -1,5 +1,6 @@
 // The summary diagnosis written out: its JSON (the figures, the ranking with each effect's model
 // runs and their wall time) and its Markdown report.
+#include <algorithm>
 #include <sstream>
 
 #include "dtwire/gap/gap_report.hpp"
@@ -59,11 +60,16 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
                        {"shrink", c.shrink}, {"score", c.score}, {"plausibility", c.plausibility}, {"implausible", c.implausible},
                        {"aic", c.aic}, {"parameters", c.parameters},
                        {"features_after", c.features}, {"fe_runs", c.runs}, {"model_seconds", c.model_seconds},
-                       {"qualifies", c.qualifies}});
+                       {"fitted_peak_at_curve_end", fitted_peak_at_end(c)}, {"qualifies", c.qualifies}});
     if (!c.at_range_edge.empty()) ranking.back()["at_plausible_edge"] = beyond_range_json(c.at_range_edge);
     if (c.implausible) {
       ranking.back()["beyond_plausible_range"] = beyond_range_json(c.beyond_range);
       ranking.back()["qualifies_but_implausible"] = c.qualifies_but_implausible;
+    }
+    if (!c.peak_at_end.empty()) {
+      nlohmann::json values = nlohmann::json::array();
+      for (const auto& v : c.peak_at_end) values.push_back(v.size() == 1 ? nlohmann::json(v.front()) : nlohmann::json(v));
+      ranking.back()["peak_at_curve_end"] = values;
     }
     if (!c.samples.empty()) {
       nlohmann::json samples = nlohmann::json::array();
@@ -122,7 +128,7 @@ std::string summary_markdown(const SummaryDiagnosis& d) {
   const CurveScale scale = curve_scale(d.sim);
   for (const SummaryCandidate& c : d.ranking) {
     s << "| " << c.effect << (c.implausible ? " (implausible)" : !c.at_range_edge.empty() ? " (at its range's edge)" : "")
-      << " | ";
+      << (fitted_peak_at_end(c) ? " (peak at the curve's end)" : "") << " | ";
     for (const auto& [name, value] : named_params(c, scale)) s << name << " " << value << " ";
     s << "| ";
     for (double f : c.features) s << f << " ";
@@ -140,9 +146,14 @@ std::string summary_markdown(const SummaryDiagnosis& d) {
       for (double x : v) s << " " << x;
       s << " ->";
       for (double x : f) s << " " << x;
-      s << " (" << summary_gap(d.lab, f) << ");";
+      s << " (" << summary_gap(d.lab, f)
+        << (std::find(c.peak_at_end.begin(), c.peak_at_end.end(), v) != c.peak_at_end.end() ? ", peak at the curve's end" : "")
+        << ");";
     }
     s << "\n";
+    if (!c.peak_at_end.empty())
+      s << "(peak at the curve's end: the run ended before the specimen failed, so its peak figures are lower bounds "
+           "of the failure's.)\n";
   }
   return s.str();
 }

@@ -101,6 +101,65 @@ TEST(GapSummaryLab, FiguresInAnotherUnitOrSignAreFlagged) {
   EXPECT_NE(warnings("peak_force_N=150000:100").find("another specimen or test"), std::string::npos);
 }
 
+// A punch whose platter stops before the net fails: the stand-in membrane stiffens as
+// F = k u^2 and fails (falls to a tenth) at u_f; with u_f beyond the 0.75 m travel its curve ends
+// still rising.
+ForceCurve stand_in_punch(double failure_m) {
+  ForceCurve c;
+  c.source = "stand-in punch";
+  for (int i = 0; i <= 150; ++i) {
+    const double u = 0.75 * i / 150.0;
+    c.u.push_back(u);
+    c.f.push_back(u <= failure_m ? 2e5 * u * u : 0.1 * 2e5 * failure_m * failure_m);
+  }
+  return c;
+}
+
+// A run that ends before its specimen fails has its largest force at the curve's end: its peak
+// figures are lower bounds, which the simulation's warning, the model run's listing and the
+// cause's reason say (the study's punches with 0.75 m of travel, docs/gap.md).
+TEST(GapSummaryLab, ARunThatEndsBeforeItsSpecimenFailsIsNamed) {
+  EXPECT_FALSE(peak_at_curve_end(stand_in_punch(0.5)));
+  EXPECT_TRUE(peak_at_curve_end(stand_in_punch(0.9)));
+  EXPECT_FALSE(peak_at_curve_end(stand_in_column(1.0)));
+  const std::vector<SummaryFeature> lab = parse_lab_summary("peak_force_N=80000:8000,peak_displacement_mm=640:64");
+  EXPECT_TRUE(summary_scale_warnings(lab, stand_in_punch(0.5)).empty());
+  const auto warned = summary_scale_warnings(lab, stand_in_punch(0.9));
+  ASSERT_EQ(warned.size(), 1u);
+  EXPECT_NE(warned.front().find("ended before it did"), std::string::npos) << warned.front();
+  // Only figures of the peak are censored: a force at a displacement is not.
+  EXPECT_TRUE(summary_scale_warnings(parse_lab_summary("force_at_400mm_N=32000:3000"), stand_in_punch(0.9)).empty());
+
+  // The model-only effect moves the failure from 0.5 m (the simulation) out past the travel: its
+  // upper value's run ends rising, and the search lists it.
+  SummaryOptions options;
+  options.effects = {"mesh_distortion"};
+  options.model = [](const std::vector<AppliedEffect>& effects) {
+    return stand_in_punch(0.5 + 6.0 * effects.front().params.front());
+  };
+  options.model_runs = 3;
+  options.try_pairs = false;
+  const SummaryDiagnosis d = diagnose_summary(stand_in_punch(0.5), lab, options);
+  ASSERT_EQ(d.ranking.size(), 1u);
+  const SummaryCandidate& c = d.ranking.front();
+  ASSERT_FALSE(c.peak_at_end.empty());
+  for (const auto& v : c.peak_at_end) EXPECT_GT(0.5 + 6.0 * v.front(), 0.75 * (1.0 - kCurveEndShare));
+  for (const auto& [v, f] : c.samples)
+    if (0.5 + 6.0 * v.front() < 0.74) EXPECT_EQ(std::count(c.peak_at_end.begin(), c.peak_at_end.end(), v), 0) << v.front();
+  const nlohmann::json j = summary_json(d);
+  EXPECT_TRUE(j.at("ranking")[0].contains("peak_at_curve_end"));
+  EXPECT_NE(summary_markdown(d).find("peak at the curve's end"), std::string::npos);
+  // Figures that only a run ending rising matches (112 kN at 750 mm: the upper value's run): the
+  // cause's reason says its figures are lower bounds.
+  const SummaryDiagnosis beyond =
+      diagnose_summary(stand_in_punch(0.5), parse_lab_summary("peak_force_N=112000:8000,peak_displacement_mm=750:64"), options);
+  ASSERT_EQ(beyond.cause, "mesh_distortion") << beyond.reason;
+  EXPECT_TRUE(fitted_peak_at_end(beyond.ranking.front()));
+  EXPECT_NE(beyond.reason.find("its peak figures are lower bounds"), std::string::npos) << beyond.reason;
+  EXPECT_TRUE(summary_json(beyond).at("ranking")[0].at("fitted_peak_at_curve_end").get<bool>());
+  EXPECT_FALSE(fitted_peak_at_end(c)) << "the first figures' best run failed within the travel";
+}
+
 // The force at a given displacement: linear between samples (the stand-in rises 1500 N over
 // 0.2 mm, then falls by 900 N over 1.8 mm).
 TEST(GapSummaryLab, ForceAtADisplacement) {

@@ -44,6 +44,18 @@ double curve_feature(const ForceCurve& curve, const std::string& name);
 // in N?"). Checked before the diagnosis (whose searches may take minutes); throws what
 // diagnose_summary would for a curve or figure it cannot take.
 std::vector<std::string> summary_scale_warnings(const std::vector<SummaryFeature>& lab, const ForceCurve& sim);
+// Whether a curve's largest force lies in the last kCurveEndShare of its displacement: a run that
+// ended before its specimen failed (a punch whose platter stopped first), so the figures that
+// hang on the peak (feature_needs_peak) are lower bounds of the specimen's, not its failure's.
+// The campaign's rule for a punch that does not apply (docs/campaign.md, "The recommended set").
+bool peak_at_curve_end(const ForceCurve& curve);
+inline constexpr double kCurveEndShare = 0.01;
+struct SummaryCandidate;
+// Whether the run of a single model-only candidate's fitted value is in its peak_at_end.
+bool fitted_peak_at_end(const SummaryCandidate& c);
+// peak_force_N, peak_displacement_mm, onset_displacement_mm (a share of the peak),
+// strength_N_per_m and secant_stiffness_N_per_m (its chord between shares of the peak).
+bool feature_needs_peak(const std::string& name);
 // D of a force_at_<D>mm_N name (D a positive plain decimal, e.g. force_at_420mm_N), else none.
 std::optional<double> force_at_displacement_mm(const std::string& name);
 // The force_at_<D>mm_N name of a displacement in mm (up to 10 significant digits).
@@ -80,6 +92,9 @@ struct SummaryCandidate {
   // Model-only effects: every value run (the neutral one is the simulation; a pair's values of its
   // model-only parameters) and the features.
   std::vector<std::pair<std::vector<double>, std::vector<double>>> samples;
+  // The values whose run's peak lay at its curve's end (peak_at_curve_end) while a figure hangs
+  // on the peak: their peak figures are lower bounds.
+  std::vector<std::vector<double>> peak_at_end;
   bool qualifies = false;
   bool implausible = false;  // a magnitude fitted outside its plausible range: never the cause
   std::vector<BeyondRange> beyond_range;  // which magnitudes, with their ranges
