@@ -24,6 +24,28 @@ const std::vector<std::string>& fixed_features() {
 
 constexpr const char* kForceAtPrefix = "force_at_";
 constexpr const char* kForceAtSuffix = "mm_N";
+constexpr const char* kDisplacementAtPrefix = "displacement_at_";
+constexpr const char* kDisplacementAtSuffix = "N_mm";
+
+// The positive plain decimal between `prefix` and `suffix` of a column-style name (digits and one
+// decimal point: no sign, exponent or spaces), else none.
+std::optional<double> value_between(const std::string& name, const std::string& prefix, const std::string& suffix) {
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+    return std::nullopt;
+  const std::string middle = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (middle.find_first_not_of("0123456789.") != std::string::npos || std::count(middle.begin(), middle.end(), '.') > 1)
+    return std::nullopt;
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(middle, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != middle.size() || !(value > 0.0) || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
 
 double number(const std::string& text, const std::string& field, const std::string& what) {
   std::size_t used = 0;
@@ -40,29 +62,17 @@ double number(const std::string& text, const std::string& field, const std::stri
 
 bool known_feature(const std::string& name) {
   return std::find(fixed_features().begin(), fixed_features().end(), name) != fixed_features().end() ||
-         force_at_displacement_mm(name).has_value();
+         force_at_displacement_mm(name).has_value() || displacement_at_force_N(name).has_value();
 }
 
 }  // namespace
 
 std::optional<double> force_at_displacement_mm(const std::string& name) {
-  const std::string prefix = kForceAtPrefix, suffix = kForceAtSuffix;
-  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
-      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
-    return std::nullopt;
-  const std::string middle = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
-  // Digits and one decimal point only: no sign, exponent or spaces in a column-style name.
-  if (middle.find_first_not_of("0123456789.") != std::string::npos || std::count(middle.begin(), middle.end(), '.') > 1)
-    return std::nullopt;
-  std::size_t used = 0;
-  double mm = 0.0;
-  try {
-    mm = std::stod(middle, &used);
-  } catch (const std::exception&) {
-    return std::nullopt;
-  }
-  if (used != middle.size() || !(mm > 0.0) || !std::isfinite(mm)) return std::nullopt;
-  return mm;
+  return value_between(name, kForceAtPrefix, kForceAtSuffix);
+}
+
+std::optional<double> displacement_at_force_N(const std::string& name) {
+  return value_between(name, kDisplacementAtPrefix, kDisplacementAtSuffix);
 }
 
 std::string force_at_feature_name(double displacement_mm) {
@@ -79,7 +89,8 @@ std::string force_at_feature_name(double displacement_mm) {
 std::string summary_feature_names() {
   std::string out;
   for (const auto& n : fixed_features()) out += (out.empty() ? "" : ", ") + n;
-  return out + ", force_at_<D>mm_N (the force at D mm, e.g. force_at_420mm_N)";
+  return out + ", force_at_<D>mm_N (the force at D mm, e.g. force_at_420mm_N), displacement_at_<F>N_mm (where "
+               "the force first reaches F N, e.g. displacement_at_1000N_mm)";
 }
 
 std::vector<SummaryFeature> parse_lab_summary(const std::string& text, const std::string& field) {
@@ -144,6 +155,17 @@ double curve_feature(const ForceCurve& c, const std::string& name) {
     return c.u.front() * 1e3;
   }
   if (const auto mm = force_at_displacement_mm(name)) return force_at(c, *mm * 1e-3);
+  if (const auto level = displacement_at_force_N(name)) {
+    // Linear between samples; a curve that never reaches the force gives its last displacement
+    // (the crossing lies beyond the run: a lower bound).
+    for (std::size_t i = 1; i < c.size(); ++i)
+      if (c.f[i] >= *level) {
+        if (c.f[i - 1] >= *level) return c.u[i - 1] * 1e3;
+        const double t = (*level - c.f[i - 1]) / (c.f[i] - c.f[i - 1]);
+        return (c.u[i - 1] + t * (c.u[i] - c.u[i - 1])) * 1e3;
+      }
+    return c.u.back() * 1e3;
+  }
   if (name == "strength_N_per_m" || name == "secant_stiffness_N_per_m") {
     if (!(c.strip_width_m > 0) || !(c.free_length_m > 0))
       throw InputError(c.source, name + " needs a strip tension (its metadata strip_width_m and free_length_m, as "

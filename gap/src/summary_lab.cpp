@@ -398,10 +398,15 @@ SummaryDiagnosis diagnose_summary(const ForceCurve& sim_in, const std::vector<Su
   d.lab = lab;
   d.sim = oriented(sim_in, &d.compression);
   const double reach_mm = *std::max_element(d.sim.u.begin(), d.sim.u.end()) * 1e3;
-  for (const SummaryFeature& f : lab)
+  const double largest_force = *std::max_element(d.sim.f.begin(), d.sim.f.end());
+  for (const SummaryFeature& f : lab) {
     if (const auto mm = force_at_displacement_mm(f.name); mm && *mm > reach_mm)
       throw InputError("--lab-summary", f.name + ": the simulated curve reaches only " + std::to_string(reach_mm) +
                                             " mm; give a displacement within its travel");
+    if (const auto level = displacement_at_force_N(f.name); level && *level > largest_force)
+      throw InputError("--lab-summary", f.name + ": the simulated force reaches only " + std::to_string(largest_force) +
+                                            " N; give a force the simulation reaches");
+  }
   d.sim_features = features_of(d.sim, lab);
   d.gap_before = summary_gap(lab, d.sim_features);
   const CurveScale scale = curve_scale(d.sim);

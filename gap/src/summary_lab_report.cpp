@@ -35,18 +35,23 @@ nlohmann::json summary_json(const SummaryDiagnosis& d) {
   const auto peak = std::max_element(d.sim.f.begin(), d.sim.f.end()) - d.sim.f.begin();
   nlohmann::json lab = nlohmann::json::array();
   for (std::size_t i = 0; i < d.lab.size(); ++i) {
-    const auto force_at_mm = force_at_displacement_mm(d.lab[i].name);
-    const bool at_peak = d.lab[i].name != "residual_force_N" && !force_at_mm;
-    const double at = force_at_mm ? *force_at_mm * 1e-3 : at_peak ? d.sim.u[static_cast<std::size_t>(peak)] : d.sim.u.back();
+    const std::string& name = d.lab[i].name;
+    const auto force_at_mm = force_at_displacement_mm(name);
+    // The onsets are read where the simulated force first reaches their level: before the peak.
+    const bool onset = name == "onset_displacement_mm" || displacement_at_force_N(name).has_value();
+    const bool at_peak = name != "residual_force_N" && !force_at_mm && !onset;
+    const double peak_u = d.sim.u[static_cast<std::size_t>(peak)];
+    const double at = force_at_mm ? *force_at_mm * 1e-3 : onset ? d.sim_features[i] * 1e-3 : at_peak ? peak_u : d.sim.u.back();
     const double z = (d.sim_features[i] - d.lab[i].mean) / d.lab[i].sd;
-    const std::string region = at_peak ? "peak" : force_at_mm && at < d.sim.u[static_cast<std::size_t>(peak)] ? "pre_peak" : "post_peak";
+    const std::string region = at_peak ? "peak" : (force_at_mm || onset) && at < peak_u ? "pre_peak" : "post_peak";
+    const bool displacement = name.size() > 3 && name.compare(name.size() - 3, 3, "_mm") == 0;
     where.push_back({{"region", region},
                      {"from_mm", at * 1e3},
                      {"to_mm", at * 1e3},
                      {"share", total > 0 ? z2[i] / total : 1.0 / static_cast<double>(d.lab.size())},
-                     {"direction", d.lab[i].name == "peak_displacement_mm"       ? "horizontal offset"
-                                   : d.lab[i].name == "secant_stiffness_N_per_m" ? "slope"
-                                                                                 : "vertical offset"},
+                     {"direction", displacement                         ? "horizontal offset"
+                                   : name == "secant_stiffness_N_per_m" ? "slope"
+                                                                        : "vertical offset"},
                      {"feature", d.lab[i].name},
                      {"z", z}});
     lab.push_back({{"feature", d.lab[i].name}, {"mean", d.lab[i].mean}, {"sd", d.lab[i].sd},

@@ -193,6 +193,41 @@ TEST(GapSummaryLab, ForceBeyondTheSimulatedTravelIsRefused) {
   }
 }
 
+// The displacement where the force first reaches a level (the thesis punch's onset: where the net
+// starts to carry load, `dem run`'s 1 kN), against the relative onset (4 % of the peak): on the
+// stand-in, 750 N is reached at 0.1 mm; a level never reached reads the curve's end, and a level
+// the simulation never reaches is refused by name. The `where` of an onset is before the peak,
+// along the displacement.
+TEST(GapSummaryLab, DisplacementAtAForce) {
+  const ForceCurve c = stand_in_column(1.0);
+  EXPECT_NEAR(curve_feature(c, "displacement_at_750N_mm"), 0.1, 1e-12);
+  EXPECT_NEAR(curve_feature(c, "displacement_at_1400N_mm"), 0.2 * 1400.0 / 1500.0, 1e-12);
+  EXPECT_NEAR(curve_feature(c, "displacement_at_1600N_mm"), 2.0, 1e-12);
+  EXPECT_EQ(displacement_at_force_N("displacement_at_1000N_mm"), 1000.0);
+  for (const char* bad : {"displacement_at_N_mm", "displacement_at_-5N_mm", "displacement_at_1e3N_mm",
+                          "displacement_at_1000kN_mm", "displacement_at_1000N_m"})
+    EXPECT_FALSE(displacement_at_force_N(bad).has_value()) << bad;
+  EXPECT_EQ(parse_lab_summary("displacement_at_1000N_mm=200:20").front().name, "displacement_at_1000N_mm");
+  SummaryOptions options;
+  options.effects = {"geometry_imperfection"};
+  try {
+    diagnose_summary(c, {{"displacement_at_2000N_mm", 0.1, 0.01}}, options);
+    FAIL() << "a force of 2000 N on a curve that peaks at 1500 N was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("displacement_at_2000N_mm: the simulated force reaches only 1500"), std::string::npos)
+        << e.what();
+  }
+  const SummaryDiagnosis d = diagnose_summary(
+      c, parse_lab_summary("displacement_at_750N_mm=0.15:0.01,onset_displacement_mm=0.01:0.002,peak_force_N=1500:50"), options);
+  const nlohmann::json where = summary_json(d).at("where");
+  for (int i : {0, 1}) {
+    EXPECT_EQ(where[i].at("region"), "pre_peak") << where[i];
+    EXPECT_EQ(where[i].at("direction"), "horizontal offset") << where[i];
+  }
+  EXPECT_NEAR(where[0].at("from_mm").get<double>(), 0.1, 1e-12);
+  EXPECT_EQ(where[2].at("region"), "peak");
+}
+
 // When no effect can be tried (here the only one asked for is not in the model), the verdict says
 // so; "no effect reduces the gap" would claim effects were tried and failed.
 TEST(GapSummaryLab, NothingTestedIsNotNoEffectReducesTheGap) {

@@ -33,6 +33,8 @@ std::string summary_feature_names();
 // reaches kOnsetFraction of the peak, force_at_<D>mm_N the force where the displacement first
 // reaches D mm (linear between samples; the first force before the curve's start, the last
 // after its end: diagnose_summary refuses a simulation that does not reach D);
+// displacement_at_<F>N_mm where the force first reaches F newtons (linear between samples; the
+// last displacement where it never does: diagnose_summary refuses a simulation that does not);
 // strength_N_per_m the peak force per metre of a strip's width, secant_stiffness_N_per_m its chord
 // between kSecantLow and kSecantHigh of the peak, per metre and per unit strain over the free
 // length (both need a strip tension's geometry, else InputError).
@@ -58,6 +60,9 @@ bool fitted_peak_at_end(const SummaryCandidate& c);
 bool feature_needs_peak(const std::string& name);
 // D of a force_at_<D>mm_N name (D a positive plain decimal, e.g. force_at_420mm_N), else none.
 std::optional<double> force_at_displacement_mm(const std::string& name);
+// F of a displacement_at_<F>N_mm name (F a positive plain decimal, e.g. displacement_at_1000N_mm:
+// where the force first reaches 1 kN, the onset of `dem run`'s punch summary), else none.
+std::optional<double> displacement_at_force_N(const std::string& name);
 // The force_at_<D>mm_N name of a displacement in mm (up to 10 significant digits).
 std::string force_at_feature_name(double displacement_mm);
 
