@@ -116,7 +116,9 @@ ForceCurve load_force_curve(const std::filesystem::path& path, const CurveConver
     }
   } else {
     throw InputError(file, "expected columns displacement_<length unit> and force_<force unit> "
-                           "(or strain_1 and stress_<unit>), found: " + columns_of(curve));
+                           "(or strain_1 and stress_<unit>), found: " + columns_of(curve) +
+                               "; name other channels with --columns DISPLACEMENT,FORCE (a DEM punch's: "
+                               "--columns tool_displacement,tool_force)");
   }
   validate_force_curve(out);
   return out;
