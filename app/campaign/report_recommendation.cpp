@@ -6,6 +6,8 @@
 #include <sstream>
 #include <tuple>
 
+#include "dtwire/gap/force_curve.hpp"
+#include "dtwire/gap/summary_lab.hpp"
 #include "report_summary.hpp"
 
 namespace dtwire::app {
@@ -17,7 +19,6 @@ using nlohmann::json;
 constexpr double kStripStrengthKNPerM = 50.0, kStripStiffnessKNPerM = 500.0;
 constexpr double kThesisPeakN = 25000.0, kThesisPeakMm = 530.0;
 constexpr double kOnsetForceN = 1000.0;     // dem run's punch onset: the force first at 1 kN
-constexpr double kTravelEndShare = 0.01;    // a peak in the last 1 % of the travel is no peak
 constexpr double kMeshScaleTie = 1.05;      // the punch's agreement with YADE (5 %)
 constexpr double kModelFormNrmse = 0.10;    // report_summary.cpp's model-form threshold
 const char* const kReferenceSet = "thesis published";
@@ -154,9 +155,10 @@ std::optional<std::string> punch_not_applicable(const std::vector<double>& displ
   if (displacement_m.empty() || displacement_m.size() != force_N.size()) return "no punch curve";
   const auto peak = std::max_element(force_N.begin(), force_N.end()) - force_N.begin();
   const double travel = *std::max_element(displacement_m.begin(), displacement_m.end());
+  // A peak in the last 1 % of the travel is no peak: gap's rule for a run that ended first.
   const std::string at_peak = fixed(force_N[peak] / 1000.0, 1) + " kN at " + fixed(displacement_m[peak], 2) + " m";
   if (force_N[peak] < kOnsetForceN) return "the net never carries the onset force of 1 kN (" + at_peak + ")";
-  if (displacement_m[peak] >= (1.0 - kTravelEndShare) * travel)
+  if (gap::peak_at_curve_end(gap::ForceCurve{displacement_m, force_N, "punch", 0.0, 0.0}))
     return "no peak within the travel: the force still rises when the platter stops (" + at_peak + " of " +
            fixed(travel, 2) + " m), so the net has not failed";
   return std::nullopt;
