@@ -315,13 +315,16 @@ double J2LogPlasticity::accrue_damage(const PlasticState& committed, double dalp
                                       StressUpdate& r) const {
   r.state.damage = committed.damage;
   r.state.softening = committed.softening;
+  r.state.nonlocal_damage = committed.nonlocal_damage;
   if (!(dalpha > 0.0) || !failure_.enabled()) return 0.0;
   const StressInvariants inv = stress_invariants(r.kirchhoff);  // undamaged: w scales tau, not its invariants
   const double strain_to_failure = failure_.strain_to_failure(inv.triaxiality, inv.lode_parameter);
   r.state.damage += dalpha / strain_to_failure;
-  if (!failure_.softens() || !(cell_size > 0.0) || r.state.damage < 1.0) return 0.0;
-  // The part of Delta alpha after D reached 1 (D grows linearly over the step).
-  const double after_initiation = committed.damage >= 1.0 ? dalpha : (r.state.damage - 1.0) * strain_to_failure;
+  const double initiation_n = failure_.initiation_indicator(committed);
+  const double initiation = initiation_n + (r.state.damage - committed.damage);
+  if (!failure_.softens() || !(cell_size > 0.0) || initiation < 1.0) return 0.0;
+  // The part of Delta alpha after the indicator reached 1 (it grows linearly over the step).
+  const double after_initiation = initiation_n >= 1.0 ? dalpha : (initiation - 1.0) * strain_to_failure;
   const double rate = cell_size / failure_.softening_displacement;  // dw / d alpha
   const double w = committed.softening + after_initiation * rate;
   if (w >= failure_.largest_softening) {

@@ -30,6 +30,9 @@ struct PlasticState {
   double plastic_dissipation = 0.0;  // J per reference volume, accumulated
   double damage = 0.0;               // ductile failure indicator, failure at 1
   double softening = 0.0;            // w: the stress is (1 - w) times the undamaged one (after D = 1)
+  // The non-local average of D around the point at the last converged step (FailureParameters::
+  // nonlocal_radius > 0; set by the solver, not packed: it follows from the committed D field).
+  double nonlocal_damage = 0.0;
   SymTensor2 backstress;             // Pa, deviatoric (Armstrong-Frederick), spatial log-strain frame
 };
 
@@ -66,6 +69,11 @@ struct KinematicParameters {
 // the crack band of Bazant & Oh (1983, Mater. Struct. 16): over a cell of size h the stress falls
 // to zero within an opening of u_f, so the energy dissipated per unit crack area does not depend
 // on h. The damage dissipation psi dw is booked with the plastic dissipation.
+// Non-local initiation (optional): a local D at a strain gradient grows with each refinement (the
+// quadrature points get nearer the peak), so where the crack starts depends on the element size.
+// With a radius R the crack starts where the average of D over a ball of radius R (nonlocal_average.hpp)
+// reaches 1: D_bar_n + (D - D_n) >= 1, the committed average plus this step's local increment
+// (the average is refreshed after each converged step). The softening stays the crack band above.
 enum class FractureLocus { johnson_cook, hosford_coulomb };
 
 struct FailureParameters {
@@ -75,10 +83,14 @@ struct FailureParameters {
   double hc_a = 2.0, hc_b = 0.0, hc_c = 0.0, hc_n = 0.1;  // Hosford-Coulomb a, b, c, n
   double softening_displacement = 0.0;  // u_f, m; 0: indicator only, the stress never degrades
   double largest_softening = 0.99;      // w_max: the cracked point keeps 1 - w_max of its stress
+  double nonlocal_radius = 0.0;         // R, m; 0: the local D starts the crack
   bool enabled() const {
     return locus == FractureLocus::hosford_coulomb ? hc_b > 0.0 : (d1 != 0.0 || d2 != 0.0);
   }
   bool softens() const { return enabled() && softening_displacement > 0.0; }
+  bool nonlocal() const { return enabled() && nonlocal_radius > 0.0; }
+  // The indicator that starts the crack: D, or its non-local average.
+  double initiation_indicator(const PlasticState& s) const { return nonlocal() ? s.nonlocal_damage : s.damage; }
   // Plastic strain to failure (floored at 1e-6 so that D stays finite; +inf where the locus
   // accrues no damage).
   double strain_to_failure(double triaxiality, double lode_parameter) const;

@@ -71,6 +71,7 @@ void WireSolver::run(const std::function<void(const StepRecord&)>& on_step) {
   if (s.restart_step >= 0) {
     Impl::SteppingState state;
     s.read_checkpoint(static_cast<unsigned>(s.restart_step), state, last_step);
+    s.update_nonlocal_indicator();  // not in the checkpoint: it follows from the committed D
     t = state.t;
     dt = state.dt;
     step = state.step;

@@ -146,6 +146,7 @@ AssemblyOutcome WireSolver::Impl::assemble(bool with_matrix, const AffineConstra
 
 void WireSolver::Impl::commit() {
   for (auto& p : points) p.committed = p.trial;
+  update_nonlocal_indicator();
   for (const auto& part : contact_parts) part->commit();
 }
 

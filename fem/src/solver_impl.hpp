@@ -29,6 +29,7 @@
 #include "contact/wire_wire_contact.hpp"
 #include "direct_solver.hpp"
 #include "j2_log_plasticity.hpp"
+#include "nonlocal_average.hpp"
 #include "solver.hpp"
 
 namespace dtwire::fem {
@@ -38,8 +39,9 @@ using namespace dealii;
 class WireAxes;
 struct AxisLocation;
 
-// The coating's cells (region_ids.hpp: material id + 3) stay stress-free in the forming.
-inline bool is_coating(types::material_id id) { return (id - 1) % 10 >= 3; }
+// The coating's cells (region_ids.hpp: material id + 3) stay stress-free in the forming. The
+// generated straight wire's cells (material id 0) are steel.
+inline bool is_coating(types::material_id id) { return id > 0 && (id - 1) % 10 >= 3; }
 
 struct QuadraturePointRecord {
   PlasticState committed, trial;
@@ -141,7 +143,13 @@ struct WireSolver::Impl {
   void make_constraints(AffineConstraints<double>& c, double t_old, double t_new) const;
   void record_end(StepRecord& record);
   AssemblyOutcome assemble(bool with_matrix, const AffineConstraints<double>& constraints);
-  void commit();
+  void commit();  // the trial history becomes the committed one (and the non-local indicator follows)
+  // Non-local crack initiation (solver_nonlocal.cpp): the weights, found on first use, and the
+  // indices into `points` of this rank's steel points in their order.
+  std::unique_ptr<NonlocalAverage> nonlocal;
+  std::vector<std::size_t> nonlocal_points;
+  void make_nonlocal_average();
+  void update_nonlocal_indicator();
   double reaction() const;
   double neck_radius() const;
   // The quadrature point with the largest `key` over the owned steel cells `select` accepts, on

@@ -23,7 +23,8 @@ void WireSolver::Impl::log_junction_state() const {
   const LargestPoint strain =
       largest_point(near, [](const PlasticState& state) { return state.equivalent_plastic_strain; });
   if (strain.value < 0.0) return;  // no steel cell near a junction plane
-  const LargestPoint damage = largest_point(near, [](const PlasticState& state) { return state.damage; });
+  const LargestPoint damage = largest_point(
+      near, [this](const PlasticState& state) { return prm.material.failure.initiation_indicator(state); });
   log << "  junction: largest equivalent plastic strain " << strain.value << " at z = " << strain.z * 1e3
       << " mm, r = " << strain.r * 1e3 << " mm (triaxiality " << strain.triaxiality << ", Lode parameter "
       << strain.lode_parameter << ", failure indicator " << strain.damage << "); largest failure indicator there "

@@ -110,7 +110,7 @@ WireSolver::Impl::LargestPoint WireSolver::Impl::largest_point(
       where[1] = inv.lode_parameter;
       where[2] = x[2];
       where[3] = std::hypot(x[0], x[1]);
-      where[4] = p.committed.damage;
+      where[4] = prm.material.failure.initiation_indicator(p.committed);
     }
   }
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm);
@@ -120,7 +120,7 @@ WireSolver::Impl::LargestPoint WireSolver::Impl::largest_point(
 
 void WireSolver::Impl::record_damage(StepRecord& record) const {
   const LargestPoint largest = largest_point([](const auto&) { return true; },
-                                             [](const PlasticState& state) { return state.damage; });
+                                             [this](const PlasticState& state) { return prm.material.failure.initiation_indicator(state); });
   record.damage = std::max(largest.value, 0.0);
   record.damage_triaxiality = largest.triaxiality;
   record.damage_lode = largest.lode_parameter;

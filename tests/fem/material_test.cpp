@@ -445,6 +445,42 @@ TEST(Softening, CrackBandWorkIsIndependentOfTheCellSize) {
   }
 }
 
+// Non-local initiation: the crack starts where the committed average of the indicator plus this
+// step's local increment reaches 1, not the local indicator. A perfectly plastic bar with
+// eps_f = 0.2, locally at D = 0.5 but with a neighbourhood averaging 0.9, crosses 1 within a step of
+// Delta alpha > 0.02: w = (Delta alpha - 0.02) h / u_f. Without the radius the same step (local D
+// 0.5 -> 0.7) does not soften.
+TEST(Softening, ANonlocalIndicatorStartsTheCrackWhereTheAverageReachesOne) {
+  HardeningParameters h;
+  h.law = HardeningLaw::linear;
+  h.yield_stress = 400e6;
+  h.linear_modulus = 0.0;
+  FailureParameters locus{0.2, 0.0, 0.0};
+  locus.softening_displacement = 0.5e-3;
+  const double cell = 1e-3;
+  FailureParameters nonlocal = locus;
+  nonlocal.nonlocal_radius = 0.5e-3;
+  ASSERT_TRUE(nonlocal.nonlocal() && !locus.nonlocal());
+  for (const auto& [failure, softens] : {std::pair{nonlocal, true}, std::pair{locus, false}}) {
+    const J2LogPlasticity m(ElasticParameters{200e9, 0.3}, IsotropicHardening(h), failure);
+    PlasticState state;
+    double mu = 1.0;
+    state = uniaxial(m, std::exp(0.1 + 400e6 / 200e9), state, mu).state;  // alpha about 0.1, D = alpha / 0.2
+    ASSERT_NEAR(state.damage, state.equivalent_plastic_strain / 0.2, 1e-9);
+    ASSERT_LT(state.damage, 0.55);
+    state.nonlocal_damage = 0.9;
+    const StressUpdate r = uniaxial(m, std::exp(0.15 + 400e6 / 200e9), state, mu, cell);
+    const double dalpha = r.state.equivalent_plastic_strain - state.equivalent_plastic_strain;
+    ASSERT_GT(dalpha, 0.03);
+    EXPECT_NEAR(r.state.damage, state.damage + dalpha / 0.2, 1e-9);  // the local indicator as before
+    EXPECT_EQ(r.state.nonlocal_damage, 0.9);                            // carried until the solver's refresh
+    if (softens)
+      EXPECT_NEAR(r.state.softening, (dalpha - (1.0 - 0.9) * 0.2) * cell / locus.softening_displacement, 1e-9);
+    else
+      EXPECT_EQ(r.state.softening, 0.0);
+  }
+}
+
 // The algorithmic tangent with softening (a step past initiation, w growing) and after it (w at
 // w_max) against central differences; tolerance as the undamaged tangent's (1e-6), looser (1e-5)
 // where the stress is 1 % of the flow stress and round-off weighs more.

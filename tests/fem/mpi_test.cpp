@@ -66,6 +66,41 @@ TEST(Mpi, TwoRanksReproduceTheSerialCurve) {
   EXPECT_TRUE(std::filesystem::exists(dir / "parallel" / "fields" / "fields.pvd"));
 }
 
+// The non-local crack initiation on the necking bar (Hosford-Coulomb a = 2, c = 0: D = alpha / b,
+// largest at the neck): the averaging gathers every rank's points, so 2 ranks give the serial
+// indicator to 1e-8; an average never exceeds the largest value it averages, so the non-local
+// indicator stays at or below the local one step by step and reaches 1 no earlier; before the
+// crack the indicator does not act on the stresses, so the forces of both runs agree.
+TEST(Mpi, NonlocalCrackInitiationOnTwoRanksAndAgainstTheLocalIndicator) {
+  const auto dir = std::filesystem::temp_directory_path() / "dtwire_fem_mpi_test_nonlocal";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::string prm = kPrm;
+  const std::string failure = " set Failure locus = hosford-coulomb\n set Hosford-Coulomb b = 0.3\n set Stop at failure = true\n";
+  prm.replace(prm.find("end\nsubsection Boundary"), 3, failure + "end");
+  prm.replace(prm.find("0:0, 1:4, 1.2:3.6"), 17, "0:0, 1:5");
+  prm.replace(prm.find("set Fields = true"), 17, "set Fields = false");
+  std::ofstream(dir / "local.prm") << prm;
+  prm.replace(prm.find(" set Stop at failure"), 0, " set Nonlocal radius (mm) = 4\n");
+  std::ofstream(dir / "nonlocal.prm") << prm;
+  const auto [serial, parallel] = run_serial_and_parallel(dir, (dir / "nonlocal.prm").string());
+  expect_same_channels(serial, parallel, {"force", "damage"});
+  const std::string exe = DTWIRE_EXE;
+  const std::string local_run = exe + " run " + (dir / "local.prm").string() + " -q --out " + (dir / "local").string();
+  ASSERT_EQ(std::system(local_run.c_str()), 0) << local_run;
+  const dtwire::Curve local = dtwire::read_csv(dir / "local" / "curve.csv");
+  const auto d_local = local.si("damage"), d_nonlocal = serial.si("damage");
+  const auto f_local = local.si("force"), f_nonlocal = serial.si("force");
+  ASSERT_GE(d_nonlocal.size(), d_local.size());  // the local crack first (its run stops there)
+  ASSERT_GE(d_local.back(), 1.0);
+  ASSERT_GE(d_nonlocal.back(), 1.0);
+  EXPECT_LT(d_nonlocal[d_local.size() - 1], d_local.back());  // the neck is averaged with the shoulders
+  for (std::size_t i = 0; i < d_local.size(); ++i) {
+    EXPECT_LE(d_nonlocal[i], d_local[i] * (1.0 + 1e-6)) << "step " << i;
+    EXPECT_NEAR(f_nonlocal[i], f_local[i], 1e-10 * std::abs(f_local.back())) << "step " << i;
+  }
+}
+
 // Bonded grips on 2 ranks: a SW mesh (`dtwire mesh sw`, grips 4 and 5) whose top grip's bond
 // slides forwards and back; the grip faces lie in both ranks' cells.
 TEST(Mpi, BondedGripsOnTwoRanksReproduceTheSerialCurve) {

@@ -44,6 +44,9 @@ void declare_material(ParameterHandler& prm) {
   prm.declare_entry("Softening displacement (mm)", "0", Patterns::Double(0.0),
                     "u_f: after the indicator reaches 1 the stress falls to zero over a crack opening u_f "
                     "(crack band, w grows by d(alpha) h / u_f); 0: the indicator only, no softening");
+  prm.declare_entry("Nonlocal radius (mm)", "0", Patterns::Double(0.0),
+                    "R: the crack starts where the average of the indicator over a ball of radius R "
+                    "(bell-shaped weight, one wire) reaches 1; 0: where the indicator itself does");
   prm.declare_entry("Largest softening", "0.99", Patterns::Double(0.0, 1.0),
                     "w_max: a cracked point keeps 1 - w_max of its stress (a solvable system)");
   prm.declare_entry("Stop at failure", "true", Patterns::Bool(),
@@ -83,6 +86,9 @@ void read_material(const Source& source, Parameters& p) {
   source.require(f.hc_n > 0.0, "Material", "Hosford-Coulomb n", "an exponent > 0 (Mohr & Marcadet 2015: 0.1)");
   f.softening_displacement = prm.get_double("Softening displacement (mm)") * 1e-3;
   f.largest_softening = prm.get_double("Largest softening");
+  f.nonlocal_radius = prm.get_double("Nonlocal radius (mm)") * 1e-3;
+  source.require(f.nonlocal_radius == 0.0 || f.enabled(), "Material", "Nonlocal radius (mm)",
+                 "0 unless a failure locus is on (Failure d1/d2 or Hosford-Coulomb b)");
   source.require(f.largest_softening > 0.0 && f.largest_softening < 1.0, "Material", "Largest softening",
                  "a fraction in (0, 1) exclusive (1 leaves a cracked cell without stiffness)");
   source.require(f.softening_displacement == 0.0 || f.enabled(), "Material", "Softening displacement (mm)",
