@@ -90,28 +90,25 @@ NonlocalAverage::NonlocalAverage(const std::vector<std::array<double, 3>>& posit
                                  const std::vector<int>& groups, double radius, std::vector<std::size_t> own)
     : radius_(radius), own_(std::move(own)), point_count_(positions.size()) {
   check_input(positions, volumes, groups, radius, own_);
+  // Two passes: the rows' lengths first, so that the arrays are allocated once at their size (a
+  // growing vector would copy itself and need up to twice the memory the solver checked).
+  row_start_.assign(own_.size() + 1, 0);
+  visit_pairs(positions, groups, radius, own_, [&](std::size_t i, std::uint32_t, double) { ++row_start_[i + 1]; });
+  for (std::size_t i = 0; i < own_.size(); ++i) row_start_[i + 1] += row_start_[i];
+  column_.resize(row_start_.back());
+  weight_.resize(row_start_.back());
   const double r2 = radius * radius;
-  // Rows arrive in order of the own points; each is normalised when the next begins (and at the end).
-  std::vector<double> row;
-  row_start_.push_back(0);
-  const auto close_row = [&] {
-    double total = 0.0;
-    for (double w : row) total += w;  // > 0: the point itself is in its own ball (d = 0, w = 1)
-    for (double w : row) weight_.push_back(static_cast<float>(w / total));
-    row_start_.push_back(column_.size());
-    row.clear();
-  };
-  std::size_t current = 0;
+  std::vector<double> total(own_.size(), 0.0);
+  std::vector<std::size_t> next(row_start_.begin(), row_start_.end() - 1);
   visit_pairs(positions, groups, radius, own_, [&](std::size_t i, std::uint32_t y, double d2) {
-    while (current < i) {
-      close_row();
-      ++current;
-    }
-    const double bell = (1.0 - d2 / r2) * (1.0 - d2 / r2);
-    column_.push_back(y);
-    row.push_back(bell * volumes[y]);
+    const double w = (1.0 - d2 / r2) * (1.0 - d2 / r2) * volumes[y];
+    column_[next[i]] = y;
+    weight_[next[i]++] = static_cast<float>(w);
+    total[i] += w;  // > 0: the point itself is in its own ball (d = 0, w = 1)
   });
-  while (row_start_.size() < own_.size() + 1) close_row();
+  for (std::size_t i = 0; i < own_.size(); ++i)
+    for (std::size_t n = row_start_[i]; n < row_start_[i + 1]; ++n)
+      weight_[n] = static_cast<float>(weight_[n] / total[i]);
 }
 
 std::vector<double> NonlocalAverage::apply(const std::vector<double>& values) const {

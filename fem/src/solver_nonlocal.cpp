@@ -7,6 +7,8 @@
 #include <deal.II/base/mpi.h>
 #include <deal.II/fe/fe_values.h>
 
+#include <sstream>
+
 #include "dtwire/core/error.hpp"
 #include "dtwire/core/region_ids.hpp"
 #include "dtwire/core/resources.hpp"
@@ -60,11 +62,13 @@ void WireSolver::Impl::make_nonlocal_average() {
   const double bytes =
       Utilities::MPI::sum(8.0 * static_cast<double>(NonlocalAverage::count_pairs(all_positions, all_groups, radius, own)), comm);
   const auto available = Utilities::MPI::broadcast(comm, available_memory().value_or(0), 0);
-  if (available > 0 && bytes > 0.5 * static_cast<double>(available))
-    throw InputError("subsection Material",
-                     "'Nonlocal radius (mm)' = " + std::to_string(radius * 1e3) + " puts so many points in each ball that its weights take " +
-                         format_bytes(bytes) + ", more than half of the " + format_bytes(static_cast<double>(available)) +
-                         " of memory available; expected a radius of a few cells (the largest ball holds every point of a wire)");
+  if (available > 0 && bytes > 0.5 * static_cast<double>(available)) {
+    std::ostringstream message;
+    message << "'Nonlocal radius (mm)' = " << radius * 1e3 << " puts so many points in each ball that its weights take "
+            << format_bytes(bytes) << ", more than half of the " << format_bytes(static_cast<double>(available))
+            << " of memory available; expected a radius of a few cells (the largest ball holds every point of a wire)";
+    throw InputError("subsection Material", message.str());
+  }
   nonlocal = std::make_unique<NonlocalAverage>(all_positions, concatenated(Utilities::MPI::all_gather(comm, volumes)),
                                                all_groups, radius, std::move(own));
   std::size_t fewest = std::numeric_limits<std::size_t>::max(), most = 0;
